@@ -1,0 +1,664 @@
+"""Numba kernels of the bearing dynamic model: plain float64 arrays in, plain arrays out.
+
+Conventions (the Python side, :mod:`generators.model`, packs and unpacks):
+
+* ``p``: float64 parameter vector, indexed by the ``P_*`` constants below, SI units.
+* ``wav``: float64 table, one row per waviness harmonic and surface, columns ``W_*``:
+  surface code (``SURF_OUTER``, ``SURF_INNER``, ``SURF_BALL``), ball index (ball rows only),
+  order k, amplitude [m], phase [rad]. A ball row's phase already contains the ball's initial
+  spin angle times k.
+* State ``y``: displacements first, then velocities. Bodies: shaft (x_s, y_s), housing (x_h,
+  y_h), then for the ``full`` scene one radial coordinate rho_j per ball.
+* ``scene`` and ``ehl`` are passed through :func:`numba.literally`, so every combination is
+  compiled (and cached) on its own and the branches that pick the scene are removed at compile
+  time: a scene without ball masses or without a film never executes their code.
+
+Scenes (MODEL.md 1.3-1.5): ``SCENE_SHAFT`` 2-DOF shaft on massless balls with a rigid housing
+(the housing is integrated one-way, driven by the transmitted bearing force, as an output
+estimate); ``SCENE_SHAFT_HOUSING`` 4 DOF; ``SCENE_FULL`` 4 + Z DOF.
+Only numpy, numba and math are imported here (checked by import-linter).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+# ------------------------------------------------------------------- parameter vector layout
+(
+    P_BALL_COUNT,
+    P_SHAFT_MASS,
+    P_HOUSING_MASS,
+    P_BALL_MASS,
+    P_PEDESTAL_STIFFNESS,
+    P_PEDESTAL_DAMPING,
+    P_SHAFT_DAMPING,
+    P_K_INNER,
+    P_K_OUTER,
+    P_K_SERIES,
+    P_GAP,
+    P_SHAFT_SPEED,
+    P_CAGE_SPEED,
+    P_BALL_SPIN_SPEED,
+    P_CAGE_ANGLE0,
+    P_SHAFT_ANGLE0,
+    P_LOAD_X,
+    P_LOAD_Y,
+    P_GRAVITY,
+    P_LOADING_STIFFNESS,
+    P_LOADING_X0,
+    P_LOADING_Y0,
+    P_CONTACT_DAMPING_TIME,
+    P_FILM_INNER,
+    P_FILM_OUTER,
+    P_FILM_LOAD_FLOOR,
+    P_FILM_REFERENCE_LOAD,
+    P_SQUEEZE_INNER,
+    P_SQUEEZE_OUTER,
+    P_SQUEEZE_SERIES,
+    P_PITCH_RADIUS,
+    P_UNBALANCE,
+    P_MAX_DISPLACEMENT,
+    P_SIZE,
+) = range(34)
+# P_FILM_*: h_c = P_FILM_* * max(Q, floor)^FILM_EXPONENT [m] (Hamrock-Dowson, MODEL.md 4.2).
+# P_SQUEEZE_*: squeeze-film damping c = P_SQUEEZE_* * max(Q, floor)^-FILM_EXPONENT [N s/m]
+# (MODEL.md 4.5 with h_c inserted); P_SQUEEZE_SERIES is the series combination for massless balls.
+
+FILM_EXPONENT = -0.067
+FILM_ITERATIONS = 2  # fixed-point passes Q <- K (delta + h(Q))^1.5 (contraction k_H / k_f << 1)
+
+SCENE_SHAFT = 0
+SCENE_SHAFT_HOUSING = 1
+SCENE_FULL = 2
+
+SURF_OUTER = 0
+SURF_INNER = 1
+SURF_BALL = 2
+W_SURFACE, W_BALL, W_ORDER, W_AMPLITUDE, W_PHASE, W_SIZE = range(6)
+
+# integration status codes
+STATUS_OK = 0
+STATUS_NONFINITE = 1
+STATUS_RUNAWAY = 2
+STATUS_STEP_COLLAPSE = 3
+STATUS_TOO_MANY_STEPS = 4
+
+N_OUT_STATE = 8  # x_s, y_s, x_h, y_h, vx_s, vy_s, vx_h, vy_h
+N_OUT_ACCEL = 4  # ax_s, ay_s, ax_h, ay_h
+
+_JIT = {"cache": True, "fastmath": False, "nogil": True}
+
+
+def n_dof(scene: int, ball_count: int) -> int:
+    """Number of displacement coordinates of a scene (the state has twice as many)."""
+    return 4 + ball_count if scene == SCENE_FULL else 4
+
+
+# ------------------------------------------------------------------------------ contact laws
+
+
+@numba.njit(**_JIT)
+def _hertz_dry(delta, delta_rate, k_hertz, damping_time):
+    """Q = [K d^1.5 + tau * 1.5 K d^0.5 * d']_+ (damping vanishes at onset, MODEL.md 1.2)."""
+    if delta <= 0.0:
+        return 0.0
+    root = math.sqrt(delta)
+    q = k_hertz * delta * root + damping_time * 1.5 * k_hertz * root * delta_rate
+    return q if q > 0.0 else 0.0
+
+
+@numba.njit(**_JIT)
+def _hertz_ehl(delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, q_ref):
+    """Hertz contact in series with the EHL film (MODEL.md 4.3-4.4).
+
+    Solves Q = K (delta + h(Q))^1.5 with h = film * max(Q, floor)^-0.067 by fixed-point passes
+    from Q = q_ref, then adds the dry (stiffness-proportional) and squeeze-film damping; the
+    squeeze term is blended in over 0 < Q < floor so Q stays continuous at onset.
+    """
+    h_max = film * math.exp(FILM_EXPONENT * math.log(floor))
+    if delta + h_max <= 0.0:
+        return 0.0
+    q = q_ref
+    d_el = 0.0
+    for _ in range(FILM_ITERATIONS):
+        qf = q if q > floor else floor
+        d_el = delta + film * math.exp(FILM_EXPONENT * math.log(qf))
+        if d_el <= 0.0:
+            return 0.0
+        q = k_hertz * d_el * math.sqrt(d_el)
+    root = math.sqrt(d_el)
+    qf = q if q > floor else floor
+    blend = q / floor if q < floor else 1.0
+    c = damping_time * 1.5 * k_hertz * root + blend * squeeze * math.exp(
+        -FILM_EXPONENT * math.log(qf)
+    )
+    q = q + c * delta_rate
+    return q if q > 0.0 else 0.0
+
+
+# --------------------------------------------------------------------------------- waviness
+
+
+@numba.njit(**_JIT)
+def _waviness(wav, j, theta, shaft_angle, t, p, out):
+    """Waviness seen by ball j: out = [w_o, dw_o, w_i, dw_i, wb_o, dwb_o, wb_i, dwb_i] [m, m/s]."""
+    for i in range(8):
+        out[i] = 0.0
+    wc = p[P_CAGE_SPEED]
+    ws = p[P_SHAFT_SPEED]
+    wb = p[P_BALL_SPIN_SPEED]
+    for r in range(wav.shape[0]):
+        surface = int(wav[r, W_SURFACE])
+        k = wav[r, W_ORDER]
+        a = wav[r, W_AMPLITUDE]
+        ph = wav[r, W_PHASE]
+        if surface == SURF_OUTER:
+            arg = k * theta + ph
+            out[0] += a * math.cos(arg)
+            out[1] -= a * k * wc * math.sin(arg)
+        elif surface == SURF_INNER:
+            arg = k * (theta - shaft_angle) + ph
+            out[2] += a * math.cos(arg)
+            out[3] -= a * k * (wc - ws) * math.sin(arg)
+        elif int(wav[r, W_BALL]) == j:
+            arg = k * wb * t + ph
+            ca = a * math.cos(arg)
+            sa = a * k * wb * math.sin(arg)
+            out[4] += ca
+            out[5] -= sa
+            # inner contact point is diametrically opposite: chi + pi -> factor (-1)^k
+            sign = 1.0 if int(k) % 2 == 0 else -1.0
+            out[6] += sign * ca
+            out[7] -= sign * sa
+
+
+# ------------------------------------------------------------------------ right-hand sides
+
+
+@numba.njit(**_JIT)
+def _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch):
+    """First-order right-hand side dy/dt of a scene; fills ``loads[0/1, j]`` (inner/outer)."""
+    z = int(p[P_BALL_COUNT])
+    nd = 4 + z if scene == SCENE_FULL else 4
+    xs, ys, xh, yh = y[0], y[1], y[2], y[3]
+    vxs, vys, vxh, vyh = y[nd], y[nd + 1], y[nd + 2], y[nd + 3]
+    wc = p[P_CAGE_SPEED]
+    theta0 = p[P_CAGE_ANGLE0] + wc * t
+    shaft_angle = p[P_SHAFT_ANGLE0] + p[P_SHAFT_SPEED] * t
+    c0, s0 = math.cos(theta0), math.sin(theta0)
+    pitch = 2.0 * math.pi / z
+    cd, sd = math.cos(pitch), math.sin(pitch)
+    gap = p[P_GAP]
+    tau = p[P_CONTACT_DAMPING_TIME]
+    floor = p[P_FILM_LOAD_FLOOR]
+    qref = p[P_FILM_REFERENCE_LOAD]
+    has_waviness = wav.shape[0] > 0
+    fxs = 0.0
+    fys = 0.0
+    fxh = 0.0
+    fyh = 0.0
+    cj, sj = c0, s0
+    for j in range(z):
+        if j > 0:  # rotate by the ball pitch instead of calling cos/sin per ball
+            cj, sj = cj * cd - sj * sd, sj * cd + cj * sd
+        if has_waviness:
+            _waviness(wav, j, theta0 + j * pitch, shaft_angle, t, p, scratch)
+        us = xs * cj + ys * sj
+        dus = vxs * cj + vys * sj + wc * (-xs * sj + ys * cj)
+        if scene == SCENE_FULL:
+            uh = xh * cj + yh * sj
+            duh = vxh * cj + vyh * sj + wc * (-xh * sj + yh * cj)
+            rho = y[4 + j]
+            drho = y[nd + 4 + j]
+            di = us - rho - 0.5 * gap
+            ddi = dus - drho
+            do = rho - uh - 0.5 * gap
+            ddo = drho - duh
+            if has_waviness:
+                di += scratch[2] + scratch[6]
+                ddi += scratch[3] + scratch[7]
+                do += scratch[0] + scratch[4]
+                ddo += scratch[1] + scratch[5]
+            if ehl:
+                qi = _hertz_ehl(
+                    di, ddi, p[P_K_INNER], tau, p[P_FILM_INNER], p[P_SQUEEZE_INNER], floor, qref
+                )
+                qo = _hertz_ehl(
+                    do, ddo, p[P_K_OUTER], tau, p[P_FILM_OUTER], p[P_SQUEEZE_OUTER], floor, qref
+                )
+            else:
+                qi = _hertz_dry(di, ddi, p[P_K_INNER], tau)
+                qo = _hertz_dry(do, ddo, p[P_K_OUTER], tau)
+            dydt[4 + j] = drho
+            dydt[nd + 4 + j] = (
+                (qi - qo) / p[P_BALL_MASS] + wc * wc * (p[P_PITCH_RADIUS] + rho) - p[P_GRAVITY] * sj
+            )
+        else:
+            d = us - gap
+            dd = dus
+            if scene == SCENE_SHAFT_HOUSING:
+                d -= xh * cj + yh * sj
+                dd -= vxh * cj + vyh * sj + wc * (-xh * sj + yh * cj)
+            if has_waviness:
+                d += scratch[0] + scratch[2] + scratch[4] + scratch[6]
+                dd += scratch[1] + scratch[3] + scratch[5] + scratch[7]
+            if ehl:
+                qi = _hertz_ehl(
+                    d,
+                    dd,
+                    p[P_K_SERIES],
+                    tau,
+                    p[P_FILM_INNER] + p[P_FILM_OUTER],
+                    p[P_SQUEEZE_SERIES],
+                    floor,
+                    qref,
+                )
+            else:
+                qi = _hertz_dry(d, dd, p[P_K_SERIES], tau)
+            qo = qi
+        loads[0, j] = qi
+        loads[1, j] = qo
+        fxs -= qi * cj
+        fys -= qi * sj
+        fxh += qo * cj
+        fyh += qo * sj
+    # external loads on the shaft: constant force, or a loading spring preloaded to it
+    kl = p[P_LOADING_STIFFNESS]
+    fxs += p[P_LOAD_X] - kl * (xs - p[P_LOADING_X0])
+    fys += p[P_LOAD_Y] - kl * (ys - p[P_LOADING_Y0])
+    mu = p[P_UNBALANCE]
+    if mu != 0.0:
+        ws = p[P_SHAFT_SPEED]
+        fxs += mu * ws * ws * math.cos(shaft_angle)
+        fys += mu * ws * ws * math.sin(shaft_angle)
+    ms = p[P_SHAFT_MASS]
+    mh = p[P_HOUSING_MASS]
+    g = p[P_GRAVITY]
+    dydt[0] = vxs
+    dydt[1] = vys
+    dydt[2] = vxh
+    dydt[3] = vyh
+    dydt[nd] = (fxs - p[P_SHAFT_DAMPING] * vxs) / ms
+    dydt[nd + 1] = (fys - p[P_SHAFT_DAMPING] * vys) / ms - g
+    kh = p[P_PEDESTAL_STIFFNESS]
+    ch = p[P_PEDESTAL_DAMPING]
+    dydt[nd + 2] = (fxh - ch * vxh - kh * xh) / mh
+    dydt[nd + 3] = (fyh - ch * vyh - kh * yh) / mh - g
+
+
+@numba.njit(**_JIT)
+def _record(y, dydt, nd, k, out_state, out_accel):
+    out_state[k, 0] = y[0]
+    out_state[k, 1] = y[1]
+    out_state[k, 2] = y[2]
+    out_state[k, 3] = y[3]
+    out_state[k, 4] = y[nd]
+    out_state[k, 5] = y[nd + 1]
+    out_state[k, 6] = y[nd + 2]
+    out_state[k, 7] = y[nd + 3]
+    out_accel[k, 0] = dydt[nd]
+    out_accel[k, 1] = dydt[nd + 1]
+    out_accel[k, 2] = dydt[nd + 2]
+    out_accel[k, 3] = dydt[nd + 3]
+
+
+@numba.njit(**_JIT)
+def _check(y, nd, limit):
+    """Return a status code for the body displacements of ``y``."""
+    for i in range(y.shape[0]):
+        if not math.isfinite(y[i]):
+            return STATUS_NONFINITE
+    for i in range(nd):
+        if abs(y[i]) > limit:
+            return STATUS_RUNAWAY
+    return STATUS_OK
+
+
+# ---------------------------------------------------------------------------------- RK4
+
+
+@numba.njit(**_JIT)
+def _rk4_impl(
+    scene,
+    ehl,
+    y0,
+    p,
+    wav,
+    t0,
+    dt,
+    steps_per_record,
+    n_skip,
+    n_record,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+):
+    """Classical RK4 with a fixed step; records every ``steps_per_record`` steps.
+
+    The first ``n_skip`` steps (settling) are not recorded. Returns (status, time).
+    """
+    n = y0.shape[0]
+    z = int(p[P_BALL_COUNT])
+    nd = n // 2
+    limit = p[P_MAX_DISPLACEMENT]
+    y = y0.copy()
+    k1 = np.empty(n)
+    k2 = np.empty(n)
+    k3 = np.empty(n)
+    k4 = np.empty(n)
+    tmp = np.empty(n)
+    loads = np.zeros((2, z))
+    scratch = np.zeros(8)
+    t = t0
+    half = 0.5 * dt
+    total = n_skip + n_record * steps_per_record
+    for step in range(total):
+        _rhs(scene, ehl, t, y, p, wav, k1, loads, scratch)
+        rec = step - n_skip
+        if rec >= 0 and rec % steps_per_record == 0:
+            status = _check(y, nd, limit)
+            if status != STATUS_OK:
+                return status, t
+            kr = rec // steps_per_record
+            _record(y, k1, nd, kr, out_state, out_accel)
+            if record_loads:
+                for j in range(z):
+                    out_loads[kr, 0, j] = loads[0, j]
+                    out_loads[kr, 1, j] = loads[1, j]
+        for i in range(n):
+            tmp[i] = y[i] + half * k1[i]
+        _rhs(scene, ehl, t + half, tmp, p, wav, k2, loads, scratch)
+        for i in range(n):
+            tmp[i] = y[i] + half * k2[i]
+        _rhs(scene, ehl, t + half, tmp, p, wav, k3, loads, scratch)
+        for i in range(n):
+            tmp[i] = y[i] + dt * k3[i]
+        _rhs(scene, ehl, t + dt, tmp, p, wav, k4, loads, scratch)
+        for i in range(n):
+            y[i] += dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+        t = t0 + (step + 1) * dt
+        if step < n_skip and step % 256 == 0:
+            status = _check(y, nd, limit)
+            if status != STATUS_OK:
+                return status, t
+    status = _check(y, nd, limit)
+    return status, t
+
+
+@numba.njit(**_JIT)
+def _rk4(
+    scene,
+    ehl,
+    y0,
+    p,
+    wav,
+    t0,
+    dt,
+    steps_per_record,
+    n_skip,
+    n_record,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+):
+    return _rk4_impl(
+        numba.literally(scene),
+        numba.literally(ehl),
+        y0,
+        p,
+        wav,
+        t0,
+        dt,
+        steps_per_record,
+        n_skip,
+        n_record,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+    )
+
+
+# --------------------------------------------------------------------- Dormand-Prince 5(4)
+
+# Butcher tableau (Dormand & Prince 1980) and the dense-output coefficients of Hairer's DOPRI5.
+_A21 = 1.0 / 5.0
+_A31, _A32 = 3.0 / 40.0, 9.0 / 40.0
+_A41, _A42, _A43 = 44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0
+_A51, _A52, _A53, _A54 = 19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0
+_A61, _A62, _A63 = 9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0
+_A64, _A65 = 49.0 / 176.0, -5103.0 / 18656.0
+_A71, _A73, _A74 = 35.0 / 384.0, 500.0 / 1113.0, 125.0 / 192.0
+_A75, _A76 = -2187.0 / 6784.0, 11.0 / 84.0
+_E1, _E3, _E4 = 71.0 / 57600.0, -71.0 / 16695.0, 71.0 / 1920.0
+_E5, _E6, _E7 = -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0
+_D1, _D3 = -12715105075.0 / 11282082432.0, 87487479700.0 / 32700410799.0
+_D4, _D5 = -10690763975.0 / 1880347072.0, 701980252875.0 / 199316789632.0
+_D6, _D7 = -1453857185.0 / 822651844.0, 69997945.0 / 29380423.0
+
+
+@numba.njit(**_JIT)
+def _dopri5_impl(
+    scene,
+    ehl,
+    y0,
+    p,
+    wav,
+    t0,
+    t_first,
+    record_dt,
+    n_record,
+    rtol,
+    atol,
+    h0,
+    h_max,
+    max_steps,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+    step_stats,
+):
+    """Adaptive Dormand-Prince 5(4) with error control and dense output at the record times.
+
+    Records at ``t_first + k * record_dt``; each record evaluates the right-hand side once at
+    the interpolated state (accelerations, loads). ``step_stats`` receives [accepted steps,
+    rejected steps, smallest step, largest step]. Returns (status, time).
+    """
+    n = y0.shape[0]
+    z = int(p[P_BALL_COUNT])
+    nd = n // 2
+    limit = p[P_MAX_DISPLACEMENT]
+    y = y0.copy()
+    y1 = np.empty(n)
+    k1 = np.empty(n)
+    k2 = np.empty(n)
+    k3 = np.empty(n)
+    k4 = np.empty(n)
+    k5 = np.empty(n)
+    k6 = np.empty(n)
+    k7 = np.empty(n)
+    tmp = np.empty(n)
+    r1 = np.empty(n)
+    r2 = np.empty(n)
+    r3 = np.empty(n)
+    r4 = np.empty(n)
+    acc = np.empty(n)
+    loads = np.zeros((2, z))
+    scratch = np.zeros(8)
+    t = t0
+    t_end = t_first + (n_record - 1) * record_dt
+    h = h0
+    h_min_seen = 1e300
+    h_max_seen = 0.0
+    accepted = 0
+    rejected = 0
+    next_rec = 0
+    _rhs(scene, ehl, t, y, p, wav, k1, loads, scratch)
+    err_old = 1e-4
+    while next_rec < n_record:
+        if accepted + rejected >= max_steps:
+            step_stats[0], step_stats[1] = accepted, rejected
+            step_stats[2], step_stats[3] = h_min_seen, h_max_seen
+            return STATUS_TOO_MANY_STEPS, t
+        if h < 1e-13 * max(abs(t), record_dt):
+            step_stats[0], step_stats[1] = accepted, rejected
+            step_stats[2], step_stats[3] = h_min_seen, h_max_seen
+            return STATUS_STEP_COLLAPSE, t
+        if h > h_max:
+            h = h_max
+        if t + h > t_end and t_end > t:
+            h = t_end - t
+        for i in range(n):
+            tmp[i] = y[i] + h * _A21 * k1[i]
+        _rhs(scene, ehl, t + 0.2 * h, tmp, p, wav, k2, loads, scratch)
+        for i in range(n):
+            tmp[i] = y[i] + h * (_A31 * k1[i] + _A32 * k2[i])
+        _rhs(scene, ehl, t + 0.3 * h, tmp, p, wav, k3, loads, scratch)
+        for i in range(n):
+            tmp[i] = y[i] + h * (_A41 * k1[i] + _A42 * k2[i] + _A43 * k3[i])
+        _rhs(scene, ehl, t + 0.8 * h, tmp, p, wav, k4, loads, scratch)
+        for i in range(n):
+            tmp[i] = y[i] + h * (_A51 * k1[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
+        _rhs(scene, ehl, t + 8.0 / 9.0 * h, tmp, p, wav, k5, loads, scratch)
+        for i in range(n):
+            tmp[i] = y[i] + h * (
+                _A61 * k1[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i] + _A65 * k5[i]
+            )
+        _rhs(scene, ehl, t + h, tmp, p, wav, k6, loads, scratch)
+        for i in range(n):
+            y1[i] = y[i] + h * (
+                _A71 * k1[i] + _A73 * k3[i] + _A74 * k4[i] + _A75 * k5[i] + _A76 * k6[i]
+            )
+        _rhs(scene, ehl, t + h, y1, p, wav, k7, loads, scratch)
+        err = 0.0
+        finite = True
+        for i in range(n):
+            e = h * (
+                _E1 * k1[i] + _E3 * k3[i] + _E4 * k4[i] + _E5 * k5[i] + _E6 * k6[i] + _E7 * k7[i]
+            )
+            sc = atol[i] + rtol * max(abs(y[i]), abs(y1[i]))
+            err += (e / sc) ** 2
+            if not math.isfinite(y1[i]):
+                finite = False
+        err = math.sqrt(err / n)
+        if not finite or not math.isfinite(err):
+            rejected += 1
+            h *= 0.2
+            continue
+        if err <= 1.0:
+            # dense output (Hairer's CONTD5) for every record time inside (t, t + h]
+            while next_rec < n_record and t_first + next_rec * record_dt <= t + h * (1 + 1e-12):
+                tr = t_first + next_rec * record_dt
+                if tr < t:
+                    next_rec += 1
+                    continue
+                th = (tr - t) / h
+                th1 = 1.0 - th
+                for i in range(n):
+                    ydiff = y1[i] - y[i]
+                    bspl = h * k1[i] - ydiff
+                    r1[i] = ydiff
+                    r2[i] = bspl
+                    r3[i] = ydiff - h * k7[i] - bspl
+                    r4[i] = h * (
+                        _D1 * k1[i]
+                        + _D3 * k3[i]
+                        + _D4 * k4[i]
+                        + _D5 * k5[i]
+                        + _D6 * k6[i]
+                        + _D7 * k7[i]
+                    )
+                    tmp[i] = y[i] + th * (r1[i] + th1 * (r2[i] + th * (r3[i] + th1 * r4[i])))
+                status = _check(tmp, nd, limit)
+                if status != STATUS_OK:
+                    return status, tr
+                _rhs(scene, ehl, tr, tmp, p, wav, acc, loads, scratch)
+                _record(tmp, acc, nd, next_rec, out_state, out_accel)
+                if record_loads:
+                    for j in range(z):
+                        out_loads[next_rec, 0, j] = loads[0, j]
+                        out_loads[next_rec, 1, j] = loads[1, j]
+                next_rec += 1
+            t = t + h
+            for i in range(n):
+                y[i] = y1[i]
+                k1[i] = k7[i]  # first same as last
+            accepted += 1
+            if h < h_min_seen:
+                h_min_seen = h
+            if h > h_max_seen:
+                h_max_seen = h
+            status = _check(y, nd, limit)
+            if status != STATUS_OK:
+                step_stats[0], step_stats[1] = accepted, rejected
+                step_stats[2], step_stats[3] = h_min_seen, h_max_seen
+                return status, t
+            # PI step control (Hairer: beta = 0.04)
+            fac = 0.9 * err ** (-0.2 + 0.04 * 0.75) * err_old**0.04 if err > 0 else 5.0
+            fac = min(5.0, max(0.2, fac))
+            err_old = max(err, 1e-4)
+            h *= fac
+        else:
+            rejected += 1
+            h *= max(0.2, 0.9 * err**-0.2)
+    step_stats[0], step_stats[1] = accepted, rejected
+    step_stats[2], step_stats[3] = h_min_seen, h_max_seen
+    return STATUS_OK, t
+
+
+@numba.njit(**_JIT)
+def _dopri5(
+    scene,
+    ehl,
+    y0,
+    p,
+    wav,
+    t0,
+    t_first,
+    record_dt,
+    n_record,
+    rtol,
+    atol,
+    h0,
+    h_max,
+    max_steps,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+    step_stats,
+):
+    return _dopri5_impl(
+        numba.literally(scene),
+        numba.literally(ehl),
+        y0,
+        p,
+        wav,
+        t0,
+        t_first,
+        record_dt,
+        n_record,
+        rtol,
+        atol,
+        h0,
+        h_max,
+        max_steps,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+        step_stats,
+    )
+
+
+@numba.njit(**_JIT)
+def _rhs_once(scene, ehl, t, y, p, wav, dydt, loads):
+    """One right-hand-side evaluation (static checks, linearisation, reference tests)."""
+    scratch = np.zeros(8)
+    _rhs(numba.literally(scene), numba.literally(ehl), t, y, p, wav, dydt, loads, scratch)

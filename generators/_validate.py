@@ -1,0 +1,95 @@
+"""Input validation helpers shared by the parameter objects of ``generators``.
+
+Every check raises :class:`ParameterError` (a ``ValueError``) whose message names the
+parameter, the value it got and the range it accepts.
+"""
+
+from __future__ import annotations
+
+import math
+from numbers import Integral, Real
+
+
+class ParameterError(ValueError):
+    """A parameter is outside its valid range (message names parameter, value and range)."""
+
+
+class SimulationDivergedError(RuntimeError):
+    """The time integration left the physically bounded region or produced non-finite values."""
+
+    def __init__(self, message: str, *, scene: str, time: float, reason: str) -> None:
+        super().__init__(message)
+        self.scene = scene
+        self.time = time
+        self.reason = reason
+
+
+def check_real(
+    name: str,
+    value: object,
+    *,
+    low: float | None = None,
+    high: float | None = None,
+    low_inclusive: bool = True,
+    high_inclusive: bool = True,
+    unit: str = "",
+) -> float:
+    """Return ``value`` as a finite float inside ``[low, high]`` or raise ParameterError.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the message.
+    value : object
+        Value to check.
+    low, high : float, optional
+        Bounds of the valid range (``None`` for unbounded).
+    low_inclusive, high_inclusive : bool
+        Whether the bounds themselves are valid.
+    unit : str
+        Unit shown in the message, e.g. ``"m"``.
+
+    Returns
+    -------
+    float
+        The checked value.
+    """
+    lo = "-inf" if low is None else f"{low:g}"
+    hi = "inf" if high is None else f"{high:g}"
+    lb = "[" if (low is not None and low_inclusive) else "("
+    hb = "]" if (high is not None and high_inclusive) else ")"
+    rng = f"{lb}{lo}, {hi}{hb}" + (f" {unit}" if unit else "")
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise ParameterError(f"{name} = {value!r} is not a real number; allowed range {rng}")
+    v = float(value)
+    if not math.isfinite(v):
+        raise ParameterError(f"{name} = {v!r} is not finite; allowed range {rng}")
+    bad = (low is not None and (v < low or (v == low and not low_inclusive))) or (
+        high is not None and (v > high or (v == high and not high_inclusive))
+    )
+    if bad:
+        raise ParameterError(
+            f"{name} = {v:g}{(' ' + unit) if unit else ''} is outside the allowed range {rng}"
+        )
+    return v
+
+
+def check_int(name: str, value: object, *, low: int | None = None, high: int | None = None) -> int:
+    """Return ``value`` as an int inside ``[low, high]`` or raise ParameterError."""
+    rng = f"[{'-inf' if low is None else low}, {'inf' if high is None else high}]"
+    if isinstance(value, bool) or not isinstance(value, Integral):
+        if isinstance(value, float) and value.is_integer():
+            value = int(value)
+        else:
+            raise ParameterError(f"{name} = {value!r} is not an integer; allowed range {rng}")
+    v = int(value)
+    if (low is not None and v < low) or (high is not None and v > high):
+        raise ParameterError(f"{name} = {v} is outside the allowed range {rng}")
+    return v
+
+
+def check_choice(name: str, value: object, choices: tuple[str, ...]) -> str:
+    """Return ``value`` if it is one of ``choices`` or raise ParameterError."""
+    if value not in choices:
+        raise ParameterError(f"{name} = {value!r} is not one of {', '.join(map(repr, choices))}")
+    return str(value)

@@ -1,0 +1,700 @@
+"""The dynamic model: validate, pack, find the static start, integrate, decimate, wrap.
+
+``simulate`` is the public entry point; the numba kernels in :mod:`generators._kernels` do the
+time stepping on plain arrays. Model (MODEL.md sections 1-5):
+
+* contact: Hertz Q = K delta^1.5 with stiffness-proportional damping c = tau dQ/d delta (D1),
+  optional EHL film in series (Hamrock-Dowson central film, MODEL.md 4.3) and squeeze-film
+  damping (D2, times ``Rig.film_damping_factor``);
+* scenes ``shaft`` (2 DOF + one-way housing estimate), ``shaft+housing`` (4 DOF, massless
+  balls, series contact constant), ``full`` (4 + Z DOF, one radial DOF per ball);
+* waviness on the outer race, inner race and balls (MODEL.md 5), any harmonics;
+* start at the static equilibrium (loads, gravity, film and waviness at t = 0), settle, record at
+  ``oversample * fs`` and decimate with a zero-phase FIR anti-alias filter.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import logging
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import signal as sp_signal
+
+from . import _kernels as K
+from ._validate import ParameterError, SimulationDivergedError
+from .contact import (
+    entrainment_speed,
+    film_thickness,
+    hertz_contact,
+    load_deflection_constants,
+    squeeze_film_damping,
+)
+from .kinematics import BearingFrequencies, characteristic_frequencies
+from .params import (
+    BearingGeometry,
+    OperatingCondition,
+    Rig,
+    Scene,
+    SimulationSettings,
+    Waviness,
+)
+from .static import static_load_distribution
+
+__all__ = [
+    "SimulationResult",
+    "simulate",
+    "resolve_scene",
+    "default_step",
+    "CHANNELS",
+]
+
+logger = logging.getLogger(__name__)
+
+SCENE_CODES = {"shaft": K.SCENE_SHAFT, "shaft+housing": K.SCENE_SHAFT_HOUSING, "full": K.SCENE_FULL}
+
+#: Output channels, ``<body>_<quantity>_<axis>`` in SI units (m, m/s, m/s^2).
+CHANNELS = tuple(
+    f"{body}_{quantity}_{axis}"
+    for body in ("housing", "shaft")
+    for quantity in ("displacement", "velocity", "acceleration")
+    for axis in ("x", "y")
+)
+
+#: Default fixed RK4 step of the massless-ball scenes [s] (MODEL.md 7.2: converged to 4 digits
+#: at <= 2e-5 s; 5-10 us recommended). See ``cmtool fidelity`` for the measured trade.
+DEFAULT_STEP_MASSLESS = 5e-6
+#: Safety factor on the RK4 stability limit |lambda| dt <= 2.5 used for the ``full`` scene.
+STABILITY_SAFETY = 0.7
+#: Default oversampling of the integration record over the output rate (anti-alias margin).
+DEFAULT_OVERSAMPLE = 4
+
+STATUS_REASONS = {
+    K.STATUS_NONFINITE: "non-finite state (NaN or inf)",
+    K.STATUS_RUNAWAY: "runaway displacement beyond the physical limit",
+    K.STATUS_STEP_COLLAPSE: "adaptive step size collapsed",
+    K.STATUS_TOO_MANY_STEPS: "adaptive integrator exceeded its step budget",
+}
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """Signals and the full parameter record of one simulation.
+
+    Attributes
+    ----------
+    time : ndarray, shape (n,)
+        Sample times after settling [s] (start at 0).
+    fs : float
+        Sample rate [Hz].
+    signals : dict of str to ndarray
+        Channels named ``<body>_<quantity>_<axis>`` (see ``CHANNELS``) in m, m/s, m/s^2.
+    frequencies : BearingFrequencies
+        Characteristic frequencies of the run [Hz].
+    parameters : dict
+        Every parameter of the run (bearing, operating point, rig, scene, settings, defects,
+        integrator statistics), JSON-serialisable.
+    contact_loads : ndarray or None, shape (n, 2, Z)
+        Inner [:, 0] and outer [:, 1] contact load of every ball [N], when requested.
+    """
+
+    time: np.ndarray
+    fs: float
+    signals: dict[str, np.ndarray]
+    frequencies: BearingFrequencies
+    parameters: dict
+    contact_loads: np.ndarray | None = None
+
+    def __getitem__(self, channel: str) -> np.ndarray:
+        """Return one channel by name, e.g. ``result["housing_velocity_y"]``."""
+        return self.signals[channel]
+
+    def to_frame(self):
+        """Return the signals as a pandas DataFrame with a ``time`` column [s]."""
+        import pandas as pd
+
+        data = {"time": self.time}
+        data.update({name: self.signals[name] for name in CHANNELS})
+        return pd.DataFrame(data)
+
+
+# ------------------------------------------------------------------------------- helpers
+
+
+@functools.lru_cache(maxsize=64)
+def _contacts(geometry: BearingGeometry):
+    ci = hertz_contact(geometry, "inner")
+    co = hertz_contact(geometry, "outer")
+    return ci, co, load_deflection_constants(geometry)
+
+
+def _as_defects(defects) -> tuple[Waviness, ...]:
+    if defects is None:
+        return ()
+    if isinstance(defects, Waviness):
+        return (defects,)
+    out = tuple(defects)
+    for i, d in enumerate(out):
+        if not isinstance(d, Waviness):
+            raise ParameterError(f"defects[{i}] = {d!r} is not a Waviness")
+    return out
+
+
+def _waviness_table(
+    defects: Sequence[Waviness], ball_count: int, rng: np.random.Generator
+) -> np.ndarray:
+    """Expand waviness objects into the kernel table (ball rows per ball, phases drawn)."""
+    rows = []
+    code = {"outer": K.SURF_OUTER, "inner": K.SURF_INNER}
+    for w in defects:
+        if w.amplitude == 0.0:
+            continue
+        if w.surface in code:
+            phase = rng.uniform(0, 2 * np.pi) if w.phase is None else w.phase
+            rows.append((code[w.surface], -1, w.order, w.amplitude, phase))
+        else:
+            balls = range(ball_count) if w.ball is None else (w.ball,)
+            for j in balls:
+                if j >= ball_count:
+                    raise ParameterError(
+                        f"ball = {j} is outside the allowed range [0, {ball_count - 1}]"
+                    )
+                # each ball its own waviness phase and initial spin angle (MODEL.md 5, [A])
+                phase = rng.uniform(0, 2 * np.pi) if w.phase is None else w.phase
+                spin0 = rng.uniform(0, 2 * np.pi)
+                rows.append((K.SURF_BALL, j, w.order, w.amplitude, phase + w.order * spin0))
+    table = np.array(rows, dtype=np.float64).reshape(-1, K.W_SIZE)
+    return np.ascontiguousarray(table)
+
+
+def resolve_scene(
+    scene: Scene,
+    geometry: BearingGeometry,
+    operating: OperatingCondition,
+    rig: Rig,
+    settings: SimulationSettings,
+) -> tuple[str, str]:
+    """Pick the model level for ``scene.level == "auto"`` and say why.
+
+    Rule (each estimate is a relative error of the dropped physics, compared with
+    ``scene.auto_error_bound``):
+
+    * ``full`` is needed when the ball radial mode f_ball = sqrt((k_i + k_o) / m_b) / 2 pi lies
+      less than 1 / bound times above the analysis band fs / 2 (ball inertia then shapes the
+      band; quasi-static response error ~ (f / f_ball)^2), or when the centrifugal ball force
+      m_b w_c^2 D / 2 exceeds bound times the largest static ball load;
+    * otherwise ``shaft`` suffices when the housing is much stiffer than the bearing
+      (k_b / (k_b + k_h) < bound: the relative error of the one-way housing coupling);
+    * otherwise ``shaft+housing``.
+
+    Returns
+    -------
+    level, reason : str
+    """
+    if scene.level != "auto":
+        return scene.level, "requested"
+    bound = scene.auto_error_bound
+    _, _, (ki, ko, kt) = _contacts(geometry)
+    fr = max(operating.radial_load + (rig.shaft_mass * 9.81 if rig.gravity else 0.0), 1.0)
+    st = static_load_distribution(
+        geometry, fr, load_angle=operating.load_angle, stiffness_constant=kt
+    )
+    qmax = max(st.max_ball_load, 1.0)
+    k_ball = 1.5 * (ki ** (2 / 3) + ko ** (2 / 3)) * qmax ** (1 / 3)
+    f_ball = math.sqrt(k_ball / geometry.ball_mass) / (2 * math.pi)
+    f_band = settings.fs / 2
+    wc = (
+        2
+        * math.pi
+        * characteristic_frequencies(
+            geometry, max(operating.shaft_frequency, 1e-9), cage_slip=operating.cage_slip
+        ).ftf
+    )
+    centrifugal = geometry.ball_mass * wc**2 * geometry.pitch_diameter / 2
+    if (f_band / f_ball) ** 2 > bound:
+        return "full", f"ball mode {f_ball:.0f} Hz is close to the band fs/2 = {f_band:.0f} Hz"
+    if centrifugal > bound * qmax:
+        return (
+            "full",
+            f"centrifugal ball force {centrifugal:.3g} N > {bound:g} x Q_max {qmax:.3g} N",
+        )
+    coupling = st.radial_stiffness / (st.radial_stiffness + rig.pedestal_stiffness)
+    if coupling < bound:
+        return "shaft", f"housing coupling k_b/(k_b+k_h) = {coupling:.3g} < {bound:g}"
+    return "shaft+housing", f"housing coupling k_b/(k_b+k_h) = {coupling:.3g} >= {bound:g}"
+
+
+def _pack(
+    geometry: BearingGeometry,
+    operating: OperatingCondition,
+    rig: Rig,
+    ehl: bool,
+    freqs: BearingFrequencies | None,
+) -> np.ndarray:
+    """Pack the parameter objects into the kernel's float64 vector (indices ``K.P_*``)."""
+    ci, co, (ki, ko, kt) = _contacts(geometry)
+    p = np.zeros(K.P_SIZE)
+    z = geometry.ball_count
+    p[K.P_BALL_COUNT] = z
+    p[K.P_SHAFT_MASS] = rig.shaft_mass
+    p[K.P_HOUSING_MASS] = rig.housing_mass
+    p[K.P_BALL_MASS] = geometry.ball_mass
+    p[K.P_PEDESTAL_STIFFNESS] = rig.pedestal_stiffness
+    p[K.P_PEDESTAL_DAMPING] = rig.pedestal_damping
+    p[K.P_SHAFT_DAMPING] = rig.shaft_damping
+    p[K.P_K_INNER] = ki
+    p[K.P_K_OUTER] = ko
+    p[K.P_K_SERIES] = kt
+    p[K.P_GAP] = geometry.radial_gap
+    fs = operating.shaft_frequency
+    if freqs is not None:
+        p[K.P_SHAFT_SPEED] = 2 * math.pi * fs
+        p[K.P_CAGE_SPEED] = 2 * math.pi * freqs.ftf
+        p[K.P_BALL_SPIN_SPEED] = 2 * math.pi * freqs.bsf
+    p[K.P_LOAD_X] = operating.radial_load * math.cos(operating.load_angle)
+    p[K.P_LOAD_Y] = operating.radial_load * math.sin(operating.load_angle)
+    p[K.P_GRAVITY] = 9.81 if rig.gravity else 0.0
+    p[K.P_LOADING_STIFFNESS] = rig.loading_stiffness
+    p[K.P_CONTACT_DAMPING_TIME] = rig.contact_damping_time
+    p[K.P_PITCH_RADIUS] = 0.5 * geometry.pitch_diameter
+    p[K.P_UNBALANCE] = rig.unbalance
+    wc = p[K.P_CAGE_SPEED]
+    centrifugal = geometry.ball_mass * wc**2 * geometry.pitch_diameter / 2
+    p[K.P_FILM_LOAD_FLOOR] = max(1.0, centrifugal)  # MODEL.md 4.1: Q_floor = max(1 N, F_c)
+    p[K.P_FILM_REFERENCE_LOAD] = max(operating.radial_load / max(z / 4.37, 1.0), 1.0)
+    u = entrainment_speed(geometry, fs)
+    if ehl and u > 0.0:
+        lub = rig.lubricant
+        # h_c(Q) = h_c(1 N) * Q^-0.067 (Hamrock-Dowson load exponent)
+        hi = film_thickness(ci, lub, u, 1.0, load_floor=1e-30)
+        ho = film_thickness(co, lub, u, 1.0, load_floor=1e-30)
+        p[K.P_FILM_INNER] = hi
+        p[K.P_FILM_OUTER] = ho
+        csi = rig.film_damping_factor * squeeze_film_damping(ci, lub, 1.0)  # = c_sq * h_c
+        cso = rig.film_damping_factor * squeeze_film_damping(co, lub, 1.0)
+        p[K.P_SQUEEZE_INNER] = csi / hi
+        p[K.P_SQUEEZE_OUTER] = cso / ho
+        # two Kelvin-Voigt contacts in series (MODEL.md 1.4): c_eff = c_i r_o^2 + c_o r_i^2 with
+        # r = k / (k_i + k_o); k_i / k_o = (K_i / K_o)^(2/3) at equal load
+        kri, kro = ki ** (2 / 3), ko ** (2 / 3)
+        ri, ro = kri / (kri + kro), kro / (kri + kro)
+        p[K.P_SQUEEZE_SERIES] = p[K.P_SQUEEZE_INNER] * ro**2 + p[K.P_SQUEEZE_OUTER] * ri**2
+    return p
+
+
+def _film_sum(p: np.ndarray, loads: np.ndarray) -> np.ndarray:
+    floor = p[K.P_FILM_LOAD_FLOOR]
+    q = np.maximum(loads, floor)
+    return (p[K.P_FILM_INNER] + p[K.P_FILM_OUTER]) * q**K.FILM_EXPONENT
+
+
+def _waviness_at_start(p: np.ndarray, wav: np.ndarray, z: int) -> np.ndarray:
+    """Waviness values seen by each ball at t = 0: rows [w_o, w_i, wb_o, wb_i]."""
+    out = np.zeros((4, z))
+    scratch = np.zeros(8)
+    pitch = 2 * np.pi / z
+    for j in range(z):
+        K._waviness(wav, j, p[K.P_CAGE_ANGLE0] + j * pitch, p[K.P_SHAFT_ANGLE0], 0.0, p, scratch)
+        out[:, j] = scratch[[0, 2, 4, 6]]
+    return out
+
+
+def _ball_equilibrium(
+    p: np.ndarray,
+    ehl: bool,
+    us: float,
+    uh: float,
+    extra_i: float,
+    extra_o: float,
+    sin_theta: float,
+) -> float:
+    """Radial ball position rho with zero net force (bisection; the force decreases with rho)."""
+    gap = p[K.P_GAP]
+    mb = p[K.P_BALL_MASS]
+    wc = p[K.P_CAGE_SPEED]
+    tau = 0.0
+
+    def net(rho: float) -> float:
+        di = us - rho - 0.5 * gap + extra_i
+        do = rho - uh - 0.5 * gap + extra_o
+        if ehl:
+            qi = K._hertz_ehl(
+                di,
+                0.0,
+                p[K.P_K_INNER],
+                tau,
+                p[K.P_FILM_INNER],
+                0.0,
+                p[K.P_FILM_LOAD_FLOOR],
+                p[K.P_FILM_REFERENCE_LOAD],
+            )
+            qo = K._hertz_ehl(
+                do,
+                0.0,
+                p[K.P_K_OUTER],
+                tau,
+                p[K.P_FILM_OUTER],
+                0.0,
+                p[K.P_FILM_LOAD_FLOOR],
+                p[K.P_FILM_REFERENCE_LOAD],
+            )
+        else:
+            qi = K._hertz_dry(di, 0.0, p[K.P_K_INNER], tau)
+            qo = K._hertz_dry(do, 0.0, p[K.P_K_OUTER], tau)
+        return qi - qo + mb * wc**2 * (p[K.P_PITCH_RADIUS] + rho) - mb * p[K.P_GRAVITY] * sin_theta
+
+    span = abs(us) + abs(uh) + abs(gap) + abs(extra_i) + abs(extra_o) + 1e-6
+    lo, hi = -span, span
+    for _ in range(60):
+        if net(lo) > 0:
+            break
+        lo *= 2
+    for _ in range(60):
+        if net(hi) < 0:
+            break
+        hi *= 2
+    f_lo, f_hi = net(lo), net(hi)
+    if f_lo * f_hi > 0:
+        return 0.5 * (us + uh)
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        f = net(mid)
+        if f == 0.0:
+            # inside the play with no force: find the whole zero interval and take its middle
+            a, b = lo, mid
+            for _ in range(100):
+                m = 0.5 * (a + b)
+                a, b = (a, m) if net(m) == 0.0 else (m, b)
+            c, d = mid, hi
+            for _ in range(100):
+                m = 0.5 * (c + d)
+                c, d = (m, d) if net(m) == 0.0 else (c, m)
+            return 0.5 * (b + c)
+        if f > 0:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo < 1e-16:
+            break
+    return 0.5 * (lo + hi)
+
+
+def _static_state(
+    level: str,
+    ehl: bool,
+    geometry: BearingGeometry,
+    operating: OperatingCondition,
+    rig: Rig,
+    p: np.ndarray,
+    wav: np.ndarray,
+) -> tuple[np.ndarray, float]:
+    """Static equilibrium at t = 0 (velocities 0): the initial state, and the largest ball load."""
+    z = geometry.ball_count
+    g = p[K.P_GRAVITY]
+    fx = p[K.P_LOAD_X]
+    fy = p[K.P_LOAD_Y] - rig.shaft_mass * g
+    fr = math.hypot(fx, fy)
+    angle = math.atan2(fy, fx)
+    w0 = _waviness_at_start(p, wav, z)
+    waviness_sum = w0.sum(axis=0)
+    kt = p[K.P_K_SERIES]
+    loads = np.full(z, p[K.P_FILM_REFERENCE_LOAD])
+    extra = waviness_sum.copy()
+    for _ in range(4 if ehl else 1):
+        if ehl:
+            extra = waviness_sum + _film_sum(p, loads)
+        st = static_load_distribution(
+            geometry,
+            fr,
+            load_angle=angle,
+            cage_angle=p[K.P_CAGE_ANGLE0],
+            extra_approach=extra,
+            stiffness_constant=kt,
+        )
+        loads = st.ball_loads
+    rel = st.displacement
+    housing = (np.array([fx, fy]) - np.array([0.0, rig.housing_mass * g])) / rig.pedestal_stiffness
+    nd = K.n_dof(SCENE_CODES[level], z)
+    y0 = np.zeros(2 * nd)
+    y0[2:4] = housing
+    y0[0:2] = rel if level == "shaft" else rel + housing
+    if level == "full":
+        theta = p[K.P_CAGE_ANGLE0] + 2 * np.pi * np.arange(z) / z
+        for j in range(z):
+            c, s = math.cos(theta[j]), math.sin(theta[j])
+            us = y0[0] * c + y0[1] * s
+            uh = y0[2] * c + y0[3] * s
+            y0[4 + j] = _ball_equilibrium(
+                p, ehl, us, uh, w0[1, j] + w0[3, j], w0[0, j] + w0[2, j], s
+            )
+    p[K.P_LOADING_X0] = y0[0]
+    p[K.P_LOADING_Y0] = y0[1]
+    return y0, float(np.max(loads)) if loads.size else 0.0
+
+
+def default_step(
+    level: str, geometry: BearingGeometry, rig: Rig, p: np.ndarray, max_ball_load: float
+) -> float:
+    """Default RK4 step [s] of a scene.
+
+    Massless-ball scenes: ``DEFAULT_STEP_MASSLESS``. ``full``: the smaller of that and
+    ``STABILITY_SAFETY * 2.5 / |lambda|`` of the fastest ball mode, |lambda| the larger of the
+    undamped frequency sqrt((k_i + k_o) / m_b) and the damping rate (c_i + c_o) / m_b at the
+    largest static ball load (MODEL.md 7.2).
+    """
+    if level != "full":
+        return DEFAULT_STEP_MASSLESS
+    q = max(max_ball_load, 1.0) * 1.5  # margin for dynamic overload
+    ki, ko = p[K.P_K_INNER], p[K.P_K_OUTER]
+    k_lin = 1.5 * (ki ** (2 / 3) + ko ** (2 / 3)) * q ** (1 / 3)
+    mb = p[K.P_BALL_MASS]
+    omega = math.sqrt(k_lin / mb)
+    c = p[K.P_CONTACT_DAMPING_TIME] * k_lin
+    qf = max(q, p[K.P_FILM_LOAD_FLOOR])
+    c += (p[K.P_SQUEEZE_INNER] + p[K.P_SQUEEZE_OUTER]) * qf ** (-K.FILM_EXPONENT)
+    lam = max(omega, c / mb)
+    return min(DEFAULT_STEP_MASSLESS, STABILITY_SAFETY * 2.5 / lam)
+
+
+def _params_record(geometry, operating, rig, scene, level, reason, settings, defects, extra):
+    def clean(obj):
+        d = dataclasses.asdict(obj)
+        return {k: v for k, v in d.items()}
+
+    return {
+        "bearing": clean(geometry),
+        "operating": clean(operating),
+        "rig": clean(rig),
+        "scene": {**clean(scene), "resolved_level": level, "reason": reason},
+        "settings": clean(settings),
+        "defects": [clean(d) for d in defects],
+        **extra,
+    }
+
+
+# ------------------------------------------------------------------------------- simulate
+
+
+def simulate(
+    bearing: BearingGeometry,
+    operating: OperatingCondition,
+    defects: Waviness | Sequence[Waviness] | None = None,
+    *,
+    scene: Scene | None = None,
+    rig: Rig | None = None,
+    settings: SimulationSettings | None = None,
+    random_state: int | np.random.Generator | None = None,
+) -> SimulationResult:
+    """Simulate the housing and shaft vibration of a deep groove ball bearing.
+
+    Convenience wrapper around the numba kernels ``_rk4`` / ``_dopri5``: validates, packs the
+    parameters, starts from the static equilibrium, integrates, checks for divergence and
+    decimates to ``settings.fs`` with a zero-phase FIR anti-alias filter.
+
+    Parameters
+    ----------
+    bearing : BearingGeometry
+        Bearing geometry (e.g. ``generators.bearing("6205")``).
+    operating : OperatingCondition
+        Shaft speed [Hz] and radial load [N].
+    defects : Waviness or sequence of Waviness, optional
+        Surface waviness harmonics (outer race, inner race, balls).
+    scene : Scene, optional
+        Model level and EHL switch; default ``Scene()`` (``shaft+housing`` with EHL).
+    rig : Rig, optional
+        Masses, pedestal, damping, lubricant; default ``Rig()`` (MODEL.md 6.3).
+    settings : SimulationSettings, optional
+        Sample rate [Hz], duration [s], settling [s], integrator and step.
+    random_state : int or numpy Generator, optional
+        Seeds the random waviness phases (``phase=None``, ball waviness).
+
+    Returns
+    -------
+    SimulationResult
+        Signals ``<body>_<quantity>_<axis>`` [m, m/s, m/s^2], time [s], frequencies [Hz] and
+        the full parameter record.
+
+    Raises
+    ------
+    ParameterError
+        An input is outside its valid range.
+    SimulationDivergedError
+        The integration produced a non-finite or runaway state, or the adaptive step
+        collapsed; the message names the scene and the time.
+
+    Examples
+    --------
+    >>> from generators import OperatingCondition, SimulationSettings, Waviness, bearing
+    >>> from generators import simulate
+    >>> r = simulate(bearing("6205"), OperatingCondition.from_rpm(1800, 500.0),
+    ...              Waviness(surface="outer", order=9, amplitude=1e-6),
+    ...              settings=SimulationSettings(duration=0.05, settle_time=0.02))
+    >>> r["housing_velocity_y"].shape
+    (1280,)
+    """
+    if not isinstance(bearing, BearingGeometry):
+        raise ParameterError(f"bearing = {bearing!r} is not a BearingGeometry")
+    if not isinstance(operating, OperatingCondition):
+        raise ParameterError(f"operating = {operating!r} is not an OperatingCondition")
+    scene = Scene() if scene is None else scene
+    rig = Rig() if rig is None else rig
+    settings = SimulationSettings() if settings is None else settings
+    for name, obj, cls in (
+        ("scene", scene, Scene),
+        ("rig", rig, Rig),
+        ("settings", settings, SimulationSettings),
+    ):
+        if not isinstance(obj, cls):
+            raise ParameterError(f"{name} = {obj!r} is not a {cls.__name__}")
+    defect_list = _as_defects(defects)
+    rng = np.random.default_rng(random_state)
+    geometry = bearing
+    z = geometry.ball_count
+
+    level, reason = resolve_scene(scene, geometry, operating, rig, settings)
+    code = SCENE_CODES[level]
+    ehl = bool(scene.ehl)
+    freqs = None
+    if operating.shaft_frequency > 0:
+        freqs = characteristic_frequencies(
+            geometry, operating.shaft_frequency, cage_slip=operating.cage_slip
+        )
+    p = _pack(geometry, operating, rig, ehl, freqs)
+    p[K.P_CAGE_ANGLE0] = settings.cage_angle
+    wav = _waviness_table(defect_list, z, rng)
+    y0, qmax = _static_state(level, ehl, geometry, operating, rig, p, wav)
+    scale = float(np.max(np.abs(y0[: K.n_dof(code, z)]))) if y0.size else 0.0
+    p[K.P_MAX_DISPLACEMENT] = (
+        settings.max_displacement
+        if settings.max_displacement is not None
+        else 20.0 * scale + 0.1 * geometry.ball_diameter
+    )
+
+    oversample = settings.oversample or DEFAULT_OVERSAMPLE
+    record_dt = 1.0 / (settings.fs * oversample)
+    n_out = int(round(settings.duration * settings.fs))
+    n_record = n_out * oversample
+    out_state = np.zeros((n_record, K.N_OUT_STATE))
+    out_accel = np.zeros((n_record, K.N_OUT_ACCEL))
+    record_loads = bool(settings.record_contact_loads)
+    out_loads = np.zeros((n_record if record_loads else 1, 2, z))
+    extra: dict = {}
+    if settings.integrator == "rk4":
+        step = settings.step or default_step(level, geometry, rig, p, qmax)
+        steps_per_record = max(1, int(math.ceil(record_dt / step - 1e-9)))
+        dt = record_dt / steps_per_record
+        n_skip = int(math.ceil(settings.settle_time / dt))
+        status, t_fail = K._rk4(
+            code,
+            int(ehl),
+            y0,
+            p,
+            wav,
+            0.0,
+            dt,
+            steps_per_record,
+            n_skip,
+            n_record,
+            out_state,
+            out_accel,
+            out_loads,
+            record_loads,
+        )
+        extra["integrator_stats"] = {"step_s": dt, "steps": n_skip + n_record * steps_per_record}
+        t_first = n_skip * dt
+    else:
+        nd = K.n_dof(code, z)
+        atol = np.empty(2 * nd)
+        atol[:nd] = settings.atol_displacement
+        atol[nd:] = settings.atol_displacement * 1e3
+        stats = np.zeros(4)
+        t_first = settings.settle_time
+        h_max = record_dt * 4
+        max_steps = int(2e8)
+        status, t_fail = K._dopri5(
+            code,
+            int(ehl),
+            y0,
+            p,
+            wav,
+            0.0,
+            t_first,
+            record_dt,
+            n_record,
+            settings.rtol,
+            atol,
+            min(1e-7, record_dt),
+            h_max,
+            max_steps,
+            out_state,
+            out_accel,
+            out_loads,
+            record_loads,
+            stats,
+        )
+        extra["integrator_stats"] = {
+            "accepted_steps": int(stats[0]),
+            "rejected_steps": int(stats[1]),
+            "min_step_s": float(stats[2]),
+            "max_step_s": float(stats[3]),
+        }
+    if status != K.STATUS_OK:
+        why = STATUS_REASONS.get(int(status), f"status {status}")
+        raise SimulationDivergedError(
+            f"simulation diverged in scene {level}/{'ehl' if ehl else 'dry'} at t = "
+            f"{t_fail:.6g} s: {why} (integrator {settings.integrator}; try a smaller step or "
+            "tolerance, or check the inputs)",
+            scene=level,
+            time=float(t_fail),
+            reason=why,
+        )
+    signals = _decimate(out_state, out_accel, oversample)
+    time = np.arange(n_out) / settings.fs
+    loads = out_loads[::oversample].copy() if record_loads else None
+    extra.update(
+        {"oversample": oversample, "first_sample_time_s": t_first, "max_static_ball_load_n": qmax}
+    )
+    params = _params_record(
+        geometry, operating, rig, scene, level, reason, settings, defect_list, extra
+    )
+    if freqs is None:
+        freqs = BearingFrequencies(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    return SimulationResult(
+        time=time,
+        fs=settings.fs,
+        signals=signals,
+        frequencies=freqs,
+        parameters=params,
+        contact_loads=loads,
+    )
+
+
+def _decimate(out_state: np.ndarray, out_accel: np.ndarray, factor: int) -> dict[str, np.ndarray]:
+    """Anti-alias filter and downsample the integration record to the output rate."""
+
+    def down(x: np.ndarray) -> np.ndarray:
+        if factor == 1:
+            return x.copy()
+        # polyphase FIR (Kaiser window), linear phase with its delay compensated
+        return sp_signal.resample_poly(x, 1, factor, padtype="line")
+
+    s, a = out_state, out_accel
+    cols = {
+        "housing_displacement_x": s[:, 2],
+        "housing_displacement_y": s[:, 3],
+        "housing_velocity_x": s[:, 6],
+        "housing_velocity_y": s[:, 7],
+        "housing_acceleration_x": a[:, 2],
+        "housing_acceleration_y": a[:, 3],
+        "shaft_displacement_x": s[:, 0],
+        "shaft_displacement_y": s[:, 1],
+        "shaft_velocity_x": s[:, 4],
+        "shaft_velocity_y": s[:, 5],
+        "shaft_acceleration_x": a[:, 0],
+        "shaft_acceleration_y": a[:, 1],
+    }
+    return {name: np.ascontiguousarray(down(cols[name])) for name in CHANNELS}

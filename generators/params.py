@@ -1,0 +1,509 @@
+"""Typed, validated, frozen parameter objects of the bearing model (all values SI).
+
+Lifetimes, as in ROSS's ``state.py``:
+
+* built once per bearing: :class:`Material`, :class:`BearingGeometry`, :class:`Lubricant`;
+* built once per test rig: :class:`Rig`;
+* built once per run: :class:`OperatingCondition`, :class:`Waviness`, :class:`Scene`,
+  :class:`SimulationSettings`.
+
+Every object validates itself in ``__post_init__`` and raises
+:class:`~generators.ParameterError` naming the field, its value and the allowed range.
+Make variants with :func:`dataclasses.replace`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from ._validate import ParameterError, check_choice, check_int, check_real
+
+__all__ = [
+    "Material",
+    "BearingGeometry",
+    "Lubricant",
+    "Rig",
+    "OperatingCondition",
+    "Waviness",
+    "Scene",
+    "SimulationSettings",
+    "STEEL_52100",
+    "LUBRICANTS",
+    "SURFACES",
+    "SCENE_LEVELS",
+    "INTEGRATORS",
+]
+
+GRAVITY = 9.81  # [m/s^2]
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Material:
+    """Elastic material of balls or rings.
+
+    Attributes
+    ----------
+    name : str
+        Label.
+    youngs_modulus : float
+        Young's modulus E [Pa].
+    poisson_ratio : float
+        Poisson's ratio nu [-].
+    density : float
+        Mass density [kg/m^3].
+    """
+
+    name: str
+    youngs_modulus: float
+    poisson_ratio: float
+    density: float
+
+    def __post_init__(self) -> None:
+        check_real("youngs_modulus", self.youngs_modulus, low=1e9, high=1e13, unit="Pa")
+        check_real("poisson_ratio", self.poisson_ratio, low=0.0, high=0.5, high_inclusive=False)
+        check_real("density", self.density, low=100.0, high=30000.0, unit="kg/m^3")
+
+
+#: AISI 52100 bearing steel (MODEL.md 6.1: E = 2.08e11 Pa, nu = 0.3, 7850 kg/m^3).
+STEEL_52100 = Material(name="AISI 52100", youngs_modulus=2.08e11, poisson_ratio=0.3, density=7850.0)
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class BearingGeometry:
+    """Geometry and materials of a single-row deep groove ball bearing.
+
+    Attributes
+    ----------
+    name : str
+        Designation, e.g. ``"6205"``.
+    ball_count : int
+        Number of balls Z (N_b) [-].
+    ball_diameter : float
+        Ball diameter d [m].
+    pitch_diameter : float
+        Pitch (ball-centre circle) diameter D [m].
+    contact_angle : float
+        Nominal contact angle alpha [rad]; 0 for a radially loaded deep groove bearing.
+    inner_groove_curvature : float
+        Inner groove conformity f_i = r_i / d [-], in (0.5, 0.6].
+    outer_groove_curvature : float
+        Outer groove conformity f_o = r_o / d [-], in (0.5, 0.6].
+    radial_internal_clearance : float
+        ISO radial internal clearance P_d [m]: the total radial play of one ring relative to the
+        other (Harris's diametral clearance). The per-ball gap with the rings concentric is
+        ``radial_gap = P_d / 2``. Negative values model a preload (interference).
+    ball_material, ring_material : Material
+        Elastic materials.
+    static_load_rating : float or None
+        Catalogue basic static load rating C_0r [N]; ``None`` when not published.
+    limiting_speed_rpm : float or None
+        Catalogue limiting speed [rpm]; ``None`` when not published.
+    source : str
+        Where the numbers come from.
+    """
+
+    name: str
+    ball_count: int
+    ball_diameter: float
+    pitch_diameter: float
+    contact_angle: float = 0.0
+    inner_groove_curvature: float = 0.52
+    outer_groove_curvature: float = 0.52
+    radial_internal_clearance: float = 10e-6
+    ball_material: Material = STEEL_52100
+    ring_material: Material = STEEL_52100
+    static_load_rating: float | None = None
+    limiting_speed_rpm: float | None = None
+    source: str = ""
+
+    def __post_init__(self) -> None:
+        check_int("ball_count", self.ball_count, low=1, high=60)
+        d = check_real(
+            "ball_diameter", self.ball_diameter, low=0.0, high=0.5, low_inclusive=False, unit="m"
+        )
+        check_real(
+            "pitch_diameter", self.pitch_diameter, low=0.0, high=5.0, low_inclusive=False, unit="m"
+        )
+        if self.pitch_diameter <= self.ball_diameter:
+            raise ParameterError(
+                f"pitch_diameter = {self.pitch_diameter:g} m must exceed ball_diameter = {d:g} m "
+                f"(allowed range ({d:g}, 5] m)"
+            )
+        check_real(
+            "contact_angle", self.contact_angle, low=0.0, high=math.radians(45.0), unit="rad"
+        )
+        check_real(
+            "inner_groove_curvature",
+            self.inner_groove_curvature,
+            low=0.5,
+            high=0.6,
+            low_inclusive=False,
+        )
+        check_real(
+            "outer_groove_curvature",
+            self.outer_groove_curvature,
+            low=0.5,
+            high=0.6,
+            low_inclusive=False,
+        )
+        check_real(
+            "radial_internal_clearance",
+            self.radial_internal_clearance,
+            low=-0.2 * self.ball_diameter,
+            high=0.2 * self.ball_diameter,
+            unit="m",
+        )
+        # balls must fit on the pitch circle: Z d < pi D
+        if self.ball_count * self.ball_diameter >= math.pi * self.pitch_diameter:
+            raise ParameterError(
+                f"ball_count = {self.ball_count} balls of {self.ball_diameter:g} m do not fit on "
+                f"a pitch circle of {self.pitch_diameter:g} m (allowed ball_count < "
+                f"{math.pi * self.pitch_diameter / self.ball_diameter:.1f})"
+            )
+        if self.static_load_rating is not None:
+            check_real(
+                "static_load_rating",
+                self.static_load_rating,
+                low=0.0,
+                low_inclusive=False,
+                unit="N",
+            )
+        if self.limiting_speed_rpm is not None:
+            check_real(
+                "limiting_speed_rpm",
+                self.limiting_speed_rpm,
+                low=0.0,
+                low_inclusive=False,
+                unit="rpm",
+            )
+
+    @property
+    def radial_gap(self) -> float:
+        """Per-ball radial gap c_r = P_d / 2 with the rings concentric [m]."""
+        return 0.5 * self.radial_internal_clearance
+
+    @property
+    def diameter_ratio(self) -> float:
+        """Gamma = d cos(alpha) / D [-]."""
+        return self.ball_diameter * math.cos(self.contact_angle) / self.pitch_diameter
+
+    @property
+    def ball_mass(self) -> float:
+        """Mass of one ball m_b [kg]."""
+        return self.ball_material.density * math.pi * self.ball_diameter**3 / 6.0
+
+    @property
+    def effective_modulus(self) -> float:
+        """Hamrock's effective modulus E' = 2 / ((1-nu_a^2)/E_a + (1-nu_b^2)/E_b) [Pa]."""
+        a, b = self.ball_material, self.ring_material
+        return 2.0 / (
+            (1 - a.poisson_ratio**2) / a.youngs_modulus
+            + (1 - b.poisson_ratio**2) / b.youngs_modulus
+        )
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Lubricant:
+    """Lubricant at its operating temperature (isoviscous Newtonian, Barus pressure-viscosity).
+
+    Attributes
+    ----------
+    name : str
+        Label.
+    viscosity : float
+        Dynamic viscosity eta_0 at ambient pressure and bearing temperature [Pa s].
+    pressure_viscosity_coefficient : float
+        Barus coefficient alpha_p [1/Pa].
+    film_factor : float
+        Multiplier on the film thickness (starvation/grease < 1) [-].
+    """
+
+    name: str
+    viscosity: float
+    pressure_viscosity_coefficient: float
+    film_factor: float = 1.0
+
+    def __post_init__(self) -> None:
+        check_real("viscosity", self.viscosity, low=1e-4, high=10.0, unit="Pa s")
+        check_real(
+            "pressure_viscosity_coefficient",
+            self.pressure_viscosity_coefficient,
+            low=1e-9,
+            high=1e-7,
+            unit="1/Pa",
+        )
+        check_real("film_factor", self.film_factor, low=0.0, high=2.0, low_inclusive=False)
+
+
+#: Lubricant presets of MODEL.md 4.2 (values recalled from the literature, [R]).
+LUBRICANTS: dict[str, Lubricant] = {
+    "VG68": Lubricant(
+        name="ISO VG 68 mineral oil, 40 C", viscosity=0.059, pressure_viscosity_coefficient=2.0e-8
+    ),
+    "VG32": Lubricant(
+        name="ISO VG 32 mineral oil, 40 C", viscosity=0.028, pressure_viscosity_coefficient=1.8e-8
+    ),
+    "grease": Lubricant(
+        name="grease, mineral base oil ~100 mm2/s at 40 C",
+        viscosity=0.09,
+        pressure_viscosity_coefficient=2.0e-8,
+        film_factor=0.7,
+    ),
+}
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Rig:
+    """Test-rig structure around the bearing (MODEL.md 6.3 defaults, [A]).
+
+    Attributes
+    ----------
+    shaft_mass : float
+        Shaft plus inner race mass per bearing M_s [kg].
+    housing_mass : float
+        Housing plus outer race mass M_h [kg].
+    pedestal_stiffness : float
+        Housing support stiffness k_h [N/m], same in x and y.
+    pedestal_damping : float
+        Housing support damping c_h [N s/m].
+    shaft_damping : float
+        Viscous damping of the shaft motion c_s [N s/m].
+    contact_damping_time : float
+        Dry contact (material) damping as a time constant tau [s]: c = tau * dQ/ddelta, so the
+        damping vanishes continuously at contact onset (MODEL.md 1.2, option D1).
+    film_damping_factor : float
+        Multiplier on the squeeze-film damping of MODEL.md (4.5) (option D2) [-].
+    lubricant : Lubricant
+        Lubricant (used when the scene has the EHL film).
+    loading_stiffness : float
+        0 for a constant (dead-weight) radial load; > 0 for a loading spring between shaft and
+        ground preloaded to the radial load at static equilibrium (MODEL.md 1.3) [N/m].
+    gravity : bool
+        Apply gravity (-y) to shaft, housing and balls.
+    unbalance : float
+        Shaft unbalance m_u e [kg m]; force m_u e w_s^2 rotating with the shaft.
+    """
+
+    shaft_mass: float = 1.0
+    housing_mass: float = 2.0
+    pedestal_stiffness: float = 5e7
+    pedestal_damping: float = 1e3
+    shaft_damping: float = 600.0
+    contact_damping_time: float = 2e-7
+    film_damping_factor: float = 1.0
+    lubricant: Lubricant = field(default_factory=lambda: LUBRICANTS["VG68"])
+    loading_stiffness: float = 0.0
+    gravity: bool = True
+    unbalance: float = 0.0
+
+    def __post_init__(self) -> None:
+        check_real("shaft_mass", self.shaft_mass, low=1e-3, high=1e4, unit="kg")
+        check_real("housing_mass", self.housing_mass, low=1e-3, high=1e5, unit="kg")
+        check_real("pedestal_stiffness", self.pedestal_stiffness, low=1e3, high=1e13, unit="N/m")
+        check_real("pedestal_damping", self.pedestal_damping, low=0.0, high=1e7, unit="N s/m")
+        check_real("shaft_damping", self.shaft_damping, low=0.0, high=1e7, unit="N s/m")
+        check_real("contact_damping_time", self.contact_damping_time, low=0.0, high=1e-4, unit="s")
+        check_real("film_damping_factor", self.film_damping_factor, low=0.0, high=10.0)
+        check_real("loading_stiffness", self.loading_stiffness, low=0.0, high=1e12, unit="N/m")
+        check_real("unbalance", self.unbalance, low=0.0, high=10.0, unit="kg m")
+        if not isinstance(self.gravity, bool):
+            raise ParameterError(f"gravity = {self.gravity!r} must be True or False")
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class OperatingCondition:
+    """Shaft speed and radial load.
+
+    Attributes
+    ----------
+    shaft_frequency : float
+        Shaft rotation frequency f_s [Hz] (inner ring turns, outer ring stationary).
+    radial_load : float
+        Radial load on the shaft Q [N] (0 allowed: gravity only).
+    load_angle : float
+        Direction of the load, measured counter-clockwise from +x [rad]; -pi/2 is straight down.
+    cage_slip : float
+        Cage slip s: the cage turns at (1 - s) times its kinematic speed [-].
+    """
+
+    shaft_frequency: float
+    radial_load: float = 500.0
+    load_angle: float = -math.pi / 2
+    cage_slip: float = 0.0
+
+    def __post_init__(self) -> None:
+        check_real("shaft_frequency", self.shaft_frequency, low=0.0, high=2000.0, unit="Hz")
+        check_real("radial_load", self.radial_load, low=0.0, high=1e7, unit="N")
+        check_real("load_angle", self.load_angle, low=-2 * math.pi, high=2 * math.pi, unit="rad")
+        check_real("cage_slip", self.cage_slip, low=0.0, high=0.5)
+
+    @classmethod
+    def from_rpm(
+        cls, rpm: float, radial_load: float = 500.0, **kwargs: float
+    ) -> OperatingCondition:
+        """Build from a shaft speed in revolutions per minute."""
+        check_real("rpm", rpm, low=0.0, high=120000.0, unit="rpm")
+        return cls(shaft_frequency=float(rpm) / 60.0, radial_load=radial_load, **kwargs)
+
+    @property
+    def rpm(self) -> float:
+        """Shaft speed [rpm]."""
+        return self.shaft_frequency * 60.0
+
+
+SURFACES = ("outer", "inner", "ball")
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Waviness:
+    """One harmonic of surface waviness, w(psi) = amplitude * cos(order * psi + phase).
+
+    Positive w means material protruding toward the contact (MODEL.md section 5).
+
+    Attributes
+    ----------
+    surface : {"outer", "inner", "ball"}
+        Which surface carries the waviness. Ball waviness is applied to every ball with its
+        own random phase (drawn from the simulation's ``random_state``) unless ``ball`` selects
+        a single ball.
+    order : int
+        Number of waves per circumference N_w [-] (0 is a uniform radius change A_0).
+    amplitude : float
+        Amplitude A_m [m] (radius deviation, not peak to peak).
+    phase : float or None
+        Phase [rad]; ``None`` draws it from the simulation's random state.
+    ball : int or None
+        For ``surface="ball"``: index of the single ball that carries it (0-based); ``None``
+        puts it on every ball.
+    """
+
+    surface: str
+    order: int
+    amplitude: float
+    phase: float | None = 0.0
+    ball: int | None = None
+
+    def __post_init__(self) -> None:
+        check_choice("surface", self.surface, SURFACES)
+        check_int("order", self.order, low=0, high=500)
+        check_real("amplitude", self.amplitude, low=0.0, high=1e-3, unit="m")
+        if self.phase is not None:
+            check_real("phase", self.phase, low=-100.0, high=100.0, unit="rad")
+        if self.ball is not None:
+            if self.surface != "ball":
+                raise ParameterError(f"ball = {self.ball} is only valid with surface='ball'")
+            check_int("ball", self.ball, low=0, high=59)
+
+
+SCENE_LEVELS = ("shaft", "shaft+housing", "full", "auto")
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Scene:
+    """What the model includes.
+
+    Attributes
+    ----------
+    level : {"shaft", "shaft+housing", "full", "auto"}
+        ``shaft``: 2 DOF shaft on massless balls, rigid housing (the housing output is a
+        one-way estimate: the transmitted bearing force driving the pedestal);
+        ``shaft+housing``: 4 DOF, massless balls; ``full``: shaft, housing and one radial DOF per
+        ball; ``auto``: the cheapest level whose dropped physics is below ``auto_error_bound``.
+    ehl : bool
+        Include the EHL film (thickness in the contact approach, film damping).
+    auto_error_bound : float
+        Relative error bound used by ``auto`` [-].
+    """
+
+    level: str = "shaft+housing"
+    ehl: bool = True
+    auto_error_bound: float = 0.05
+
+    def __post_init__(self) -> None:
+        check_choice("level", self.level, SCENE_LEVELS)
+        if not isinstance(self.ehl, bool):
+            raise ParameterError(f"ehl = {self.ehl!r} must be True or False")
+        check_real(
+            "auto_error_bound", self.auto_error_bound, low=0.0, high=1.0, low_inclusive=False
+        )
+
+    @property
+    def label(self) -> str:
+        """Short label such as ``shaft+housing/ehl``."""
+        return f"{self.level}/{'ehl' if self.ehl else 'dry'}"
+
+
+INTEGRATORS = ("rk4", "dopri5")
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class SimulationSettings:
+    """Sampling, record length and integrator settings.
+
+    Attributes
+    ----------
+    fs : float
+        Output sample rate [Hz].
+    duration : float
+        Recorded duration after settling [s].
+    settle_time : float
+        Simulated time discarded before recording [s].
+    integrator : {"rk4", "dopri5"}
+        Fixed-step classical Runge-Kutta or adaptive Dormand-Prince 5(4).
+    step : float or None
+        RK4 step [s]; ``None`` uses the scene default (chosen from the measured speed/accuracy
+        trade). Rounded down so that an integer number of steps spans one output sample.
+    rtol : float
+        Relative tolerance of dopri5 [-].
+    atol_displacement : float
+        Absolute tolerance of dopri5 on displacements [m] (velocities use it times 1e3 1/s).
+    oversample : int or None
+        Integration-rate samples per output sample for dopri5's dense output (anti-alias
+        decimation follows); ``None`` picks one that resolves the fastest mode.
+    record_contact_loads : bool
+        Also return the per-ball contact loads at the output samples.
+    max_displacement : float or None
+        Divergence limit on any displacement [m]; ``None`` derives it from the geometry.
+    cage_angle : float
+        Initial cage angle theta_0 (angle of ball 0 from +x) [rad].
+    """
+
+    fs: float = 25600.0
+    duration: float = 1.0
+    settle_time: float = 0.1
+    integrator: str = "rk4"
+    step: float | None = None
+    rtol: float = 1e-6
+    atol_displacement: float = 1e-12
+    oversample: int | None = None
+    record_contact_loads: bool = False
+    max_displacement: float | None = None
+    cage_angle: float = 0.0
+
+    def __post_init__(self) -> None:
+        check_real("fs", self.fs, low=100.0, high=1e7, unit="Hz")
+        check_real("duration", self.duration, low=0.0, high=3600.0, low_inclusive=False, unit="s")
+        check_real("settle_time", self.settle_time, low=0.0, high=3600.0, unit="s")
+        check_choice("integrator", self.integrator, INTEGRATORS)
+        if self.step is not None:
+            check_real("step", self.step, low=1e-9, high=1e-3, unit="s")
+        check_real("rtol", self.rtol, low=1e-13, high=1e-1)
+        check_real("atol_displacement", self.atol_displacement, low=1e-20, high=1e-6, unit="m")
+        if self.oversample is not None:
+            check_int("oversample", self.oversample, low=1, high=1000)
+        if self.max_displacement is not None:
+            check_real(
+                "max_displacement",
+                self.max_displacement,
+                low=0.0,
+                high=1.0,
+                low_inclusive=False,
+                unit="m",
+            )
+        check_real("cage_angle", self.cage_angle, low=-100.0, high=100.0, unit="rad")
+        if self.duration * self.fs < 16:
+            raise ParameterError(
+                f"duration = {self.duration:g} s at fs = {self.fs:g} Hz gives "
+                f"{self.duration * self.fs:.0f} samples; at least 16 are needed"
+            )

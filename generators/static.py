@@ -1,0 +1,197 @@
+"""Static load distribution of a radially loaded deep groove ball bearing (Stribeck/Harris).
+
+The inner ring (shaft) is displaced by (x, y) relative to the outer ring. Ball j at angle
+theta_j has the approach delta_j = x cos(theta_j) + y sin(theta_j) - c_r + e_j, where c_r = P_d / 2
+is the per-ball gap and e_j an optional extra approach (EHL film, uniform waviness). Its load
+is Q_j = K_tot [delta_j]_+^1.5 and the equilibrium is sum_j Q_j (cos theta_j, sin theta_j) = F.
+Checks: Q_max Z / F_r = 4.37 at zero clearance for large Z (Stribeck; catalogue constant),
+~5 with clearance; ISO/TS 16281 reference deflections (MODEL.md 7.6 T2-T4).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validate import ParameterError, check_real
+from .contact import load_deflection_constants
+from .params import BearingGeometry
+
+__all__ = ["StaticSolution", "static_load_distribution"]
+
+
+@dataclass(frozen=True)
+class StaticSolution:
+    """Static equilibrium of the bearing under a radial load.
+
+    Attributes
+    ----------
+    displacement : ndarray, shape (2,)
+        Inner-ring displacement (x, y) relative to the outer ring [m].
+    deflection : float
+        Displacement along the load direction delta_r [m].
+    ball_angles : ndarray, shape (Z,)
+        Ball angles theta_j [rad].
+    ball_loads : ndarray, shape (Z,)
+        Ball loads Q_j [N].
+    radial_stiffness : float
+        Tangent stiffness dF_r / d delta_r along the load direction [N/m].
+    """
+
+    displacement: np.ndarray
+    deflection: float
+    ball_angles: np.ndarray
+    ball_loads: np.ndarray
+    radial_stiffness: float
+
+    @property
+    def max_ball_load(self) -> float:
+        """Largest ball load Q_max [N]."""
+        return float(self.ball_loads.max())
+
+    @property
+    def loaded_ball_count(self) -> int:
+        """Number of balls with a positive load [-]."""
+        return int(np.count_nonzero(self.ball_loads > 0))
+
+
+def _forces(xy: np.ndarray, cos_t: np.ndarray, sin_t: np.ndarray, gap: np.ndarray, k: float):
+    delta = xy[0] * cos_t + xy[1] * sin_t - gap
+    dp = np.maximum(delta, 0.0)
+    q = k * dp * np.sqrt(dp)
+    return q, delta
+
+
+def static_load_distribution(
+    geometry: BearingGeometry,
+    radial_load: float,
+    *,
+    load_angle: float = -math.pi / 2,
+    cage_angle: float = 0.0,
+    extra_approach: float | np.ndarray = 0.0,
+    stiffness_constant: float | None = None,
+) -> StaticSolution:
+    """Solve the static equilibrium of the inner ring under a radial load.
+
+    Parameters
+    ----------
+    geometry : BearingGeometry
+        Bearing geometry; its ``radial_internal_clearance`` P_d sets the gap c_r = P_d / 2.
+    radial_load : float
+        Radial load F_r on the inner ring [N], >= 0.
+    load_angle : float
+        Direction of the load from +x [rad] (default straight down).
+    cage_angle : float
+        Angle of ball 0 from +x [rad]; balls follow at 2 pi / Z. The default puts a ball on the
+        load line only when ``load_angle`` is a multiple of 2 pi / Z from 0 (use
+        ``cage_angle=load_angle`` for a ball on the load line).
+    extra_approach : float or ndarray, shape (Z,)
+        Extra approach per ball [m] (EHL film thickness, a uniform waviness), added to delta_j.
+    stiffness_constant : float, optional
+        K_tot [N/m^1.5]; defaults to the exact-Hertz series constant of ``geometry``.
+
+    Returns
+    -------
+    StaticSolution
+        Displacement, ball loads and tangent stiffness.
+
+    Examples
+    --------
+    >>> from generators import bearing, static_load_distribution
+    >>> g = bearing("6205", radial_internal_clearance=0.0)
+    >>> s = static_load_distribution(g, 1000.0, cage_angle=-3.141592653589793 / 2)
+    >>> round(s.deflection * 1e6, 2)
+    14.0
+    """
+    fr = check_real("radial_load", radial_load, low=0.0, high=1e8, unit="N")
+    check_real("load_angle", load_angle, low=-10.0, high=10.0, unit="rad")
+    check_real("cage_angle", cage_angle, low=-100.0, high=100.0, unit="rad")
+    z = geometry.ball_count
+    k = (
+        stiffness_constant
+        if stiffness_constant is not None
+        else load_deflection_constants(geometry)[2]
+    )
+    check_real("stiffness_constant", k, low=0.0, low_inclusive=False, unit="N/m^1.5")
+    extra = np.broadcast_to(np.asarray(extra_approach, dtype=float), (z,))
+    if not np.all(np.isfinite(extra)):
+        raise ParameterError(f"extra_approach = {extra_approach!r} must be finite")
+    theta = cage_angle + 2.0 * np.pi * np.arange(z) / z
+    cos_t, sin_t = np.cos(theta), np.sin(theta)
+    gap = geometry.radial_gap - extra
+    e_load = np.array([math.cos(load_angle), math.sin(load_angle)])
+    force = fr * e_load
+
+    def residual(xy: np.ndarray) -> np.ndarray:
+        q, _ = _forces(xy, cos_t, sin_t, gap, k)
+        return np.array([q @ cos_t, q @ sin_t]) - force
+
+    def jacobian(xy: np.ndarray) -> np.ndarray:
+        _, delta = _forces(xy, cos_t, sin_t, gap, k)
+        kl = 1.5 * k * np.sqrt(np.maximum(delta, 0.0))
+        return np.array(
+            [
+                [kl @ (cos_t * cos_t), kl @ (cos_t * sin_t)],
+                [kl @ (sin_t * cos_t), kl @ (sin_t * sin_t)],
+            ]
+        )
+
+    def potential(xy: np.ndarray) -> float:
+        _, delta = _forces(xy, cos_t, sin_t, gap, k)
+        dp = np.maximum(delta, 0.0)
+        return float(0.4 * k * np.sum(dp * dp * np.sqrt(dp)) - force @ xy)
+
+    if fr == 0.0 and np.all(gap >= 0.0):
+        xy = np.zeros(2)  # no load and no preload: centred (anywhere in the play is an equilibrium)
+    else:
+        xy = _minimise_potential(potential, residual, jacobian, e_load, gap, fr, k)
+        if np.linalg.norm(residual(xy)) > 1e-9 * max(fr, 1.0):
+            raise ParameterError(
+                f"radial_load = {fr:g} N: static equilibrium not found (residual "
+                f"{np.linalg.norm(residual(xy)):.3g} N)"
+            )
+    q, delta = _forces(xy, cos_t, sin_t, gap, k)
+    jac = jacobian(xy)
+    try:
+        # dF_r/d delta_r with the transverse force held at zero (the shaft re-centres sideways)
+        kr = float(1.0 / (e_load @ np.linalg.solve(jac, e_load)))
+    except np.linalg.LinAlgError:
+        kr = float(e_load @ jac @ e_load)
+    return StaticSolution(
+        displacement=xy,
+        deflection=float(xy @ e_load),
+        ball_angles=theta,
+        ball_loads=q,
+        radial_stiffness=kr,
+    )
+
+
+def _minimise_potential(potential, residual, jacobian, e_load, gap, fr, k):
+    """Damped Newton on the convex potential sum (2/5) K [delta]_+^2.5 - F.xy.
+
+    The Hessian is singular while fewer than two balls touch (and zero before contact), so each
+    step is regularised (Levenberg) and accepted only if it lowers the potential (Armijo).
+    """
+    force_scale = max(fr, 1.0)
+    length_scale = max(float(np.abs(gap).max()), (force_scale / k) ** (2.0 / 3.0), 1e-9)
+    xy = e_load * (max(float(gap.max()), 0.0) + (force_scale / k) ** (2.0 / 3.0))
+    mu = 1e-6 * force_scale / length_scale
+    for _ in range(500):
+        g = residual(xy)
+        if np.linalg.norm(g) <= 1e-11 * force_scale:
+            break
+        h = jacobian(xy)
+        step = np.linalg.solve(h + mu * np.eye(2), g)
+        if not np.all(np.isfinite(step)) or np.linalg.norm(step) > length_scale:
+            step = step * (length_scale / max(np.linalg.norm(step), 1e-300))
+        p0, t = potential(xy), 1.0
+        while t > 1e-12 and potential(xy - t * step) > p0 - 1e-4 * t * float(g @ step):
+            t *= 0.5
+        if t <= 1e-12:
+            mu *= 10.0  # no descent along the regularised step: regularise more
+            continue
+        xy = xy - t * step
+        mu = max(mu * 0.1, 1e-12 * force_scale / length_scale)
+    return xy

@@ -1,0 +1,128 @@
+"""Validation of parameter objects: each bad input names the parameter, its value and range."""
+
+import dataclasses
+import math
+
+import pytest
+
+from generators import (
+    BearingGeometry,
+    Lubricant,
+    Material,
+    OperatingCondition,
+    ParameterError,
+    Rig,
+    Scene,
+    SimulationSettings,
+    Waviness,
+    bearing,
+)
+
+G = bearing("6205")
+
+
+@pytest.mark.parametrize(
+    ("field", "value", "fragment"),
+    [
+        ("ball_count", 0, "ball_count = 0"),
+        ("ball_count", 2.5, "ball_count = 2.5"),
+        ("ball_diameter", -1e-3, "ball_diameter = -0.001"),
+        ("ball_diameter", float("nan"), "ball_diameter = nan"),
+        ("pitch_diameter", 5e-3, "pitch_diameter = 0.005"),
+        ("radial_internal_clearance", 0.01, "radial_internal_clearance = 0.01"),
+        ("inner_groove_curvature", 0.5, "inner_groove_curvature = 0.5"),
+        ("outer_groove_curvature", 0.7, "outer_groove_curvature = 0.7"),
+        ("contact_angle", -0.1, "contact_angle = -0.1"),
+        ("ball_count", 40, "do not fit"),
+    ],
+)
+def test_bearing_geometry_rejects_bad_input(field, value, fragment):
+    with pytest.raises(ParameterError, match="allowed") as err:
+        dataclasses.replace(G, **{field: value})
+    assert fragment in str(err.value)
+
+
+def test_error_names_range():
+    with pytest.raises(ParameterError) as err:
+        dataclasses.replace(G, ball_diameter=-1e-3)
+    assert "(0, 0.5] m" in str(err.value)
+
+
+def test_negative_clearance_is_a_preload_not_an_error():
+    g = dataclasses.replace(G, radial_internal_clearance=-4e-6)
+    assert g.radial_gap == pytest.approx(-2e-6)
+
+
+def test_clearance_convention():
+    # ISO radial internal clearance P_d is total play; per-ball gap is P_d / 2 (MODEL.md 1.1)
+    assert bearing("6205", radial_internal_clearance=10e-6).radial_gap == pytest.approx(5e-6)
+
+
+def test_ball_mass_6205():
+    # MODEL.md 6.1: m_b = 2.058e-3 kg
+    assert G.ball_mass == pytest.approx(2.058e-3, rel=1e-3)
+
+
+@pytest.mark.parametrize(
+    ("factory", "fragment"),
+    [
+        (
+            lambda: Material(name="x", youngs_modulus=-1.0, poisson_ratio=0.3, density=7850),
+            "youngs_modulus",
+        ),
+        (
+            lambda: Material(name="x", youngs_modulus=2e11, poisson_ratio=0.5, density=7850),
+            "poisson_ratio",
+        ),
+        (
+            lambda: Lubricant(name="x", viscosity=0.0, pressure_viscosity_coefficient=2e-8),
+            "viscosity",
+        ),
+        (lambda: Rig(shaft_mass=0.0), "shaft_mass"),
+        (lambda: Rig(pedestal_stiffness=float("inf")), "pedestal_stiffness"),
+        (lambda: OperatingCondition(shaft_frequency=-1.0), "shaft_frequency"),
+        (lambda: OperatingCondition(shaft_frequency=30.0, radial_load=-5.0), "radial_load"),
+        (lambda: OperatingCondition.from_rpm(-10.0), "rpm"),
+        (lambda: Waviness(surface="cage", order=9, amplitude=1e-6), "surface"),
+        (lambda: Waviness(surface="outer", order=-1, amplitude=1e-6), "order"),
+        (lambda: Waviness(surface="outer", order=9, amplitude=-1e-6), "amplitude"),
+        (lambda: Waviness(surface="outer", order=9, amplitude=1e-6, ball=2), "ball"),
+        (lambda: Scene(level="everything"), "level"),
+        (lambda: SimulationSettings(fs=10.0), "fs"),
+        (lambda: SimulationSettings(integrator="euler"), "integrator"),
+        (lambda: SimulationSettings(step=1.0), "step"),
+        (lambda: SimulationSettings(duration=1e-4, fs=1000.0), "duration"),
+    ],
+)
+def test_other_objects_reject_bad_input(factory, fragment):
+    with pytest.raises(ParameterError) as err:
+        factory()
+    assert fragment in str(err.value)
+
+
+def test_objects_are_frozen():
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        G.ball_count = 10  # type: ignore[misc]
+
+
+def test_operating_condition_from_rpm():
+    op = OperatingCondition.from_rpm(1800, radial_load=500)
+    assert op.shaft_frequency == 30.0
+    assert op.rpm == 1800.0
+    assert op.load_angle == pytest.approx(-math.pi / 2)
+
+
+def test_catalog_has_required_bearings():
+    for name in ("6205", "6203", "6305", "6002", "6308", "mfpt"):
+        g = bearing(name)
+        assert isinstance(g, BearingGeometry)
+        assert g.source
+
+
+def test_catalog_unknown_name():
+    with pytest.raises(ParameterError, match="not in the catalog"):
+        bearing("9999")
+
+
+def test_catalog_override():
+    assert bearing("6205", radial_internal_clearance=20e-6).radial_internal_clearance == 20e-6
