@@ -55,6 +55,10 @@ import numpy as np
     P_FILM_OUTER,
     P_FILM_LOAD_FLOOR,
     P_FILM_REFERENCE_LOAD,
+    P_FILM_INNER_REF,
+    P_FILM_OUTER_REF,
+    P_FILM_INNER_MAX,
+    P_FILM_OUTER_MAX,
     P_SQUEEZE_INNER,
     P_SQUEEZE_OUTER,
     P_SQUEEZE_SERIES,
@@ -62,13 +66,13 @@ import numpy as np
     P_UNBALANCE,
     P_MAX_DISPLACEMENT,
     P_SIZE,
-) = range(34)
+) = range(38)
 # P_FILM_*: h_c = P_FILM_* * max(Q, floor)^FILM_EXPONENT [m] (Hamrock-Dowson, MODEL.md 4.2).
 # P_SQUEEZE_*: squeeze-film damping c = P_SQUEEZE_* * max(Q, floor)^-FILM_EXPONENT [N s/m]
 # (MODEL.md 4.5 with h_c inserted); P_SQUEEZE_SERIES is the series combination for massless balls.
 
 FILM_EXPONENT = -0.067
-FILM_ITERATIONS = 2  # fixed-point passes Q <- K (delta + h(Q))^1.5 (contraction k_H / k_f << 1)
+FILM_ITERATIONS = 2  # Newton steps on d = delta + h(K d^1.5): error 1e-5 (tests/reference.py)
 
 SCENE_SHAFT = 0
 SCENE_SHAFT_HOUSING = 1
@@ -111,30 +115,35 @@ def _hertz_dry(delta, delta_rate, k_hertz, damping_time):
 
 
 @numba.njit(**_JIT)
-def _hertz_ehl(delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, q_ref):
+def _hertz_ehl(delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max):
     """Hertz contact in series with the EHL film (MODEL.md 4.3-4.4).
 
-    Solves Q = K (delta + h(Q))^1.5 with h = film * max(Q, floor)^-0.067 by fixed-point passes
-    from Q = q_ref, then adds the dry (stiffness-proportional) and squeeze-film damping; the
-    squeeze term is blended in over 0 < Q < floor so Q stays continuous at onset.
+    Solves d = delta + h(K d^1.5) for the elastic approach d, with the film
+    h(Q) = film * max(Q, floor)^-0.067, by ``FILM_ITERATIONS`` Newton steps from
+    d = delta + h_ref (the film at the reference load); dh/dd = -0.1005 h / d, so one step
+    leaves a relative load error of order 1e-6 at working loads. Then adds the dry
+    (stiffness-proportional) and squeeze-film damping; the squeeze term is blended in over
+    0 < Q < floor so Q stays continuous at onset. ``h_max`` is the film at the load floor: no
+    contact while delta + h_max <= 0.
     """
-    h_max = film * math.exp(FILM_EXPONENT * math.log(floor))
     if delta + h_max <= 0.0:
         return 0.0
-    q = q_ref
-    d_el = 0.0
+    d = delta + h_ref
     for _ in range(FILM_ITERATIONS):
-        qf = q if q > floor else floor
-        d_el = delta + film * math.exp(FILM_EXPONENT * math.log(qf))
-        if d_el <= 0.0:
-            return 0.0
-        q = k_hertz * d_el * math.sqrt(d_el)
-    root = math.sqrt(d_el)
-    qf = q if q > floor else floor
+        q = k_hertz * d * math.sqrt(d) if d > 0.0 else 0.0
+        if q <= floor:
+            d = delta + h_max  # film at the floor does not depend on the load
+        else:
+            h = film * math.exp(FILM_EXPONENT * math.log(q))
+            d = d - (d - delta - h) / (1.0 - 1.5 * FILM_EXPONENT * h / d)
+    if d <= 0.0:
+        return 0.0
+    root = math.sqrt(d)
+    q = k_hertz * d * root
+    h = d - delta
     blend = q / floor if q < floor else 1.0
-    c = damping_time * 1.5 * k_hertz * root + blend * squeeze * math.exp(
-        -FILM_EXPONENT * math.log(qf)
-    )
+    # squeeze * max(Q, floor)^0.067 == squeeze * film / h
+    c = damping_time * 1.5 * k_hertz * root + blend * squeeze * film / h
     q = q + c * delta_rate
     return q if q > 0.0 else 0.0
 
@@ -143,36 +152,51 @@ def _hertz_ehl(delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, q
 
 
 @numba.njit(**_JIT)
-def _waviness(wav, j, theta, shaft_angle, t, p, out):
-    """Waviness seen by ball j: out = [w_o, dw_o, w_i, dw_i, wb_o, dwb_o, wb_i, dwb_i] [m, m/s]."""
+def _waviness(wav, z, theta0, shaft_angle, t, p, out):
+    """Waviness seen by ball j: ``out[:, j] = [w_o, dw_o, w_i, dw_i, wb_o, dwb_o, wb_i, dwb_i]``.
+
+    Values in m, rates in m/s. Race harmonics are evaluated for ball 0 and rotated by k times
+    the ball pitch for the others (one cos/sin per harmonic, not per ball).
+    """
     for i in range(8):
-        out[i] = 0.0
+        for j in range(z):
+            out[i, j] = 0.0
     wc = p[P_CAGE_SPEED]
     ws = p[P_SHAFT_SPEED]
     wb = p[P_BALL_SPIN_SPEED]
+    pitch = 2.0 * math.pi / z
     for r in range(wav.shape[0]):
         surface = int(wav[r, W_SURFACE])
         k = wav[r, W_ORDER]
         a = wav[r, W_AMPLITUDE]
         ph = wav[r, W_PHASE]
-        if surface == SURF_OUTER:
-            arg = k * theta + ph
-            out[0] += a * math.cos(arg)
-            out[1] -= a * k * wc * math.sin(arg)
-        elif surface == SURF_INNER:
-            arg = k * (theta - shaft_angle) + ph
-            out[2] += a * math.cos(arg)
-            out[3] -= a * k * (wc - ws) * math.sin(arg)
-        elif int(wav[r, W_BALL]) == j:
+        if surface == SURF_BALL:
+            j = int(wav[r, W_BALL])
             arg = k * wb * t + ph
             ca = a * math.cos(arg)
             sa = a * k * wb * math.sin(arg)
-            out[4] += ca
-            out[5] -= sa
-            # inner contact point is diametrically opposite: chi + pi -> factor (-1)^k
+            out[4, j] += ca
+            out[5, j] -= sa
+            # the inner contact point is diametrically opposite: chi + pi -> factor (-1)^k
             sign = 1.0 if int(k) % 2 == 0 else -1.0
-            out[6] += sign * ca
-            out[7] -= sign * sa
+            out[6, j] += sign * ca
+            out[7, j] -= sign * sa
+            continue
+        if surface == SURF_OUTER:
+            arg = k * theta0 + ph
+            rate = wc
+            row = 0
+        else:
+            arg = k * (theta0 - shaft_angle) + ph
+            rate = wc - ws
+            row = 2
+        c, s = math.cos(arg), math.sin(arg)
+        cd, sd = math.cos(k * pitch), math.sin(k * pitch)
+        for j in range(z):
+            if j > 0:
+                c, s = c * cd - s * sd, s * cd + c * sd
+            out[row, j] += a * c
+            out[row + 1, j] -= a * k * rate * s
 
 
 # ------------------------------------------------------------------------ right-hand sides
@@ -194,8 +218,9 @@ def _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch):
     gap = p[P_GAP]
     tau = p[P_CONTACT_DAMPING_TIME]
     floor = p[P_FILM_LOAD_FLOOR]
-    qref = p[P_FILM_REFERENCE_LOAD]
     has_waviness = wav.shape[0] > 0
+    if has_waviness:
+        _waviness(wav, z, theta0, shaft_angle, t, p, scratch)
     fxs = 0.0
     fys = 0.0
     fxh = 0.0
@@ -204,8 +229,6 @@ def _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch):
     for j in range(z):
         if j > 0:  # rotate by the ball pitch instead of calling cos/sin per ball
             cj, sj = cj * cd - sj * sd, sj * cd + cj * sd
-        if has_waviness:
-            _waviness(wav, j, theta0 + j * pitch, shaft_angle, t, p, scratch)
         us = xs * cj + ys * sj
         dus = vxs * cj + vys * sj + wc * (-xs * sj + ys * cj)
         if scene == SCENE_FULL:
@@ -218,16 +241,32 @@ def _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch):
             do = rho - uh - 0.5 * gap
             ddo = drho - duh
             if has_waviness:
-                di += scratch[2] + scratch[6]
-                ddi += scratch[3] + scratch[7]
-                do += scratch[0] + scratch[4]
-                ddo += scratch[1] + scratch[5]
+                di += scratch[2, j] + scratch[6, j]
+                ddi += scratch[3, j] + scratch[7, j]
+                do += scratch[0, j] + scratch[4, j]
+                ddo += scratch[1, j] + scratch[5, j]
             if ehl:
                 qi = _hertz_ehl(
-                    di, ddi, p[P_K_INNER], tau, p[P_FILM_INNER], p[P_SQUEEZE_INNER], floor, qref
+                    di,
+                    ddi,
+                    p[P_K_INNER],
+                    tau,
+                    p[P_FILM_INNER],
+                    p[P_SQUEEZE_INNER],
+                    floor,
+                    p[P_FILM_INNER_REF],
+                    p[P_FILM_INNER_MAX],
                 )
                 qo = _hertz_ehl(
-                    do, ddo, p[P_K_OUTER], tau, p[P_FILM_OUTER], p[P_SQUEEZE_OUTER], floor, qref
+                    do,
+                    ddo,
+                    p[P_K_OUTER],
+                    tau,
+                    p[P_FILM_OUTER],
+                    p[P_SQUEEZE_OUTER],
+                    floor,
+                    p[P_FILM_OUTER_REF],
+                    p[P_FILM_OUTER_MAX],
                 )
             else:
                 qi = _hertz_dry(di, ddi, p[P_K_INNER], tau)
@@ -243,8 +282,8 @@ def _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch):
                 d -= xh * cj + yh * sj
                 dd -= vxh * cj + vyh * sj + wc * (-xh * sj + yh * cj)
             if has_waviness:
-                d += scratch[0] + scratch[2] + scratch[4] + scratch[6]
-                dd += scratch[1] + scratch[3] + scratch[5] + scratch[7]
+                d += scratch[0, j] + scratch[2, j] + scratch[4, j] + scratch[6, j]
+                dd += scratch[1, j] + scratch[3, j] + scratch[5, j] + scratch[7, j]
             if ehl:
                 qi = _hertz_ehl(
                     d,
@@ -254,7 +293,8 @@ def _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch):
                     p[P_FILM_INNER] + p[P_FILM_OUTER],
                     p[P_SQUEEZE_SERIES],
                     floor,
-                    qref,
+                    p[P_FILM_INNER_REF] + p[P_FILM_OUTER_REF],
+                    p[P_FILM_INNER_MAX] + p[P_FILM_OUTER_MAX],
                 )
             else:
                 qi = _hertz_dry(d, dd, p[P_K_SERIES], tau)
@@ -352,7 +392,7 @@ def _rk4_impl(
     k4 = np.empty(n)
     tmp = np.empty(n)
     loads = np.zeros((2, z))
-    scratch = np.zeros(8)
+    scratch = np.zeros((8, z))
     t = t0
     half = 0.5 * dt
     total = n_skip + n_record * steps_per_record
@@ -490,7 +530,7 @@ def _dopri5_impl(
     r4 = np.empty(n)
     acc = np.empty(n)
     loads = np.zeros((2, z))
-    scratch = np.zeros(8)
+    scratch = np.zeros((8, z))
     t = t0
     t_end = t_first + (n_record - 1) * record_dt
     h = h0
@@ -660,5 +700,5 @@ def _dopri5(
 @numba.njit(**_JIT)
 def _rhs_once(scene, ehl, t, y, p, wav, dydt, loads):
     """One right-hand-side evaluation (static checks, linearisation, reference tests)."""
-    scratch = np.zeros(8)
+    scratch = np.zeros((8, int(p[P_BALL_COUNT])))
     _rhs(numba.literally(scene), numba.literally(ehl), t, y, p, wav, dydt, loads, scratch)

@@ -46,6 +46,8 @@ from .params import (
 from .static import static_load_distribution
 
 __all__ = [
+    "Prepared",
+    "prepare",
     "SimulationResult",
     "simulate",
     "resolve_scene",
@@ -184,8 +186,9 @@ def resolve_scene(
     ``scene.auto_error_bound``):
 
     * ``full`` is needed when the ball radial mode f_ball = sqrt((k_i + k_o) / m_b) / 2 pi lies
-      less than 1 / bound times above the analysis band fs / 2 (ball inertia then shapes the
-      band; quasi-static response error ~ (f / f_ball)^2), or when the centrifugal ball force
+      too close to the analysis band f_max = fs / 2.56 (the usual analyser convention): the
+      quasi-static error of massless balls at f_max is ~ (f_max / f_ball)^2 > bound; or when
+      the centrifugal ball force
       m_b w_c^2 D / 2 exceeds bound times the largest static ball load;
     * otherwise ``shaft`` suffices when the housing is much stiffer than the bearing
       (k_b / (k_b + k_h) < bound: the relative error of the one-way housing coupling);
@@ -206,7 +209,7 @@ def resolve_scene(
     qmax = max(st.max_ball_load, 1.0)
     k_ball = 1.5 * (ki ** (2 / 3) + ko ** (2 / 3)) * qmax ** (1 / 3)
     f_ball = math.sqrt(k_ball / geometry.ball_mass) / (2 * math.pi)
-    f_band = settings.fs / 2
+    f_band = settings.fs / 2.56  # analysis band of an analyser sampling at 2.56 f_max
     wc = (
         2
         * math.pi
@@ -216,7 +219,7 @@ def resolve_scene(
     )
     centrifugal = geometry.ball_mass * wc**2 * geometry.pitch_diameter / 2
     if (f_band / f_ball) ** 2 > bound:
-        return "full", f"ball mode {f_ball:.0f} Hz is close to the band fs/2 = {f_band:.0f} Hz"
+        return "full", f"ball mode {f_ball:.0f} Hz is close to the band f_max = {f_band:.0f} Hz"
     if centrifugal > bound * qmax:
         return (
             "full",
@@ -274,6 +277,11 @@ def _pack(
         ho = film_thickness(co, lub, u, 1.0, load_floor=1e-30)
         p[K.P_FILM_INNER] = hi
         p[K.P_FILM_OUTER] = ho
+        qref, qfloor = p[K.P_FILM_REFERENCE_LOAD], p[K.P_FILM_LOAD_FLOOR]
+        p[K.P_FILM_INNER_REF] = hi * qref**K.FILM_EXPONENT
+        p[K.P_FILM_OUTER_REF] = ho * qref**K.FILM_EXPONENT
+        p[K.P_FILM_INNER_MAX] = hi * qfloor**K.FILM_EXPONENT
+        p[K.P_FILM_OUTER_MAX] = ho * qfloor**K.FILM_EXPONENT
         csi = rig.film_damping_factor * squeeze_film_damping(ci, lub, 1.0)  # = c_sq * h_c
         cso = rig.film_damping_factor * squeeze_film_damping(co, lub, 1.0)
         p[K.P_SQUEEZE_INNER] = csi / hi
@@ -293,14 +301,10 @@ def _film_sum(p: np.ndarray, loads: np.ndarray) -> np.ndarray:
 
 
 def _waviness_at_start(p: np.ndarray, wav: np.ndarray, z: int) -> np.ndarray:
-    """Waviness values seen by each ball at t = 0: rows [w_o, w_i, wb_o, wb_i]."""
-    out = np.zeros((4, z))
-    scratch = np.zeros(8)
-    pitch = 2 * np.pi / z
-    for j in range(z):
-        K._waviness(wav, j, p[K.P_CAGE_ANGLE0] + j * pitch, p[K.P_SHAFT_ANGLE0], 0.0, p, scratch)
-        out[:, j] = scratch[[0, 2, 4, 6]]
-    return out
+    """Waviness values seen by each ball at t = 0: rows [w_o, w_i, wb_o, wb_i] [m]."""
+    out = np.zeros((8, z))
+    K._waviness(wav, z, p[K.P_CAGE_ANGLE0], p[K.P_SHAFT_ANGLE0], 0.0, p, out)
+    return out[[0, 2, 4, 6]]
 
 
 def _ball_equilibrium(
@@ -330,7 +334,8 @@ def _ball_equilibrium(
                 p[K.P_FILM_INNER],
                 0.0,
                 p[K.P_FILM_LOAD_FLOOR],
-                p[K.P_FILM_REFERENCE_LOAD],
+                p[K.P_FILM_INNER_REF],
+                p[K.P_FILM_INNER_MAX],
             )
             qo = K._hertz_ehl(
                 do,
@@ -340,7 +345,8 @@ def _ball_equilibrium(
                 p[K.P_FILM_OUTER],
                 0.0,
                 p[K.P_FILM_LOAD_FLOOR],
-                p[K.P_FILM_REFERENCE_LOAD],
+                p[K.P_FILM_OUTER_REF],
+                p[K.P_FILM_OUTER_MAX],
             )
         else:
             qi = K._hertz_dry(di, 0.0, p[K.P_K_INNER], tau)
@@ -479,6 +485,100 @@ def _params_record(geometry, operating, rig, scene, level, reason, settings, def
 # ------------------------------------------------------------------------------- simulate
 
 
+@dataclass(frozen=True)
+class Prepared:
+    """Everything the kernels need for one run (packed, validated, at static equilibrium)."""
+
+    geometry: BearingGeometry
+    operating: OperatingCondition
+    rig: Rig
+    scene: Scene
+    settings: SimulationSettings
+    defects: tuple
+    level: str
+    reason: str
+    code: int
+    ehl: bool
+    freqs: BearingFrequencies | None
+    p: np.ndarray
+    wav: np.ndarray
+    y0: np.ndarray
+    max_ball_load: float
+
+
+def prepare(
+    bearing: BearingGeometry,
+    operating: OperatingCondition,
+    defects: Waviness | Sequence[Waviness] | None = None,
+    *,
+    scene: Scene | None = None,
+    rig: Rig | None = None,
+    settings: SimulationSettings | None = None,
+    random_state: int | np.random.Generator | None = None,
+) -> Prepared:
+    """Validate the inputs, resolve the scene, pack parameters and find the static start.
+
+    Parameters are those of :func:`simulate`; returns the packed vector ``p``, the waviness
+    table ``wav`` and the initial state ``y0`` (static equilibrium, velocities zero).
+    """
+    if not isinstance(bearing, BearingGeometry):
+        raise ParameterError(f"bearing = {bearing!r} is not a BearingGeometry")
+    if not isinstance(operating, OperatingCondition):
+        raise ParameterError(f"operating = {operating!r} is not an OperatingCondition")
+    scene = Scene() if scene is None else scene
+    rig = Rig() if rig is None else rig
+    settings = SimulationSettings() if settings is None else settings
+    for name, obj, cls in (
+        ("scene", scene, Scene),
+        ("rig", rig, Rig),
+        ("settings", settings, SimulationSettings),
+    ):
+        if not isinstance(obj, cls):
+            raise ParameterError(f"{name} = {obj!r} is not a {cls.__name__}")
+    defect_list = _as_defects(defects)
+    rng = np.random.default_rng(random_state)
+    geometry = bearing
+    z = geometry.ball_count
+
+    level, reason = resolve_scene(scene, geometry, operating, rig, settings)
+    code = SCENE_CODES[level]
+    # no entrainment, no film: a standing bearing runs the dry path (nothing to pay for)
+    ehl = bool(scene.ehl) and operating.shaft_frequency > 0.0
+    freqs = None
+    if operating.shaft_frequency > 0:
+        freqs = characteristic_frequencies(
+            geometry, operating.shaft_frequency, cage_slip=operating.cage_slip
+        )
+    p = _pack(geometry, operating, rig, ehl, freqs)
+    p[K.P_CAGE_ANGLE0] = settings.cage_angle
+    wav = _waviness_table(defect_list, z, rng)
+    y0, qmax = _static_state(level, ehl, geometry, operating, rig, p, wav)
+    scale = float(np.max(np.abs(y0[: K.n_dof(code, z)]))) if y0.size else 0.0
+    p[K.P_MAX_DISPLACEMENT] = (
+        settings.max_displacement
+        if settings.max_displacement is not None
+        else 20.0 * scale + 0.1 * geometry.ball_diameter
+    )
+
+    return Prepared(
+        geometry,
+        operating,
+        rig,
+        scene,
+        settings,
+        defect_list,
+        level,
+        reason,
+        code,
+        ehl,
+        freqs,
+        p,
+        wav,
+        y0,
+        qmax,
+    )
+
+
 def simulate(
     bearing: BearingGeometry,
     operating: OperatingCondition,
@@ -536,42 +636,30 @@ def simulate(
     >>> r["housing_velocity_y"].shape
     (1280,)
     """
-    if not isinstance(bearing, BearingGeometry):
-        raise ParameterError(f"bearing = {bearing!r} is not a BearingGeometry")
-    if not isinstance(operating, OperatingCondition):
-        raise ParameterError(f"operating = {operating!r} is not an OperatingCondition")
-    scene = Scene() if scene is None else scene
-    rig = Rig() if rig is None else rig
-    settings = SimulationSettings() if settings is None else settings
-    for name, obj, cls in (
-        ("scene", scene, Scene),
-        ("rig", rig, Rig),
-        ("settings", settings, SimulationSettings),
-    ):
-        if not isinstance(obj, cls):
-            raise ParameterError(f"{name} = {obj!r} is not a {cls.__name__}")
-    defect_list = _as_defects(defects)
-    rng = np.random.default_rng(random_state)
-    geometry = bearing
-    z = geometry.ball_count
-
-    level, reason = resolve_scene(scene, geometry, operating, rig, settings)
-    code = SCENE_CODES[level]
-    ehl = bool(scene.ehl)
-    freqs = None
-    if operating.shaft_frequency > 0:
-        freqs = characteristic_frequencies(
-            geometry, operating.shaft_frequency, cage_slip=operating.cage_slip
-        )
-    p = _pack(geometry, operating, rig, ehl, freqs)
-    p[K.P_CAGE_ANGLE0] = settings.cage_angle
-    wav = _waviness_table(defect_list, z, rng)
-    y0, qmax = _static_state(level, ehl, geometry, operating, rig, p, wav)
-    scale = float(np.max(np.abs(y0[: K.n_dof(code, z)]))) if y0.size else 0.0
-    p[K.P_MAX_DISPLACEMENT] = (
-        settings.max_displacement
-        if settings.max_displacement is not None
-        else 20.0 * scale + 0.1 * geometry.ball_diameter
+    prep = prepare(
+        bearing,
+        operating,
+        defects,
+        scene=scene,
+        rig=rig,
+        settings=settings,
+        random_state=random_state,
+    )
+    geometry, settings, level, code, ehl = (
+        prep.geometry,
+        prep.settings,
+        prep.level,
+        prep.code,
+        prep.ehl,
+    )
+    p, wav, y0, qmax, z = prep.p, prep.wav, prep.y0, prep.max_ball_load, geometry.ball_count
+    rig, scene, operating, defect_list, reason, freqs = (
+        prep.rig,
+        prep.scene,
+        prep.operating,
+        prep.defects,
+        prep.reason,
+        prep.freqs,
     )
 
     oversample = settings.oversample or DEFAULT_OVERSAMPLE

@@ -1,0 +1,50 @@
+"""Input checks shared by the feature functions (messages name parameter, value and range)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+class FeatureError(ValueError):
+    """Bad input to a feature function (the message names the parameter and the valid range)."""
+
+
+def check_signal(x: object, *, name: str = "x", min_length: int = 2) -> np.ndarray:
+    """Return ``x`` as float64 with at least ``min_length`` finite samples on its last axis."""
+    arr = np.asarray(x, dtype=np.float64)
+    if arr.ndim == 0:
+        raise FeatureError(
+            f"{name} is a scalar; expected a signal with at least {min_length} samples"
+        )
+    if arr.shape[-1] < min_length:
+        raise FeatureError(f"{name} has {arr.shape[-1]} samples; at least {min_length} are needed")
+    if not np.all(np.isfinite(arr)):
+        bad = int(np.count_nonzero(~np.isfinite(arr)))
+        raise FeatureError(f"{name} contains {bad} non-finite values (NaN or inf)")
+    return arr
+
+
+def check_fs(fs: object) -> float:
+    """Return the sample rate [Hz] as a positive finite float."""
+    try:
+        v = float(fs)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise FeatureError(f"fs = {fs!r} is not a number; allowed range (0, inf) Hz") from None
+    if not math.isfinite(v) or v <= 0:
+        raise FeatureError(f"fs = {fs!r} Hz is outside the allowed range (0, inf) Hz")
+    return v
+
+
+def check_positive(name: str, value: object, *, unit: str = "") -> float:
+    """Return ``value`` as a positive finite float."""
+    try:
+        v = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise FeatureError(f"{name} = {value!r} is not a number") from None
+    if not math.isfinite(v) or v <= 0:
+        raise FeatureError(
+            f"{name} = {value!r} {unit} is outside the allowed range (0, inf) {unit}"
+        )
+    return v

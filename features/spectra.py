@@ -1,0 +1,192 @@
+"""Amplitude spectrum, power spectral density and frequency-domain integration.
+
+Conventions follow ``scipy.signal``: signal ``x``, sample rate ``fs`` [Hz], keyword-only
+options, ``axis=-1``, and ``(frequencies, values)`` out.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy import signal as sp_signal
+
+from ._validate import FeatureError, check_fs, check_positive, check_signal
+
+__all__ = ["amplitude_spectrum", "power_spectral_density", "integrate_spectrum", "integrate_signal"]
+
+
+def amplitude_spectrum(
+    x: np.ndarray,
+    fs: float,
+    *,
+    window: str = "hann",
+    detrend: str | bool = "constant",
+    nperseg: int | None = None,
+    scaling: str = "peak",
+    axis: int = -1,
+) -> tuple[np.ndarray, np.ndarray]:
+    """One-sided amplitude spectrum, scaled so that a tone of amplitude A reads A.
+
+    Parameters
+    ----------
+    x : array_like
+        Signal (any unit U) along ``axis``.
+    fs : float
+        Sample rate [Hz].
+    window : str
+        Window name understood by ``scipy.signal.get_window`` (``"hann"``, ``"flattop"``, ...).
+        The amplitude is corrected for the window's coherent gain.
+    detrend : {"constant", "linear", False}
+        Trend removed before the transform.
+    nperseg : int, optional
+        Segment length for averaging (Welch-style average of the magnitudes over 50 %
+        overlapping segments); ``None`` transforms the whole record (resolution fs / n).
+    scaling : {"peak", "rms"}
+        Peak amplitude (A for A cos) or RMS (A / sqrt 2).
+    axis : int
+        Time axis.
+
+    Returns
+    -------
+    frequencies : ndarray
+        Frequencies [Hz].
+    amplitude : ndarray
+        Amplitude [U] (peak or RMS), same shape as ``x`` with ``axis`` replaced by frequency.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> fs = 1000.0; t = np.arange(1000) / fs
+    >>> f, a = amplitude_spectrum(2.0 * np.cos(2 * np.pi * 50 * t), fs)
+    >>> round(float(a[50]), 6)
+    2.0
+    """
+    x = check_signal(x, min_length=4)
+    fs = check_fs(fs)
+    if scaling not in ("peak", "rms"):
+        raise FeatureError(f"scaling = {scaling!r} is not one of 'peak', 'rms'")
+    x = np.moveaxis(x, axis, -1)
+    n = x.shape[-1]
+    if nperseg is None:
+        nperseg = n
+    if not 4 <= int(nperseg) <= n:
+        raise FeatureError(f"nperseg = {nperseg} is outside the allowed range [4, {n}]")
+    nperseg = int(nperseg)
+    win = sp_signal.get_window(window, nperseg)
+    step = max(nperseg // 2, 1)
+    starts = range(0, n - nperseg + 1, step)
+    acc = None
+    count = len(starts)
+    for s in starts:
+        seg = x[..., s : s + nperseg]
+        if detrend:
+            seg = sp_signal.detrend(seg, type=detrend, axis=-1)
+        mag = np.abs(np.fft.rfft(seg * win, axis=-1))
+        acc = mag if acc is None else acc + mag
+    amp = acc / count * 2.0 / win.sum()
+    amp[..., 0] /= 2.0
+    if nperseg % 2 == 0:
+        amp[..., -1] /= 2.0
+    if scaling == "rms":
+        amp = amp / np.sqrt(2.0)
+    freqs = np.fft.rfftfreq(nperseg, 1.0 / fs)
+    return freqs, np.moveaxis(amp, -1, axis)
+
+
+def power_spectral_density(
+    x: np.ndarray,
+    fs: float,
+    *,
+    window: str = "hann",
+    nperseg: int | None = None,
+    detrend: str | bool = "constant",
+    axis: int = -1,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Welch power spectral density [U^2/Hz] (``scipy.signal.welch``, one-sided).
+
+    Parameters
+    ----------
+    x : array_like
+        Signal.
+    fs : float
+        Sample rate [Hz].
+    window : str
+        Window name.
+    nperseg : int, optional
+        Segment length; default min(n, 4096).
+    detrend : {"constant", "linear", False}
+        Trend removed from each segment.
+    axis : int
+        Time axis.
+
+    Returns
+    -------
+    frequencies, psd : ndarray
+        Frequencies [Hz] and PSD [U^2/Hz].
+    """
+    x = check_signal(x, min_length=4)
+    fs = check_fs(fs)
+    n = x.shape[axis]
+    nperseg = min(n, 4096) if nperseg is None else int(nperseg)
+    if not 4 <= nperseg <= n:
+        raise FeatureError(f"nperseg = {nperseg} is outside the allowed range [4, {n}]")
+    return sp_signal.welch(x, fs=fs, window=window, nperseg=nperseg, detrend=detrend, axis=axis)
+
+
+def integrate_spectrum(
+    frequencies: np.ndarray, spectrum: np.ndarray, *, low_cut: float = 2.0, order: int = 1
+) -> np.ndarray:
+    """Integrate an amplitude spectrum ``order`` times: divide by (2 pi f)^order.
+
+    Bins below ``low_cut`` [Hz] are set to zero (the 1/f gain would blow up noise and drift).
+    Acceleration [m/s^2] -> velocity [m/s] with ``order=1``.
+    """
+    low_cut = check_positive("low_cut", low_cut, unit="Hz")
+    f = np.asarray(frequencies, dtype=float)
+    out = np.zeros_like(np.asarray(spectrum, dtype=float))
+    keep = f >= low_cut
+    out[..., keep] = np.asarray(spectrum)[..., keep] / (2 * np.pi * f[keep]) ** order
+    return out
+
+
+def integrate_signal(
+    x: np.ndarray, fs: float, *, low_cut: float = 2.0, order: int = 1, axis: int = -1
+) -> np.ndarray:
+    """Integrate a time signal in the frequency domain (acceleration -> velocity).
+
+    Divides the FFT by (j 2 pi f)^order and zeroes bins below ``low_cut`` [Hz] (a high-pass
+    that removes the drift an integration of noise and offsets would produce).
+
+    Parameters
+    ----------
+    x : array_like
+        Signal [U].
+    fs : float
+        Sample rate [Hz].
+    low_cut : float
+        Low-frequency cut-off [Hz].
+    order : int
+        1 for velocity from acceleration, 2 for displacement.
+    axis : int
+        Time axis.
+
+    Returns
+    -------
+    ndarray
+        Integrated signal [U s^order].
+    """
+    x = check_signal(x, min_length=4)
+    fs = check_fs(fs)
+    low_cut = check_positive("low_cut", low_cut, unit="Hz")
+    if low_cut >= fs / 2:
+        raise FeatureError(
+            f"low_cut = {low_cut:g} Hz is outside the allowed range (0, {fs / 2:g}) Hz"
+        )
+    x = np.moveaxis(x, axis, -1)
+    n = x.shape[-1]
+    spec = np.fft.rfft(x, axis=-1)
+    f = np.fft.rfftfreq(n, 1.0 / fs)
+    gain = np.zeros_like(f, dtype=complex)
+    keep = f >= low_cut
+    gain[keep] = 1.0 / (2j * np.pi * f[keep]) ** order
+    y = np.fft.irfft(spec * gain, n=n, axis=-1)
+    return np.moveaxis(y, -1, axis)

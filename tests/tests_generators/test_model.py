@@ -1,0 +1,234 @@
+"""The dynamic model against a slow reference, its static start, and its basic contracts.
+
+Tolerances:
+* REFERENCE_RTOL_DRY = 1e-6: same equations and contact law as tests/reference.py, RK4 at
+  0.1 us vs DOP853 at rtol 1e-11 over 4 ms (observed 3e-7 for the full scene).
+* REFERENCE_RTOL_EHL = 1e-4: the kernel solves the implicit film equation with two Newton
+  steps, the reference with brentq to 1e-13 (observed 1.5e-5).
+* STATIC_ACCEL: the static start leaves a residual acceleration from the solver tolerances and
+  the rate terms of the rotating cage; 1 m/s^2 is 1e-3 of the load acceleration Q / M_s.
+"""
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from generators import (
+    OperatingCondition,
+    ParameterError,
+    Rig,
+    Scene,
+    SimulationDivergedError,
+    SimulationSettings,
+    Waviness,
+    bearing,
+    resolve_scene,
+    simulate,
+    static_load_distribution,
+)
+from generators import _kernels as K
+from generators.model import CHANNELS, prepare
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from reference import reference_solution  # noqa: E402
+
+REFERENCE_RTOL_DRY = 1e-6
+REFERENCE_RTOL_EHL = 1e-4
+STATIC_ACCEL = 1.0
+
+G6205 = bearing("6205")
+OP = OperatingCondition.from_rpm(1800, 500.0)
+DEFECTS = [
+    Waviness(surface="outer", order=9, amplitude=1e-6),
+    Waviness(surface="inner", order=10, amplitude=0.5e-6, phase=0.3),
+    Waviness(surface="ball", order=2, amplitude=0.3e-6, phase=None),
+]
+
+
+def kernel_states(prep, n, record_dt, substeps):
+    st = np.zeros((n, K.N_OUT_STATE))
+    ac = np.zeros((n, K.N_OUT_ACCEL))
+    ld = np.zeros((1, 2, prep.geometry.ball_count))
+    status, _ = K._rk4(
+        prep.code,
+        int(prep.ehl),
+        prep.y0,
+        prep.p,
+        prep.wav,
+        0.0,
+        record_dt / substeps,
+        substeps,
+        0,
+        n,
+        st,
+        ac,
+        ld,
+        False,
+    )
+    assert status == K.STATUS_OK
+    return st, ac
+
+
+@pytest.mark.parametrize(
+    ("level", "ehl", "rtol"),
+    [
+        ("shaft", False, REFERENCE_RTOL_DRY),
+        ("shaft+housing", False, REFERENCE_RTOL_DRY),
+        ("full", False, REFERENCE_RTOL_DRY),
+        ("shaft", True, REFERENCE_RTOL_EHL),
+        ("shaft+housing", True, REFERENCE_RTOL_EHL),
+    ],
+)
+def test_kernel_matches_numpy_reference(level, ehl, rtol):
+    prep = prepare(G6205, OP, DEFECTS, scene=Scene(level=level, ehl=ehl), random_state=1)
+    n, record_dt = 101, 4e-5
+    st, _ = kernel_states(prep, n, record_dt, 40)
+    ref = reference_solution(prep, np.arange(n) * record_dt)
+    nd = len(prep.y0) // 2
+    ref = ref[:, [0, 1, 2, 3, nd, nd + 1, nd + 2, nd + 3]]
+    vel_err = np.abs(st[:, 4:] - ref[:, 4:]).max() / np.abs(ref[:, 4:]).max()
+    assert vel_err < rtol
+    disp = ref[:, :4] - ref[0, :4]
+    assert np.abs(st[:, :4] - ref[:, :4]).max() / np.abs(disp).max() < rtol
+
+
+@pytest.mark.validation
+def test_full_scene_with_ehl_matches_reference():
+    prep = prepare(G6205, OP, DEFECTS[:1], scene=Scene(level="full", ehl=True), random_state=1)
+    n, record_dt = 51, 4e-5
+    st, _ = kernel_states(prep, n, record_dt, 40)
+    ref = reference_solution(prep, np.arange(n) * record_dt)
+    nd = len(prep.y0) // 2
+    ref = ref[:, [nd, nd + 1, nd + 2, nd + 3]]
+    assert np.abs(st[:, 4:] - ref).max() / np.abs(ref).max() < REFERENCE_RTOL_EHL
+
+
+@pytest.mark.parametrize("level", ["shaft", "shaft+housing", "full"])
+@pytest.mark.parametrize("ehl", [False, True])
+def test_static_start_is_an_equilibrium(level, ehl):
+    # frozen cage (speeds zero): the start state must have (almost) no acceleration
+    prep = prepare(G6205, OP, scene=Scene(level=level, ehl=ehl))
+    p = prep.p.copy()
+    if level == "full":
+        # keep the centrifugal term of the cage frame but no rate terms
+        p[K.P_SHAFT_SPEED] = p[K.P_BALL_SPIN_SPEED] = 0.0
+    else:
+        p[K.P_SHAFT_SPEED] = p[K.P_CAGE_SPEED] = p[K.P_BALL_SPIN_SPEED] = 0.0
+    dydt = np.zeros_like(prep.y0)
+    loads = np.zeros((2, 9))
+    K._rhs_once(prep.code, int(ehl), 0.0, prep.y0, p, prep.wav, dydt, loads)
+    nd = len(prep.y0) // 2
+    assert np.abs(dydt[nd : nd + 4]).max() < STATIC_ACCEL
+    if level == "full":
+        assert np.abs(dydt[nd + 4 :]).max() < 1e3 * STATIC_ACCEL  # ball: 2 g, forces of 1e2 N
+
+
+def test_static_start_equals_static_load_distribution():
+    rig = Rig(gravity=False)
+    prep = prepare(G6205, OP, scene=Scene(level="shaft+housing", ehl=False), rig=rig)
+    st = static_load_distribution(G6205, 500.0, cage_angle=0.0)
+    rel = prep.y0[0:2] - prep.y0[2:4]
+    np.testing.assert_allclose(rel, st.displacement, rtol=1e-9, atol=1e-15)
+    # housing sits on its pedestal: k_h x_h = load
+    assert prep.y0[3] == pytest.approx(-500.0 / rig.pedestal_stiffness, rel=1e-12)
+
+
+def test_ehl_start_is_film_closer():
+    # T12: the films act as a negative clearance of about h_i + h_o. The dry bearing with its
+    # diametral clearance reduced by 2 (h_i + h_o) at Q_max must sit within 5 % of the same
+    # place (lighter balls have slightly thicker films: h ~ Q^-0.067).
+    dry = prepare(G6205, OP, scene=Scene(level="shaft+housing", ehl=False))
+    wet = prepare(G6205, OP, scene=Scene(level="shaft+housing", ehl=True))
+    shift = (wet.y0[1] - wet.y0[3]) - (dry.y0[1] - dry.y0[3])
+    p = wet.p
+    film = (p[K.P_FILM_INNER] + p[K.P_FILM_OUTER]) * wet.max_ball_load**K.FILM_EXPONENT
+    closer = bearing("6205", radial_internal_clearance=G6205.radial_internal_clearance - 2 * film)
+    equivalent = prepare(closer, OP, scene=Scene(level="shaft+housing", ehl=False))
+    expected = (equivalent.y0[1] - equivalent.y0[3]) - (dry.y0[1] - dry.y0[3])
+    assert shift > film > 0
+    assert shift == pytest.approx(expected, rel=0.05)
+
+
+def test_result_channels_and_frame():
+    st = SimulationSettings(fs=10240.0, duration=0.05, settle_time=0.01)
+    r = simulate(G6205, OP, DEFECTS[0], settings=st)
+    assert set(r.signals) == set(CHANNELS)
+    assert r.time.shape == (512,)
+    frame = r.to_frame()
+    assert list(frame.columns) == ["time", *CHANNELS]
+    for v in r.signals.values():
+        assert np.all(np.isfinite(v))
+    assert r.parameters["scene"]["resolved_level"] == "shaft+housing"
+    assert r.frequencies.bpfo == pytest.approx(3.58478 * 30.0, rel=1e-4)
+
+
+def test_contact_loads_recorded_on_request():
+    st = SimulationSettings(fs=5120.0, duration=0.02, settle_time=0.01, record_contact_loads=True)
+    r = simulate(G6205, OP, settings=st, scene=Scene(level="full", ehl=False))
+    assert r.contact_loads.shape == (r.time.size, 2, 9)
+    assert r.contact_loads.max() > 500.0 / 9  # Q_max ~ 5 F_r / Z
+    assert r.contact_loads.min() >= 0.0
+
+
+def test_divergence_is_reported_not_returned():
+    # an RK4 step far beyond the ball-mode stability limit must stop with a clear error
+    st = SimulationSettings(fs=5120.0, duration=0.05, settle_time=0.0, step=1e-4)
+    with pytest.raises(SimulationDivergedError, match=r"full/dry at t = ") as err:
+        simulate(G6205, OP, settings=st, scene=Scene(level="full", ehl=False))
+    assert err.value.scene == "full"
+    assert err.value.time >= 0.0
+
+
+def test_same_seed_same_signal():
+    st = SimulationSettings(fs=5120.0, duration=0.02, settle_time=0.005)
+    ball = Waviness(surface="ball", order=4, amplitude=0.5e-6, phase=None)
+    a = simulate(G6205, OP, ball, settings=st, random_state=7)
+    b = simulate(G6205, OP, ball, settings=st, random_state=7)
+    c = simulate(G6205, OP, ball, settings=st, random_state=8)
+    np.testing.assert_array_equal(a["housing_velocity_y"], b["housing_velocity_y"])
+    assert not np.array_equal(a["housing_velocity_y"], c["housing_velocity_y"])
+
+
+def test_bad_inputs_named():
+    with pytest.raises(ParameterError, match="bearing"):
+        simulate("6205", OP)
+    with pytest.raises(ParameterError, match="defects\\[0\\]"):
+        simulate(G6205, OP, ["outer"])
+    with pytest.raises(ParameterError, match="ball = 12"):
+        simulate(G6205, OP, Waviness(surface="ball", order=2, amplitude=1e-7, ball=12))
+    with pytest.raises(ParameterError, match="level"):
+        Scene(level="half")
+    with pytest.raises(ParameterError, match="integrator"):
+        SimulationSettings(integrator="euler")
+
+
+def test_zero_speed_runs_static():
+    st = SimulationSettings(fs=5120.0, duration=0.02, settle_time=0.005)
+    r = simulate(G6205, OperatingCondition(shaft_frequency=0.0, radial_load=500.0), settings=st)
+    assert np.abs(r["housing_velocity_y"]).max() < 1e-6
+
+
+def test_auto_scene_rule():
+    st = SimulationSettings()
+    lvl, _ = resolve_scene(Scene(level="auto"), G6205, OP, Rig(), st)
+    assert lvl == "shaft+housing"  # default pedestal is softer than the bearing
+    lvl, why = resolve_scene(Scene(level="auto"), G6205, OP, Rig(pedestal_stiffness=1e11), st)
+    assert lvl == "shaft" and "coupling" in why
+    # output band reaching towards the ball mode (~45 kHz) needs ball masses
+    lvl, why = resolve_scene(Scene(level="auto"), G6205, OP, Rig(), SimulationSettings(fs=200000.0))
+    assert lvl == "full" and "ball mode" in why
+    # very high speed: centrifugal ball force comparable to the ball loads
+    fast = OperatingCondition.from_rpm(13000, 20.0)
+    low_band = SimulationSettings(fs=5120.0)
+    lvl, why = resolve_scene(Scene(level="auto"), G6205, fast, Rig(), low_band)
+    assert lvl == "full" and "centrifugal" in why
+
+
+def test_cage_slip_lowers_the_ball_pass_frequency():
+    slip = OperatingCondition.from_rpm(1800, 500.0, cage_slip=0.05)
+    r = simulate(G6205, slip, settings=SimulationSettings(duration=0.02, settle_time=0.0))
+    assert r.frequencies.bpfo == pytest.approx(0.95 * 3.58478 * 30.0, rel=1e-4)
+    assert math.isfinite(r["housing_velocity_y"].sum())
