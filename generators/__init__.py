@@ -24,7 +24,7 @@ from .kinematics import (
     characteristic_frequencies,
     waviness_passage_frequencies,
 )
-from .model import CHANNELS, SimulationResult, resolve_scene, simulate
+from .model import CHANNELS, SimulationResult, natural_frequencies, resolve_scene, simulate
 from .params import (
     LUBRICANTS,
     STEEL_52100,
@@ -69,6 +69,7 @@ __all__ = [
     "film_thickness",
     "hertz_contact",
     "load_deflection_constants",
+    "natural_frequencies",
     "resolve_scene",
     "series_constant",
     "simulate",

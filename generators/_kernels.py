@@ -67,8 +67,8 @@ import numpy as np
     P_MAX_DISPLACEMENT,
     P_SIZE,
 ) = range(38)
-# P_FILM_*: h_c = P_FILM_* * max(Q, floor)^FILM_EXPONENT [m] (Hamrock-Dowson, MODEL.md 4.2).
-# P_SQUEEZE_*: squeeze-film damping c = P_SQUEEZE_* * max(Q, floor)^-FILM_EXPONENT [N s/m]
+# P_FILM_*: h_c = P_FILM_* * (Q + floor)^FILM_EXPONENT [m] (Hamrock-Dowson, MODEL.md 4.2).
+# P_SQUEEZE_*: squeeze-film damping c = P_SQUEEZE_* * (Q + floor)^-FILM_EXPONENT [N s/m]
 # (MODEL.md 4.5 with h_c inserted); P_SQUEEZE_SERIES is the series combination for massless balls.
 
 FILM_EXPONENT = -0.067
@@ -119,31 +119,33 @@ def _hertz_ehl(delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h
     """Hertz contact in series with the EHL film (MODEL.md 4.3-4.4).
 
     Solves d = delta + h(K d^1.5) for the elastic approach d, with the film
-    h(Q) = film * max(Q, floor)^-0.067, by ``FILM_ITERATIONS`` Newton steps from
-    d = delta + h_ref (the film at the reference load); dh/dd = -0.1005 h / d, so one step
-    leaves a relative load error of order 1e-6 at working loads. Then adds the dry
-    (stiffness-proportional) and squeeze-film damping; the squeeze term is blended in over
-    0 < Q < floor so Q stays continuous at onset. ``h_max`` is the film at the load floor: no
-    contact while delta + h_max <= 0.
+    h(Q) = film * (Q + floor)^-0.067: a smooth form of MODEL.md's floor max(Q, floor) (0.013 %
+    thinner at 500 N with a 1 N floor), smooth so that RK4 keeps its order. ``FILM_ITERATIONS``
+    Newton steps from d = delta + h_ref (the film at the reference load); dh/dd =
+    -0.1005 h/d Q/(Q + floor). Then adds the dry (stiffness-proportional) and squeeze-film
+    damping; the squeeze term is weighted by Q / (Q + floor) so that Q is continuous at onset.
+    ``h_max`` = film * floor^-0.067 is the film at zero load: no contact while
+    delta + h_max <= 0.
     """
     if delta + h_max <= 0.0:
         return 0.0
     d = delta + h_ref
     for _ in range(FILM_ITERATIONS):
-        q = k_hertz * d * math.sqrt(d) if d > 0.0 else 0.0
-        if q <= floor:
-            d = delta + h_max  # film at the floor does not depend on the load
+        if d > 0.0:
+            q = k_hertz * d * math.sqrt(d)
+            h = film * math.exp(FILM_EXPONENT * math.log(q + floor))
+            slope = -1.5 * FILM_EXPONENT * h / d * q / (q + floor)
         else:
-            h = film * math.exp(FILM_EXPONENT * math.log(q))
-            d = d - (d - delta - h) / (1.0 - 1.5 * FILM_EXPONENT * h / d)
+            h = h_max
+            slope = 0.0
+        d = d - (d - delta - h) / (1.0 + slope)
     if d <= 0.0:
         return 0.0
     root = math.sqrt(d)
     q = k_hertz * d * root
     h = d - delta
-    blend = q / floor if q < floor else 1.0
-    # squeeze * max(Q, floor)^0.067 == squeeze * film / h
-    c = damping_time * 1.5 * k_hertz * root + blend * squeeze * film / h
+    # squeeze * (Q + floor)^0.067 == squeeze * film / h
+    c = damping_time * 1.5 * k_hertz * root + q / (q + floor) * squeeze * film / h
     q = q + c * delta_rate
     return q if q > 0.0 else 0.0
 

@@ -53,6 +53,7 @@ __all__ = [
     "resolve_scene",
     "default_step",
     "CHANNELS",
+    "natural_frequencies",
 ]
 
 logger = logging.getLogger(__name__)
@@ -278,8 +279,8 @@ def _pack(
         p[K.P_FILM_INNER] = hi
         p[K.P_FILM_OUTER] = ho
         qref, qfloor = p[K.P_FILM_REFERENCE_LOAD], p[K.P_FILM_LOAD_FLOOR]
-        p[K.P_FILM_INNER_REF] = hi * qref**K.FILM_EXPONENT
-        p[K.P_FILM_OUTER_REF] = ho * qref**K.FILM_EXPONENT
+        p[K.P_FILM_INNER_REF] = hi * (qref + qfloor) ** K.FILM_EXPONENT
+        p[K.P_FILM_OUTER_REF] = ho * (qref + qfloor) ** K.FILM_EXPONENT
         p[K.P_FILM_INNER_MAX] = hi * qfloor**K.FILM_EXPONENT
         p[K.P_FILM_OUTER_MAX] = ho * qfloor**K.FILM_EXPONENT
         csi = rig.film_damping_factor * squeeze_film_damping(ci, lub, 1.0)  # = c_sq * h_c
@@ -295,8 +296,7 @@ def _pack(
 
 
 def _film_sum(p: np.ndarray, loads: np.ndarray) -> np.ndarray:
-    floor = p[K.P_FILM_LOAD_FLOOR]
-    q = np.maximum(loads, floor)
+    q = loads + p[K.P_FILM_LOAD_FLOOR]  # smooth floor, as in the kernel
     return (p[K.P_FILM_INNER] + p[K.P_FILM_OUTER]) * q**K.FILM_EXPONENT
 
 
@@ -786,3 +786,60 @@ def _decimate(out_state: np.ndarray, out_accel: np.ndarray, factor: int) -> dict
         "shaft_acceleration_y": a[:, 1],
     }
     return {name: np.ascontiguousarray(down(cols[name])) for name in CHANNELS}
+
+
+def natural_frequencies(
+    bearing: BearingGeometry,
+    operating: OperatingCondition,
+    *,
+    scene: Scene | None = None,
+    rig: Rig | None = None,
+) -> np.ndarray:
+    """Natural frequencies of the model linearised about its static equilibrium [Hz].
+
+    MODEL.md 7.5: the cage is frozen (no rotation, no centrifugal force), the Jacobian of the
+    first-order right-hand side is built by central differences (displacements perturbed by
+    1e-11 m, velocities by 1e-7 m/s) and its eigenvalues are taken. Returns the damped
+    frequencies |Im lambda| / 2 pi of the oscillatory modes, highest first (balls out of contact
+    give zero eigenvalues and are left out).
+
+    Parameters
+    ----------
+    bearing : BearingGeometry
+        Bearing geometry.
+    operating : OperatingCondition
+        Radial load [N] (the speed is ignored: the cage is frozen).
+    scene : Scene, optional
+        Model level and EHL switch (``auto`` is resolved as in :func:`simulate`).
+    rig : Rig, optional
+        Masses, pedestal and damping.
+
+    Returns
+    -------
+    ndarray
+        Damped natural frequencies [Hz], descending.
+    """
+    frozen = dataclasses.replace(operating, shaft_frequency=0.0)
+    prep = prepare(bearing, frozen, scene=scene, rig=rig)
+    y0 = prep.y0
+    n = y0.size
+    nd = n // 2
+    f0 = np.zeros(n)
+    loads = np.zeros((2, bearing.ball_count))
+    jac = np.zeros((n, n))
+    for i in range(n):
+        h = 1e-11 if i < nd else 1e-7
+        yp, ym = y0.copy(), y0.copy()
+        yp[i] += h
+        ym[i] -= h
+        fp, fm = f0.copy(), f0.copy()
+        K._rhs_once(prep.code, int(prep.ehl), 0.0, yp, prep.p, prep.wav, fp, loads)
+        K._rhs_once(prep.code, int(prep.ehl), 0.0, ym, prep.p, prep.wav, fm, loads)
+        jac[:, i] = (fp - fm) / (2 * h)
+    if prep.level == "shaft":
+        # the one-way housing estimate is not part of the shaft scene's dynamics
+        keep = [0, 1, nd, nd + 1]
+        jac = jac[np.ix_(keep, keep)]
+    lam = np.linalg.eigvals(jac)
+    freqs = np.abs(lam.imag[lam.imag > 1e-6]) / (2 * np.pi)
+    return np.sort(freqs)[::-1]

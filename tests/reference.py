@@ -80,7 +80,8 @@ class ReferenceModel:
 
     # contact laws ---------------------------------------------------------------------
     def _film(self, contact, q):
-        return film_thickness(contact, self.lub, self.u, max(q, self.floor), load_floor=1e-30)
+        # the kernel's smooth load floor: h(Q + Q_floor)
+        return film_thickness(contact, self.lub, self.u, q + self.floor, load_floor=1e-30)
 
     def contact(self, delta, rate, which):
         if which == "series":
@@ -114,7 +115,7 @@ class ReferenceModel:
             else 0.0
         )
         d_el = delta + film(q)
-        blend = min(q / self.floor, 1.0)
+        blend = q / (q + self.floor)
         if which == "series":
             hi, ho = self._film(self.ci, q), self._film(self.co, q)
             c_i = squeeze_film_damping(self.ci, self.lub, hi) * self.film_factor
