@@ -1,0 +1,333 @@
+"""The ``cmtool`` command line.
+
+Subcommands: ``simulate`` (one signal from the dynamic model), ``frequencies`` (characteristic
+frequencies of a catalog bearing), ``demo`` (the main job on the embedded default).
+Units at the edge: ``--rpm`` in rev/min, everything else SI (m, N, s, Hz, Pa s).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import math
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+from generators import (
+    BEARINGS,
+    LUBRICANTS,
+    OperatingCondition,
+    ParameterError,
+    Rig,
+    Scene,
+    SimulationDivergedError,
+    SimulationSettings,
+    Waviness,
+    bearing,
+    characteristic_frequencies,
+    simulate,
+)
+
+from . import __version__
+
+logger = logging.getLogger("cmtool")
+
+__all__ = ["main", "parse_waviness", "build_parser"]
+
+
+class CliError(Exception):
+    """A command-line input error (printed without a traceback, exit code 2)."""
+
+
+def parse_waviness(spec: str) -> Waviness:
+    """Parse ``surface:order=N:amplitude=A[:phase=P|random][:ball=J]`` into a Waviness.
+
+    Examples
+    --------
+    >>> parse_waviness("outer:order=9:amplitude=1e-6").order
+    9
+    """
+    parts = spec.split(":")
+    surface = parts[0].strip()
+    fields: dict[str, object] = {}
+    for item in parts[1:]:
+        if "=" not in item:
+            raise CliError(
+                f"--waviness {spec!r}: {item!r} is not key=value "
+                "(expected surface:order=N:amplitude=A[:phase=P][:ball=J])"
+            )
+        key, value = (s.strip() for s in item.split("=", 1))
+        if key == "order" or key == "ball":
+            fields[key] = int(value)
+        elif key == "amplitude":
+            fields[key] = float(value)
+        elif key == "phase":
+            fields[key] = None if value == "random" else float(value)
+        else:
+            raise CliError(
+                f"--waviness {spec!r}: unknown key {key!r} (allowed: order, amplitude, phase, ball)"
+            )
+    for required in ("order", "amplitude"):
+        if required not in fields:
+            raise CliError(f"--waviness {spec!r}: {required}= is missing")
+    if surface == "ball" and "phase" not in fields:
+        fields["phase"] = None  # each ball its own phase
+    return Waviness(surface=surface, **fields)  # type: ignore[arg-type]
+
+
+def _add_model_arguments(p: argparse.ArgumentParser) -> None:
+    g = p.add_argument_group("bearing and operating point")
+    g.add_argument(
+        "--bearing", default="6205", choices=sorted(BEARINGS), help="catalog bearing (default 6205)"
+    )
+    g.add_argument(
+        "--clearance",
+        type=float,
+        default=None,
+        help="radial internal (diametral) clearance P_d [m]; default the catalog's",
+    )
+    g.add_argument("--rpm", type=float, default=1800.0, help="shaft speed [rev/min]")
+    g.add_argument("--load", type=float, default=500.0, help="radial load [N]")
+    g.add_argument(
+        "--load-angle",
+        type=float,
+        default=-math.pi / 2,
+        help="load direction from +x [rad] (default -pi/2, down)",
+    )
+    g.add_argument("--cage-slip", type=float, default=0.0, help="cage slip fraction [-]")
+    g.add_argument(
+        "--waviness",
+        action="append",
+        default=[],
+        metavar="SPEC",
+        help="surface:order=N:amplitude=A[:phase=P|random][:ball=J], repeatable; "
+        "surface outer|inner|ball, amplitude [m]",
+    )
+    s = p.add_argument_group("model")
+    s.add_argument(
+        "--scene", default="shaft+housing", choices=["shaft", "shaft+housing", "full", "auto"]
+    )
+    s.add_argument(
+        "--ehl",
+        dest="ehl",
+        action="store_true",
+        default=True,
+        help="include the EHL film (default)",
+    )
+    s.add_argument("--no-ehl", dest="ehl", action="store_false", help="dry contacts")
+    s.add_argument("--auto-error-bound", type=float, default=0.05)
+    r = p.add_argument_group("rig (MODEL.md 6.3 defaults)")
+    d = Rig()
+    r.add_argument("--shaft-mass", type=float, default=d.shaft_mass, help="[kg]")
+    r.add_argument("--housing-mass", type=float, default=d.housing_mass, help="[kg]")
+    r.add_argument("--pedestal-stiffness", type=float, default=d.pedestal_stiffness, help="[N/m]")
+    r.add_argument("--pedestal-damping", type=float, default=d.pedestal_damping, help="[N s/m]")
+    r.add_argument("--shaft-damping", type=float, default=d.shaft_damping, help="[N s/m]")
+    r.add_argument(
+        "--contact-damping-time",
+        type=float,
+        default=d.contact_damping_time,
+        help="dry contact damping c = tau dQ/d delta [s]",
+    )
+    r.add_argument("--film-damping-factor", type=float, default=d.film_damping_factor)
+    r.add_argument("--lubricant", default="VG68", choices=sorted(LUBRICANTS))
+    r.add_argument(
+        "--loading-stiffness",
+        type=float,
+        default=0.0,
+        help="loading spring [N/m]; 0 = constant force",
+    )
+    r.add_argument("--unbalance", type=float, default=0.0, help="m_u e [kg m]")
+    r.add_argument("--no-gravity", dest="gravity", action="store_false", default=True)
+    n = p.add_argument_group("integration and sampling")
+    n.add_argument("--fs", type=float, default=25600.0, help="output sample rate [Hz]")
+    n.add_argument("--duration", type=float, default=1.0, help="recorded duration [s]")
+    n.add_argument("--settle", type=float, default=0.1, help="settling time discarded [s]")
+    n.add_argument("--integrator", default="rk4", choices=["rk4", "dopri5"])
+    n.add_argument("--step", type=float, default=None, help="RK4 step [s]; default per scene")
+    n.add_argument("--rtol", type=float, default=1e-6, help="dopri5 relative tolerance")
+    n.add_argument("--atol", type=float, default=1e-12, help="dopri5 displacement atol [m]")
+    n.add_argument(
+        "--oversample",
+        type=int,
+        default=None,
+        help="integration record rate / output rate (anti-alias margin)",
+    )
+    n.add_argument("--cage-angle", type=float, default=0.0, help="initial cage angle [rad]")
+    n.add_argument("--contact-loads", action="store_true", help="also record ball loads")
+    n.add_argument("--seed", type=int, default=None, help="seed for random waviness phases")
+
+
+def _model_inputs(args: argparse.Namespace):
+    overrides = {}
+    if args.clearance is not None:
+        overrides["radial_internal_clearance"] = args.clearance
+    geometry = bearing(args.bearing, **overrides)
+    operating = OperatingCondition.from_rpm(
+        args.rpm, args.load, load_angle=args.load_angle, cage_slip=args.cage_slip
+    )
+    defects = [parse_waviness(s) for s in args.waviness]
+    scene = Scene(level=args.scene, ehl=args.ehl, auto_error_bound=args.auto_error_bound)
+    rig = Rig(
+        shaft_mass=args.shaft_mass,
+        housing_mass=args.housing_mass,
+        pedestal_stiffness=args.pedestal_stiffness,
+        pedestal_damping=args.pedestal_damping,
+        shaft_damping=args.shaft_damping,
+        contact_damping_time=args.contact_damping_time,
+        film_damping_factor=args.film_damping_factor,
+        lubricant=LUBRICANTS[args.lubricant],
+        loading_stiffness=args.loading_stiffness,
+        unbalance=args.unbalance,
+        gravity=args.gravity,
+    )
+    settings = SimulationSettings(
+        fs=args.fs,
+        duration=args.duration,
+        settle_time=args.settle,
+        integrator=args.integrator,
+        step=args.step,
+        rtol=args.rtol,
+        atol_displacement=args.atol,
+        oversample=args.oversample,
+        cage_angle=args.cage_angle,
+        record_contact_loads=args.contact_loads,
+    )
+    return geometry, operating, defects, scene, rig, settings
+
+
+def waviness_markers(result, defects) -> dict[str, float]:
+    """Fault-frequency markers for a plot: characteristic frequencies plus waviness lines."""
+    from generators import waviness_passage_frequencies
+
+    f = result.frequencies
+    markers = {"shaft": f.shaft, "bpfo": f.bpfo, "bpfi": f.bpfi, "two_bsf": f.two_bsf}
+    geometry = bearing(result.parameters["bearing"]["name"])
+    for w in defects:
+        if w.order < 1:
+            continue
+        lines = waviness_passage_frequencies(geometry, f.shaft, w.surface, w.order, max_harmonic=1)
+        for line in lines[:1]:
+            markers[f"wpf:{w.surface} N_w={w.order}"] = line.frequency
+    return markers
+
+
+def cmd_simulate(args: argparse.Namespace) -> int:
+    """Run one simulation, write the signal and optionally the spectrum plot."""
+    import features
+
+    from .io import write_signal
+    from .plots import plot_spectrum
+
+    geometry, operating, defects, scene, rig, settings = _model_inputs(args)
+    result = simulate(
+        geometry,
+        operating,
+        defects,
+        scene=scene,
+        rig=rig,
+        settings=settings,
+        random_state=args.seed,
+    )
+    level = result.parameters["scene"]["resolved_level"]
+    print(
+        f"simulated {settings.duration:g} s of {geometry.name} at {operating.rpm:g} rpm, "
+        f"{operating.radial_load:g} N, scene {level}/{'ehl' if scene.ehl else 'dry'}"
+    )
+    f = result.frequencies
+    print(
+        f"FTF {f.ftf:.3f} Hz  BPFO {f.bpfo:.3f} Hz  BPFI {f.bpfi:.3f} Hz  "
+        f"BSF {f.bsf:.3f} Hz  2xBSF {f.two_bsf:.3f} Hz"
+    )
+    if args.out:
+        path = write_signal(result, args.out)
+        print(f"wrote {path}")
+    if args.plot:
+        freqs, amp = features.amplitude_spectrum(result["housing_velocity_y"], result.fs)
+        markers = waviness_markers(result, defects)
+        title = (
+            f"{geometry.name}, {operating.rpm:g} rpm, {operating.radial_load:g} N: "
+            "housing velocity (y), peak amplitude"
+        )
+        path = plot_spectrum(
+            freqs, amp * 1e3, args.plot, title=title, ylabel="velocity [mm/s]", markers=markers
+        )
+        print(f"wrote {path}")
+    return 0
+
+
+def cmd_frequencies(args: argparse.Namespace) -> int:
+    """Print the characteristic frequencies of a catalog bearing."""
+    geometry = bearing(args.bearing)
+    f = characteristic_frequencies(geometry, args.rpm / 60.0)
+    data = f.as_dict()
+    if args.json:
+        print(
+            json.dumps(
+                {
+                    "bearing": geometry.name,
+                    "rpm": args.rpm,
+                    "frequencies_hz": data,
+                    "orders": f.orders(),
+                },
+                indent=2,
+            )
+        )
+    else:
+        for key, value in data.items():
+            print(f"{key:>24s} {value:10.4f} Hz  {value / f.shaft:8.5f} x shaft")
+    return 0
+
+
+def cmd_demo(args: argparse.Namespace) -> int:
+    """The main job on the embedded default."""
+    from .demo import run_demo
+
+    return run_demo(Path(args.out))
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of ``cmtool``."""
+    parser = argparse.ArgumentParser(
+        prog="cmtool", description=(__doc__ or "").strip().split("\n")[0]
+    )
+    parser.add_argument("--version", action="version", version=f"cmtool {__version__}")
+    parser.add_argument("-v", "--verbose", action="count", default=0)
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    p = sub.add_parser("simulate", help="simulate one housing vibration signal")
+    _add_model_arguments(p)
+    p.add_argument("--out", help="output file (.parquet or .csv)")
+    p.add_argument("--plot", help="spectrum plot (.png)")
+    p.set_defaults(func=cmd_simulate)
+
+    p = sub.add_parser("frequencies", help="characteristic frequencies of a catalog bearing")
+    p.add_argument("--bearing", default="6205", choices=sorted(BEARINGS))
+    p.add_argument("--rpm", type=float, required=True, help="shaft speed [rev/min]")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(func=cmd_frequencies)
+
+    p = sub.add_parser("demo", help="the main job on the embedded default")
+    p.add_argument("--out", default="out/demo", help="output folder")
+    p.set_defaults(func=cmd_demo)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run ``cmtool``; returns the exit code (2 for input errors, 3 for a diverged run)."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    logging.basicConfig(
+        level=logging.WARNING - 10 * min(args.verbose, 2),
+        format="%(levelname)s %(name)s: %(message)s",
+    )
+    try:
+        return int(args.func(args))
+    except (CliError, ParameterError, ValueError) as exc:
+        print(f"cmtool {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+    except SimulationDivergedError as exc:
+        print(f"cmtool {args.command}: simulation diverged: {exc}", file=sys.stderr)
+        return 3

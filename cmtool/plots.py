@@ -1,0 +1,96 @@
+"""Plots a vibration analyst looks at: spectra and envelope spectra with fault frequencies marked.
+
+matplotlib with the non-interactive Agg backend; every function writes a PNG and returns its
+path.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+__all__ = ["plot_spectrum"]
+
+_COLORS = {
+    "bpfo": "tab:red",
+    "bpfi": "tab:blue",
+    "two_bsf": "tab:green",
+    "bsf": "tab:olive",
+    "ftf": "tab:gray",
+    "shaft": "black",
+    "wpf": "tab:purple",
+}
+
+
+def plot_spectrum(
+    frequencies: np.ndarray,
+    amplitude: np.ndarray,
+    path: str | Path,
+    *,
+    title: str,
+    ylabel: str,
+    markers: Mapping[str, float] | None = None,
+    harmonics: int = 3,
+    fmax: float | None = None,
+    log: bool = True,
+) -> Path:
+    """Plot a spectrum with vertical markers at fault frequencies and their harmonics.
+
+    Parameters
+    ----------
+    frequencies, amplitude : ndarray
+        Spectrum [Hz] and values (unit in ``ylabel``).
+    path : str or Path
+        PNG to write.
+    title, ylabel : str
+        Labels.
+    markers : mapping of str to float, optional
+        Name -> frequency [Hz]; each is drawn at 1 .. ``harmonics`` times its value.
+    harmonics : int
+        Harmonics marked per frequency.
+    fmax : float, optional
+        Upper frequency limit [Hz]; default 10 times the largest marker or the Nyquist.
+    log : bool
+        Logarithmic amplitude axis.
+
+    Returns
+    -------
+    Path
+        The written PNG.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    markers = dict(markers or {})
+    if fmax is None:
+        fmax = min(float(frequencies[-1]), 10 * max(markers.values(), default=frequencies[-1]))
+    keep = (frequencies > 0) & (frequencies <= fmax)
+    fig, ax = plt.subplots(figsize=(10, 4.5), dpi=110)
+    ax.plot(frequencies[keep], amplitude[keep], lw=0.8, color="0.2")
+    if log:
+        ax.set_yscale("log")
+    for name, f0 in markers.items():
+        if not f0 or f0 <= 0:
+            continue
+        color = _COLORS.get(name.split(":")[0], "tab:purple")
+        for h in range(1, harmonics + 1):
+            if h * f0 <= fmax:
+                ax.axvline(
+                    h * f0, color=color, ls="--", lw=0.9, alpha=0.7, label=name if h == 1 else None
+                )
+    ax.set_xlim(0, fmax)
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.grid(alpha=0.3)
+    if markers:
+        ax.legend(loc="upper right", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+    return path
