@@ -22,7 +22,7 @@ from generators import (
 
 from .cli import waviness_markers
 from .io import write_signal
-from .plots import plot_spectrum
+from .plots import plot_kurtogram, plot_spectrum
 
 __all__ = ["run_demo"]
 
@@ -61,7 +61,23 @@ def run_demo(out: Path) -> int:
             ylabel="velocity [mm/s]",
             markers=waviness_markers(result, defects),
         )
+        accel = result["housing_acceleration_y"]
+        kg = features.kurtogram(accel, result.fs, nlevel=6)
+        ef, ea = features.envelope_spectrum(accel, result.fs, band=kg.band)
+        env_path = plot_spectrum(
+            ef,
+            ea,
+            out / f"{name}_envelope.png",
+            title=f"{name}: envelope spectrum of the housing acceleration (y), band "
+            f"{kg.band[0]:.0f}-{kg.band[1]:.0f} Hz",
+            ylabel="envelope [m/s^2]",
+            markers=waviness_markers(result, defects),
+            fmax=1000.0,
+        )
+        kg_path = plot_kurtogram(kg, out / f"{name}_kurtogram.png", title=name)
         print(f"  {name:<20s} BPFO {bpfo:7.2f} Hz: {level:.4f} mm/s  ({wall:.2f} s wall)")
-        print(f"    signal   {signal_path}")
-        print(f"    spectrum {plot_path}")
+        print(f"    signal    {signal_path}")
+        print(f"    spectrum  {plot_path}")
+        print(f"    envelope  {env_path}")
+        print(f"    kurtogram {kg_path}")
     return 0

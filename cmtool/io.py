@@ -22,7 +22,14 @@ from generators import SimulationResult
 
 from . import __version__
 
-__all__ = ["write_signal", "read_signal", "atomic_write", "to_jsonable"]
+__all__ = [
+    "write_signal",
+    "read_signal",
+    "atomic_write",
+    "to_jsonable",
+    "read_recording",
+    "RecordingError",
+]
 
 SIGNAL_SCHEMA_VERSION = 1
 
@@ -115,3 +122,154 @@ def read_signal(path: str | os.PathLike) -> tuple[pd.DataFrame, dict[str, Any]]:
     sidecar = path.with_suffix(path.suffix + ".json")
     meta = json.loads(sidecar.read_text()) if sidecar.exists() else {}
     return frame, meta
+
+
+# ----------------------------------------------------------------------- measured recordings
+
+
+class RecordingError(ValueError):
+    """A recording cannot be read as asked (message names the file, variable or channel)."""
+
+
+def _mat_variables(path: Path) -> dict[str, Any]:
+    from scipy import io as sio
+
+    try:
+        data = sio.loadmat(path, squeeze_me=True, struct_as_record=False)
+    except NotImplementedError:  # MATLAB v7.3 (HDF5) files
+        raise RecordingError(
+            f"{path}: MATLAB v7.3 files are not supported; save with -v7"
+        ) from None
+    return {k: v for k, v in data.items() if not k.startswith("__")}
+
+
+def read_recording(
+    path: str | os.PathLike,
+    *,
+    variable: str | None = None,
+    channel: str | int | None = None,
+) -> tuple[np.ndarray, dict[str, Any]]:
+    """Read a measured vibration recording: ``(signal, metadata)``.
+
+    Formats: MATLAB ``.mat`` (CWRU files: ``X###_DE_time`` by default, rpm from ``X###RPM``;
+    MFPT files: struct ``bearing`` with ``gs``, ``sr`` and ``rate``), ``.csv`` (a column by name
+    or index), ``.wav``, ``.npy``/``.npz`` and ``.parquet``.
+
+    Parameters
+    ----------
+    path : str or PathLike
+        The file.
+    variable : str, optional
+        Variable of a .mat/.npz file (default: the drive-end channel of CWRU files, the
+        ``bearing`` struct of MFPT files, or the only numeric array).
+    channel : str or int, optional
+        Column of a CSV/parquet file or a multi-channel WAV/array (default: the first).
+
+    Returns
+    -------
+    signal : ndarray, 1-D float64
+        The samples (unit as stored: g for CWRU and MFPT).
+    metadata : dict
+        ``fs_hz`` and ``rpm`` when the file holds them, ``variable``, ``unit`` when known.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise RecordingError(f"{path}: no such file")
+    suffix = path.suffix.lower()
+    meta: dict[str, Any] = {"file": str(path)}
+    if suffix == ".mat":
+        data = _mat_variables(path)
+        if variable is None and "bearing" in data:
+            variable = "bearing"
+        if variable is None:
+            de = sorted(k for k in data if k.endswith("_DE_time"))
+            numeric = [k for k, v in data.items() if isinstance(v, np.ndarray) and v.size > 16]
+            variable = de[0] if de else (numeric[0] if len(numeric) == 1 else None)
+            if variable is None:
+                raise RecordingError(
+                    f"{path}: choose a variable with --variable; it holds {sorted(data)}"
+                )
+        if variable not in data:
+            raise RecordingError(
+                f"{path}: variable {variable!r} not found; it holds {sorted(data)}"
+            )
+        value = data[variable]
+        if hasattr(value, "_fieldnames"):  # MATLAB struct (MFPT)
+            fields = value._fieldnames
+            if "gs" not in fields:
+                raise RecordingError(f"{path}: struct {variable!r} has no 'gs' field ({fields})")
+            x = np.asarray(value.gs, dtype=float).ravel()
+            if "sr" in fields:
+                meta["fs_hz"] = float(np.asarray(value.sr).ravel()[0])
+            if "rate" in fields:
+                meta["rpm"] = 60.0 * float(np.asarray(value.rate).ravel()[0])
+            meta["unit"] = "g"
+        else:
+            x = np.asarray(value, dtype=float)
+            if x.ndim == 2 and min(x.shape) > 1:
+                col = 0 if channel is None else int(channel)
+                x = x[:, col] if x.shape[0] > x.shape[1] else x[col]
+            x = x.ravel()
+            prefix = variable.split("_")[0]
+            rpm_key = f"{prefix}RPM"
+            if rpm_key in data:
+                meta["rpm"] = float(np.asarray(data[rpm_key]).ravel()[0])
+            if variable.endswith("_time"):
+                meta["unit"] = "g"
+        meta["variable"] = variable
+    elif suffix == ".wav":
+        from scipy.io import wavfile
+
+        rate, data = wavfile.read(path)
+        data = np.asarray(data)
+        if data.ndim == 2:
+            data = data[:, 0 if channel is None else int(channel)]
+        if np.issubdtype(data.dtype, np.integer):
+            data = data / float(np.iinfo(data.dtype).max)
+        x = data.astype(float)
+        meta["fs_hz"] = float(rate)
+    elif suffix in (".npy", ".npz"):
+        loaded = np.load(path, allow_pickle=False)
+        if suffix == ".npz":
+            keys = list(loaded.keys())
+            key = variable or (keys[0] if len(keys) == 1 else None)
+            if key is None or key not in keys:
+                raise RecordingError(f"{path}: choose a variable with --variable; it holds {keys}")
+            loaded = loaded[key]
+            meta["variable"] = key
+        x = np.asarray(loaded, dtype=float)
+        if x.ndim == 2:
+            x = x[:, 0 if channel is None else int(channel)]
+    elif suffix in (".csv", ".parquet"):
+        frame = pd.read_csv(path) if suffix == ".csv" else pd.read_parquet(path)
+        numeric = [
+            c
+            for c in frame.columns
+            if pd.api.types.is_numeric_dtype(frame[c])
+            and str(c).lower() not in ("time", "t", "time_s")
+        ]
+        if channel is None:
+            if not numeric:
+                raise RecordingError(f"{path}: no numeric column")
+            col = numeric[0]
+        elif isinstance(channel, int) or str(channel).isdigit():
+            col = numeric[int(channel)]
+        else:
+            if channel not in frame.columns:
+                raise RecordingError(
+                    f"{path}: column {channel!r} not found; it has {list(frame.columns)}"
+                )
+            col = channel
+        x = frame[col].to_numpy(dtype=float)
+        meta["variable"] = str(col)
+        time_cols = [c for c in frame.columns if str(c).lower() in ("time", "t", "time_s")]
+        if time_cols and len(frame) > 2:
+            dt = np.diff(frame[time_cols[0]].to_numpy(dtype=float))
+            meta["fs_hz"] = float(1.0 / np.median(dt))
+    else:
+        raise RecordingError(
+            f"{path}: unknown format {suffix!r} (mat, csv, wav, npy, npz, parquet)"
+        )
+    if x.size < 16:
+        raise RecordingError(f"{path}: only {x.size} samples")
+    return np.ascontiguousarray(x, dtype=float), meta

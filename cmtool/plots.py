@@ -15,7 +15,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-__all__ = ["plot_spectrum"]
+__all__ = ["plot_spectrum", "plot_kurtogram"]
 
 _COLORS = {
     "bpfo": "tab:red",
@@ -90,6 +90,49 @@ def plot_spectrum(
     ax.grid(alpha=0.3)
     if markers:
         ax.legend(loc="upper right", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+    return path
+
+
+def plot_kurtogram(result, path: str | Path, *, title: str = "kurtogram") -> Path:
+    """Plot a fast kurtogram (``features.KurtogramResult``) with the selected band marked.
+
+    Parameters
+    ----------
+    result : features.KurtogramResult
+        Output of ``features.kurtogram``.
+    path : str or Path
+        PNG to write.
+    title : str
+        Title.
+
+    Returns
+    -------
+    Path
+        The written PNG.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig, ax = plt.subplots(figsize=(8, 4.5), dpi=110)
+    extent = (0.0, result.fs / 2, len(result.levels) - 0.5, -0.5)
+    im = ax.imshow(
+        np.maximum(result.matrix, 0.0),
+        aspect="auto",
+        extent=extent,
+        cmap="viridis",
+        interpolation="nearest",
+    )
+    ax.set_yticks(range(len(result.levels)))
+    ax.set_yticklabels([f"{lv:g}" for lv in result.levels])
+    low, high = result.band
+    row = int(np.argmin(np.abs(result.levels - result.level)))
+    ax.add_patch(plt.Rectangle((low, row - 0.5), high - low, 1.0, fill=False, ec="red", lw=1.5))
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel("level")
+    ax.set_title(f"{title}: band {low:.0f}-{high:.0f} Hz, SK = {result.kurtosis:.2f}")
+    fig.colorbar(im, ax=ax, label="spectral kurtosis")
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)

@@ -12,22 +12,48 @@ from .bands import (
     fault_bands,
     harmonic_amplitudes,
 )
+from .catalog import (
+    DEFAULT_FAULTS,
+    Spectra,
+    compute_spectra,
+    extract_features,
+    feature_names,
+    feature_units,
+)
+from .envelope import KurtogramResult, envelope, envelope_spectrum, kurtogram, prewhiten
 from .spectra import (
     amplitude_spectrum,
     integrate_signal,
     integrate_spectrum,
     power_spectral_density,
 )
+from .stats import TIME_STATISTICS, time_statistics
+from .transformer import CONTEXT_COLUMNS, FeatureExtractor
 
 __all__ = [
     "BAND_METRIC_COLUMNS",
+    "CONTEXT_COLUMNS",
+    "DEFAULT_FAULTS",
     "FeatureError",
+    "FeatureExtractor",
+    "KurtogramResult",
+    "Spectra",
+    "TIME_STATISTICS",
     "amplitude_spectrum",
     "band_amplitude",
     "band_metrics",
+    "compute_spectra",
+    "envelope",
+    "envelope_spectrum",
+    "extract_features",
     "fault_bands",
+    "feature_names",
+    "feature_units",
     "harmonic_amplitudes",
     "integrate_signal",
     "integrate_spectrum",
+    "kurtogram",
     "power_spectral_density",
+    "prewhiten",
+    "time_statistics",
 ]

@@ -11,15 +11,17 @@ class FeatureError(ValueError):
     """Bad input to a feature function (the message names the parameter and the valid range)."""
 
 
-def check_signal(x: object, *, name: str = "x", min_length: int = 2) -> np.ndarray:
+def check_signal(x: object, *, name: str = "x", min_length: int = 2, axis: int = -1) -> np.ndarray:
     """Return ``x`` as float64 with at least ``min_length`` finite samples on its last axis."""
     arr = np.asarray(x, dtype=np.float64)
     if arr.ndim == 0:
         raise FeatureError(
             f"{name} is a scalar; expected a signal with at least {min_length} samples"
         )
-    if arr.shape[-1] < min_length:
-        raise FeatureError(f"{name} has {arr.shape[-1]} samples; at least {min_length} are needed")
+    if arr.shape[axis] < min_length:
+        raise FeatureError(
+            f"{name} has {arr.shape[axis]} samples; at least {min_length} are needed"
+        )
     if not np.all(np.isfinite(arr)):
         bad = int(np.count_nonzero(~np.isfinite(arr)))
         raise FeatureError(f"{name} contains {bad} non-finite values (NaN or inf)")

@@ -60,7 +60,7 @@ def amplitude_spectrum(
     >>> round(float(a[50]), 6)
     2.0
     """
-    x = check_signal(x, min_length=4)
+    x = check_signal(x, min_length=4, axis=axis)
     fs = check_fs(fs)
     if scaling not in ("peak", "rms"):
         raise FeatureError(f"scaling = {scaling!r} is not one of 'peak', 'rms'")
@@ -123,7 +123,7 @@ def power_spectral_density(
     frequencies, psd : ndarray
         Frequencies [Hz] and PSD [U^2/Hz].
     """
-    x = check_signal(x, min_length=4)
+    x = check_signal(x, min_length=4, axis=axis)
     fs = check_fs(fs)
     n = x.shape[axis]
     nperseg = min(n, 4096) if nperseg is None else int(nperseg)
@@ -174,7 +174,7 @@ def integrate_signal(
     ndarray
         Integrated signal [U s^order].
     """
-    x = check_signal(x, min_length=4)
+    x = check_signal(x, min_length=4, axis=axis)
     fs = check_fs(fs)
     low_cut = check_positive("low_cut", low_cut, unit="Hz")
     if low_cut >= fs / 2:

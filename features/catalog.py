@@ -1,0 +1,238 @@
+"""The feature table: one row of named features per signal, from the signal and its context.
+
+Context = sample rate, shaft frequency and fault frequencies (numbers, from the caller: this
+package does not know the bearing physics). The amplitude spectrum, the kurtogram and the
+envelope spectrum are computed once per signal and shared by every feature that uses them.
+
+Feature names and units (U = unit of the signal, dB = 20 log10 of a ratio):
+
+* time statistics (``features.stats.TIME_STATISTICS``);
+* ``spectrum_<fault>_h<k>`` [U], ``spectrum_<fault>_h<k>_snr`` [dB]: peak of the amplitude
+  spectrum within +/- ``half_width`` of k x fault, and its ratio to the local noise floor (median
+  of the spectrum within +/- 10 % of the line, the line's own bins excluded);
+* ``envelope_<fault>_h<k>`` [U], ``envelope_<fault>_h<k>_snr`` [dB]: the same on the envelope
+  spectrum of the band chosen by the kurtogram (or given);
+* ``envelope_<fault>_sideband_snr`` [dB]: mean SNR of the first lower and upper sidebands of
+  the fundamental (spacing: shaft frequency for ``bpfi``, cage frequency for ``two_bsf``);
+* the kurtogram band is at least ``MIN_BAND_FACTOR`` times the fastest fault rate wide;
+* ``kurtogram_kurtosis`` [-], ``kurtogram_center_rel`` [-] (centre / (fs/2)),
+  ``kurtogram_bandwidth_rel`` [-] (bandwidth / (fs/2)).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validate import FeatureError, check_fs, check_positive, check_signal
+from .envelope import KurtogramResult, envelope, kurtogram
+from .spectra import amplitude_spectrum
+from .stats import TIME_STATISTICS, time_statistics
+
+__all__ = [
+    "Spectra",
+    "compute_spectra",
+    "extract_features",
+    "feature_names",
+    "feature_units",
+    "DEFAULT_FAULTS",
+    "SIDEBAND_SPACING",
+]
+
+#: Fault frequencies a feature table uses by default (keys of the context mapping).
+DEFAULT_FAULTS = ("bpfo", "bpfi", "two_bsf", "ftf")
+#: Sideband spacing per fault: the context key that gives it.
+SIDEBAND_SPACING = {"bpfi": "shaft", "two_bsf": "ftf"}
+#: Relative width of the noise-floor window around a line.
+FLOOR_WINDOW = 0.10
+#: The kurtogram may only choose bands at least this many times wider than the fastest fault
+#: rate measured: the demodulation band must pass a fault's carrier with its first sidebands
+#: (+/- f_fault) and some margin, or the envelope cannot show the fault rate.
+MIN_BAND_FACTOR = 3.0
+
+
+@dataclass(frozen=True)
+class Spectra:
+    """Spectra of one signal, computed once and shared by the features.
+
+    Attributes
+    ----------
+    frequencies, amplitude : ndarray
+        Amplitude spectrum [Hz], [U].
+    envelope_frequencies, envelope_amplitude : ndarray
+        Envelope spectrum [Hz], [U].
+    band : (float, float)
+        Demodulation band [Hz].
+    kurtogram : KurtogramResult or None
+        The kurtogram when it chose the band.
+    """
+
+    frequencies: np.ndarray
+    amplitude: np.ndarray
+    envelope_frequencies: np.ndarray
+    envelope_amplitude: np.ndarray
+    band: tuple[float, float]
+    kurtogram: KurtogramResult | None
+
+
+def compute_spectra(
+    x: np.ndarray,
+    fs: float,
+    *,
+    band: tuple[float, float] | None = None,
+    nlevel: int = 6,
+    min_bandwidth: float | None = None,
+) -> Spectra:
+    """Amplitude spectrum, kurtogram (if ``band`` is None) and envelope spectrum of ``x``."""
+    x = check_signal(x, min_length=64)
+    fs = check_fs(fs)
+    freqs, amp = amplitude_spectrum(x, fs)
+    kg = None
+    if band is None:
+        kg = kurtogram(x, fs, nlevel=nlevel, min_bandwidth=min_bandwidth)
+        band = kg.band
+    env = envelope(x, fs, band=band)
+    ef, ea = amplitude_spectrum(env, fs)
+    return Spectra(freqs, amp, ef, ea, (float(band[0]), float(band[1])), kg)
+
+
+def _line(
+    freqs: np.ndarray, spec: np.ndarray, center: float, half_width: float
+) -> tuple[float, float]:
+    """Peak within +/- half_width of ``center`` and the local noise floor around it."""
+    df = freqs[1] - freqs[0]
+    hw = max(half_width, df)
+    near = np.abs(freqs - center)
+    line = near <= hw
+    if not line.any() or center + hw > freqs[-1]:
+        return 0.0, 0.0
+    peak = float(spec[line].max())
+    window = (near <= max(FLOOR_WINDOW * center, 10 * df)) & ~(near <= 2 * hw)
+    floor = float(np.median(spec[window])) if window.any() else 0.0
+    return peak, floor
+
+
+def _db(peak: float, floor: float) -> float:
+    tiny = 1e-300
+    return float(20.0 * np.log10(max(peak, tiny) / max(floor, tiny))) if peak > 0 else 0.0
+
+
+def feature_names(faults=DEFAULT_FAULTS, n_harmonics: int = 3) -> list[str]:
+    """Names of the features of :func:`extract_features`, in order."""
+    names = list(TIME_STATISTICS)
+    for kind in ("spectrum", "envelope"):
+        for fault in faults:
+            for k in range(1, n_harmonics + 1):
+                names += [f"{kind}_{fault}_h{k}", f"{kind}_{fault}_h{k}_snr"]
+    names += [f"envelope_{f}_sideband_snr" for f in faults if f in SIDEBAND_SPACING]
+    names += ["kurtogram_kurtosis", "kurtogram_center_rel", "kurtogram_bandwidth_rel"]
+    return names
+
+
+def feature_units(faults=DEFAULT_FAULTS, n_harmonics: int = 3) -> dict[str, str]:
+    """Unit of each feature ("U" is the signal's unit)."""
+    units = {}
+    for name in feature_names(faults, n_harmonics):
+        if name in TIME_STATISTICS:
+            units[name] = TIME_STATISTICS[name]
+        elif name.endswith("_snr"):
+            units[name] = "dB"
+        elif name.startswith("kurtogram"):
+            units[name] = "-"
+        else:
+            units[name] = "U"
+    return units
+
+
+def extract_features(
+    x: np.ndarray,
+    fs: float,
+    *,
+    fault_frequencies: Mapping[str, float],
+    shaft_frequency: float | None = None,
+    faults=DEFAULT_FAULTS,
+    n_harmonics: int = 3,
+    half_width: float | None = None,
+    spectra: Spectra | None = None,
+    band: tuple[float, float] | None = None,
+) -> dict[str, float]:
+    """One row of features for a signal (see the module docstring for names and units).
+
+    Parameters
+    ----------
+    x : array_like, 1-D
+        Signal [U].
+    fs : float
+        Sample rate [Hz].
+    fault_frequencies : mapping of str to float
+        Context: must contain every name in ``faults`` [Hz] (e.g. ``ftf, bpfo, bpfi,
+        two_bsf``); ``shaft`` may be given here or as ``shaft_frequency``.
+    shaft_frequency : float, optional
+        Shaft frequency [Hz].
+    faults : sequence of str
+        Fault frequencies to measure.
+    n_harmonics : int
+        Harmonics per fault.
+    half_width : float, optional
+        Search half-width around each line [Hz]; default max(1.5 bins, 0.5 % of the line).
+    spectra : Spectra, optional
+        Precomputed spectra (librosa's y-or-S idea); computed here if not given.
+    band : (float, float), optional
+        Demodulation band [Hz]; default chosen by the kurtogram.
+
+    Returns
+    -------
+    dict of str to float
+        Features in the order of :func:`feature_names`.
+    """
+    fs = check_fs(fs)
+    context = dict(fault_frequencies)
+    if shaft_frequency is not None:
+        context["shaft"] = shaft_frequency
+    for name in faults:
+        if name not in context:
+            raise FeatureError(f"fault_frequencies has no {name!r}; it needs {list(faults)}")
+        check_positive(f"fault_frequencies[{name!r}]", context[name], unit="Hz")
+    x = check_signal(x, min_length=64)
+    if spectra is None:
+        fastest = max(float(context[f]) for f in faults)
+        spectra = compute_spectra(
+            x, fs, band=band, min_bandwidth=min(MIN_BAND_FACTOR * fastest, fs / 4)
+        )
+    out: dict[str, float] = dict(time_statistics(x))
+    df = spectra.frequencies[1] - spectra.frequencies[0]
+    for kind, freqs, spec in (
+        ("spectrum", spectra.frequencies, spectra.amplitude),
+        ("envelope", spectra.envelope_frequencies, spectra.envelope_amplitude),
+    ):
+        for fault in faults:
+            f0 = float(context[fault])
+            for k in range(1, n_harmonics + 1):
+                hw = half_width if half_width is not None else max(1.5 * df, 0.005 * k * f0)
+                peak, floor = _line(freqs, spec, k * f0, hw)
+                out[f"{kind}_{fault}_h{k}"] = peak
+                out[f"{kind}_{fault}_h{k}_snr"] = _db(peak, floor)
+    for fault in faults:
+        if fault not in SIDEBAND_SPACING:
+            continue
+        spacing = context.get(SIDEBAND_SPACING[fault])
+        f0 = float(context[fault])
+        if spacing is None or spacing <= 0:
+            out[f"envelope_{fault}_sideband_snr"] = 0.0
+            continue
+        hw = half_width if half_width is not None else max(1.5 * df, 0.005 * f0)
+        snrs = []
+        for sign in (-1, 1):
+            peak, floor = _line(
+                spectra.envelope_frequencies, spectra.envelope_amplitude, f0 + sign * spacing, hw
+            )
+            snrs.append(_db(peak, floor))
+        out[f"envelope_{fault}_sideband_snr"] = float(np.mean(snrs))
+    low, high = spectra.band
+    kg = spectra.kurtogram
+    out["kurtogram_kurtosis"] = kg.kurtosis if kg is not None else 0.0
+    out["kurtogram_center_rel"] = (low + high) / fs
+    out["kurtogram_bandwidth_rel"] = (high - low) / (fs / 2)
+    return out

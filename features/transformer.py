@@ -1,0 +1,120 @@
+"""The feature table as a scikit-learn transformer (works inside a Pipeline)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import pandas as pd
+from sklearn.base import BaseEstimator, TransformerMixin
+from sklearn.utils.validation import check_is_fitted, validate_data
+
+from ._validate import FeatureError
+from .catalog import DEFAULT_FAULTS, extract_features, feature_names
+
+__all__ = ["FeatureExtractor", "CONTEXT_COLUMNS"]
+
+#: DataFrame columns that carry each signal's context (dataset schema, Hz).
+CONTEXT_COLUMNS = {
+    "fs": "fs_hz",
+    "shaft": "shaft_frequency_hz",
+    "ftf": "ftf_hz",
+    "bpfo": "bpfo_hz",
+    "bpfi": "bpfi_hz",
+    "bsf": "bsf_hz",
+    "two_bsf": "two_bsf_hz",
+}
+
+
+class FeatureExtractor(TransformerMixin, BaseEstimator):
+    """Signals in, feature table out (``features.extract_features`` per signal).
+
+    Input either
+
+    * a DataFrame with a ``signal_column`` of 1-D arrays and the context columns
+      ``fs_hz, shaft_frequency_hz, ftf_hz, bpfo_hz, bpfi_hz, two_bsf_hz`` (one value per row:
+      signals of different speeds and sample rates mix freely), or
+    * a 2-D array, one signal per row, with ``fs`` and ``fault_frequencies`` given here.
+
+    Parameters
+    ----------
+    fs : float, optional
+        Sample rate [Hz] for array input.
+    fault_frequencies : mapping of str to float, optional
+        Context for array input [Hz] (``ftf, bpfo, bpfi, two_bsf`` and ``shaft``).
+    faults : tuple of str
+        Fault frequencies measured.
+    n_harmonics : int
+        Harmonics per fault.
+    signal_column : str
+        Column of the signals in DataFrame input.
+    """
+
+    def __init__(
+        self,
+        fs: float | None = None,
+        fault_frequencies: Mapping[str, float] | None = None,
+        faults: tuple[str, ...] = DEFAULT_FAULTS,
+        n_harmonics: int = 3,
+        signal_column: str = "signal",
+    ):
+        self.fs = fs
+        self.fault_frequencies = fault_frequencies
+        self.faults = faults
+        self.n_harmonics = n_harmonics
+        self.signal_column = signal_column
+
+    def _rows(self, X):
+        if isinstance(X, pd.DataFrame):
+            if self.signal_column not in X.columns:
+                raise FeatureError(f"X has no column {self.signal_column!r} (the signals)")
+            needed = [CONTEXT_COLUMNS[k] for k in ("fs", *self.faults, "shaft")]
+            missing = [c for c in needed if c not in X.columns]
+            if missing:
+                raise FeatureError(f"X is missing the context columns {missing}")
+            for _, row in X.iterrows():
+                ctx = {k: float(row[c]) for k, c in CONTEXT_COLUMNS.items() if c in X.columns}
+                yield np.asarray(row[self.signal_column], dtype=float), ctx
+            return
+        arr = np.asarray(X, dtype=float)
+        if arr.ndim != 2:
+            raise ValueError(f"X has shape {arr.shape}; expected (n_signals, n_samples)")
+        if self.fs is None or self.fault_frequencies is None:
+            raise FeatureError(
+                "array input needs fs and fault_frequencies (or pass a DataFrame "
+                "with the context columns)"
+            )
+        ctx = {"fs": float(self.fs), **{k: float(v) for k, v in self.fault_frequencies.items()}}
+        for row in arr:
+            yield row, ctx
+
+    def fit(self, X, y=None):
+        """Check the input and record the feature names (the transform has no state)."""
+        if not isinstance(X, pd.DataFrame):
+            validate_data(self, X, dtype=np.float64, ensure_min_features=2)
+        self.feature_names_out_ = np.array(
+            feature_names(self.faults, self.n_harmonics), dtype=object
+        )
+        return self
+
+    def transform(self, X) -> np.ndarray:
+        """Feature matrix, shape (n_signals, n_features)."""
+        check_is_fitted(self, "feature_names_out_")
+        if not isinstance(X, pd.DataFrame):
+            X = validate_data(self, X, dtype=np.float64, reset=False, ensure_min_features=2)
+        rows = []
+        for signal, ctx in self._rows(X):
+            feats = extract_features(
+                signal,
+                ctx["fs"],
+                fault_frequencies=ctx,
+                faults=self.faults,
+                n_harmonics=self.n_harmonics,
+            )
+            rows.append([feats[name] for name in self.feature_names_out_])
+        return np.asarray(rows, dtype=float).reshape(len(rows), len(self.feature_names_out_))
+
+    def get_feature_names_out(self, input_features=None) -> np.ndarray:
+        """Names of the output features."""
+        check_is_fitted(self, "feature_names_out_")
+        return self.feature_names_out_.copy()

@@ -1,0 +1,54 @@
+"""Fault bands and band metrics (bearingFaultBands / faultBandMetrics style)."""
+
+import numpy as np
+import pytest
+
+import features as F
+
+CTX = {"bpfo": 107.36, "bpfi": 162.19, "two_bsf": 141.17}
+
+
+def test_fault_bands_harmonics_and_sidebands():
+    bands = F.fault_bands(CTX, n_harmonics=2, sidebands={"bpfi": 29.95}, width=4.0)
+    bpfi = bands[bands.fault == "bpfi"]
+    assert len(bpfi) == 6  # 2 harmonics x (-1, 0, +1)
+    row = bpfi[(bpfi.harmonic == 2) & (bpfi.sideband == 1)].iloc[0]
+    assert row.center_hz == pytest.approx(2 * 162.19 + 29.95)
+    assert row.high_hz - row.low_hz == pytest.approx(4.0)
+    assert set(bands.fault) == {"bpfo", "bpfi", "two_bsf"}
+    orders = F.fault_bands(CTX, shaft_frequency=29.95, domain="order")
+    assert orders.loc[0, "center"] == pytest.approx(107.36 / 29.95)
+
+
+def test_band_metrics_find_the_tones():
+    fs, n = 4096.0, 4096 * 4
+    t = np.arange(n) / fs
+    x = 2.0 * np.cos(2 * np.pi * 107.36 * t) + 0.5 * np.cos(2 * np.pi * 2 * 162.19 * t)
+    f, a = F.amplitude_spectrum(x, fs, window="flattop")
+    metrics = F.band_metrics(f, a, F.fault_bands(CTX, n_harmonics=2, width=2.0))
+    assert list(metrics.columns) == list(F.BAND_METRIC_COLUMNS)
+    m = metrics.set_index("band")
+    assert m.loc["bpfo_1x", "peak_amplitude"] == pytest.approx(2.0, rel=0.01)
+    assert m.loc["bpfo_1x", "peak_frequency_hz"] == pytest.approx(107.36, abs=0.25)
+    assert m.loc["bpfi_2x", "peak_amplitude"] == pytest.approx(0.5, rel=0.01)
+    assert m.loc["two_bsf_1x", "peak_amplitude"] < 1e-3
+    assert m.loc["total", "peak_amplitude"] == pytest.approx(2.0, rel=0.01)
+    assert m.loc["total", "band_power"] == pytest.approx(m.drop("total").band_power.sum())
+
+
+def test_band_amplitude_and_harmonics():
+    f = np.arange(0, 500.0, 0.5)
+    s = np.zeros_like(f)
+    s[[200, 400, 600]] = [3.0, 2.0, 1.0]  # 100, 200, 300 Hz
+    assert F.band_amplitude(f, s, 100.2, half_width=0.5) == 3.0
+    np.testing.assert_array_equal(F.harmonic_amplitudes(f, s, 100.0, half_width=0.3), [3, 2, 1])
+    assert F.band_amplitude(f, s, 900.0, half_width=1.0) == 0.0
+
+
+def test_bad_bands():
+    with pytest.raises(F.FeatureError, match="fault_frequencies\\['bpfo'\\]"):
+        F.fault_bands({"bpfo": -1.0})
+    with pytest.raises(F.FeatureError, match="shaft_frequency is required"):
+        F.fault_bands(CTX, domain="order")
+    with pytest.raises(F.FeatureError, match="half_width"):
+        F.band_amplitude(np.arange(10.0), np.ones(10), 5.0, half_width=0.0)
