@@ -157,6 +157,11 @@ def _add_model_arguments(p: argparse.ArgumentParser) -> None:
     )
     n.add_argument("--cage-angle", type=float, default=0.0, help="initial cage angle [rad]")
     n.add_argument("--contact-loads", action="store_true", help="also record ball loads")
+    n.add_argument(
+        "--channels",
+        default=None,
+        help="comma-separated output channels (default all), e.g. housing_velocity_y",
+    )
     n.add_argument("--seed", type=int, default=None, help="seed for random waviness phases")
 
 

@@ -65,8 +65,18 @@ import numpy as np
     P_PITCH_RADIUS,
     P_UNBALANCE,
     P_MAX_DISPLACEMENT,
+    P_PITCH_COS,
+    P_PITCH_SIN,
+    P_TABLE_NODES,
+    P_TABLE_STEP_INNER,
+    P_TABLE_STEP_OUTER,
+    P_TABLE_STEP_SERIES,
     P_SIZE,
-) = range(38)
+) = range(44)
+# Film tables (EHL scenes): from P_SIZE on, three tables (inner, outer, series contact) of
+# P_TABLE_NODES nodes each, every node [d, dd/ds]: the elastic approach d solving
+# d = delta + h(K d^1.5) on a grid uniform in s = sqrt(delta + h_max) (delta >= -h_max).
+TABLE_INNER, TABLE_OUTER, TABLE_SERIES = 0, 1, 2
 # P_FILM_*: h_c = P_FILM_* * (Q + floor)^FILM_EXPONENT [m] (Hamrock-Dowson, MODEL.md 4.2).
 # P_SQUEEZE_*: squeeze-film damping c = P_SQUEEZE_* * (Q + floor)^-FILM_EXPONENT [N s/m]
 # (MODEL.md 4.5 with h_c inserted); P_SQUEEZE_SERIES is the series combination for massless balls.
@@ -81,7 +91,8 @@ SCENE_FULL = 2
 SURF_OUTER = 0
 SURF_INNER = 1
 SURF_BALL = 2
-W_SURFACE, W_BALL, W_ORDER, W_AMPLITUDE, W_PHASE, W_SIZE = range(6)
+W_SURFACE, W_BALL, W_ORDER, W_AMPLITUDE, W_PHASE, W_STEP_COS, W_STEP_SIN, W_SIZE = range(8)
+# W_STEP_COS/SIN: cos and sin of k times the ball pitch 2 pi / Z (race rows).
 
 # integration status codes
 STATUS_OK = 0
@@ -93,7 +104,9 @@ STATUS_TOO_MANY_STEPS = 4
 N_OUT_STATE = 8  # x_s, y_s, x_h, y_h, vx_s, vy_s, vx_h, vy_h
 N_OUT_ACCEL = 4  # ax_s, ay_s, ax_h, ay_h
 
-_JIT = {"cache": True, "fastmath": False, "nogil": True}
+# error_model="numpy": a division by zero gives inf/NaN (caught by the divergence check) instead
+# of raising inside the kernel.
+_JIT = {"cache": True, "fastmath": False, "nogil": True, "error_model": "numpy"}
 
 
 def n_dof(scene: int, ball_count: int) -> int:
@@ -130,6 +143,7 @@ def _hertz_ehl(delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h
     if delta + h_max <= 0.0:
         return 0.0
     d = delta + h_ref
+    h = h_ref
     for _ in range(FILM_ITERATIONS):
         if d > 0.0:
             q = k_hertz * d * math.sqrt(d)
@@ -143,8 +157,51 @@ def _hertz_ehl(delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h
         return 0.0
     root = math.sqrt(d)
     q = k_hertz * d * root
+    # squeeze * (Q + floor)^0.067 == squeeze * film / h (h of the last Newton iterate)
+    c = damping_time * 1.5 * k_hertz * root + q / (q + floor) * squeeze * film / h
+    q = q + c * delta_rate
+    return q if q > 0.0 else 0.0
+
+
+@numba.njit(**_JIT)
+def _hertz_ehl_table(
+    delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max, p, table
+):
+    """:func:`_hertz_ehl` with the film equation read from the precomputed table ``table``.
+
+    The nodes are uniform in s = sqrt(delta + h_max), dense near contact onset where d(delta)
+    bends most; cubic Hermite interpolation of d(s) (values and exact slopes: C1, O(step^4));
+    outside the table the Newton solution of :func:`_hertz_ehl` is used. Same damping and
+    clipping as :func:`_hertz_ehl`.
+    """
+    x = delta + h_max
+    if x <= 0.0:
+        return 0.0
+    nodes = int(p[P_TABLE_NODES])
+    step = p[P_TABLE_STEP_INNER + table]
+    x = math.sqrt(x) / step
+    i = int(x)
+    if i >= nodes - 1:
+        return _hertz_ehl(
+            delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max
+        )
+    u = x - i
+    base = P_SIZE + 2 * (table * nodes + i)
+    u2 = u * u
+    u3 = u2 * u
+    d = (
+        (2.0 * u3 - 3.0 * u2 + 1.0) * p[base]
+        + (u3 - 2.0 * u2 + u) * step * p[base + 1]
+        + (-2.0 * u3 + 3.0 * u2) * p[base + 2]
+        + (u3 - u2) * step * p[base + 3]
+    )
+    if d <= 0.0:
+        return 0.0
     h = d - delta
-    # squeeze * (Q + floor)^0.067 == squeeze * film / h
+    if h <= 0.0:
+        h = h_max
+    root = math.sqrt(d)
+    q = k_hertz * d * root
     c = damping_time * 1.5 * k_hertz * root + q / (q + floor) * squeeze * film / h
     q = q + c * delta_rate
     return q if q > 0.0 else 0.0
@@ -166,7 +223,6 @@ def _waviness(wav, z, theta0, shaft_angle, t, p, out):
     wc = p[P_CAGE_SPEED]
     ws = p[P_SHAFT_SPEED]
     wb = p[P_BALL_SPIN_SPEED]
-    pitch = 2.0 * math.pi / z
     for r in range(wav.shape[0]):
         surface = int(wav[r, W_SURFACE])
         k = wav[r, W_ORDER]
@@ -193,7 +249,7 @@ def _waviness(wav, z, theta0, shaft_angle, t, p, out):
             rate = wc - ws
             row = 2
         c, s = math.cos(arg), math.sin(arg)
-        cd, sd = math.cos(k * pitch), math.sin(k * pitch)
+        cd, sd = wav[r, W_STEP_COS], wav[r, W_STEP_SIN]
         for j in range(z):
             if j > 0:
                 c, s = c * cd - s * sd, s * cd + c * sd
@@ -207,6 +263,8 @@ def _waviness(wav, z, theta0, shaft_angle, t, p, out):
 @numba.njit(**_JIT)
 def _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch):
     """First-order right-hand side dy/dt of a scene; fills ``loads[0/1, j]`` (inner/outer)."""
+    numba.literally(scene)
+    numba.literally(ehl)
     z = int(p[P_BALL_COUNT])
     nd = 4 + z if scene == SCENE_FULL else 4
     xs, ys, xh, yh = y[0], y[1], y[2], y[3]
@@ -215,8 +273,7 @@ def _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch):
     theta0 = p[P_CAGE_ANGLE0] + wc * t
     shaft_angle = p[P_SHAFT_ANGLE0] + p[P_SHAFT_SPEED] * t
     c0, s0 = math.cos(theta0), math.sin(theta0)
-    pitch = 2.0 * math.pi / z
-    cd, sd = math.cos(pitch), math.sin(pitch)
+    cd, sd = p[P_PITCH_COS], p[P_PITCH_SIN]
     gap = p[P_GAP]
     tau = p[P_CONTACT_DAMPING_TIME]
     floor = p[P_FILM_LOAD_FLOOR]
@@ -248,7 +305,7 @@ def _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch):
                 do += scratch[0, j] + scratch[4, j]
                 ddo += scratch[1, j] + scratch[5, j]
             if ehl:
-                qi = _hertz_ehl(
+                qi = _hertz_ehl_table(
                     di,
                     ddi,
                     p[P_K_INNER],
@@ -258,8 +315,10 @@ def _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch):
                     floor,
                     p[P_FILM_INNER_REF],
                     p[P_FILM_INNER_MAX],
+                    p,
+                    TABLE_INNER,
                 )
-                qo = _hertz_ehl(
+                qo = _hertz_ehl_table(
                     do,
                     ddo,
                     p[P_K_OUTER],
@@ -269,6 +328,8 @@ def _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch):
                     floor,
                     p[P_FILM_OUTER_REF],
                     p[P_FILM_OUTER_MAX],
+                    p,
+                    TABLE_OUTER,
                 )
             else:
                 qi = _hertz_dry(di, ddi, p[P_K_INNER], tau)
@@ -287,7 +348,7 @@ def _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch):
                 d += scratch[0, j] + scratch[2, j] + scratch[4, j] + scratch[6, j]
                 dd += scratch[1, j] + scratch[3, j] + scratch[5, j] + scratch[7, j]
             if ehl:
-                qi = _hertz_ehl(
+                qi = _hertz_ehl_table(
                     d,
                     dd,
                     p[P_K_SERIES],
@@ -297,6 +358,8 @@ def _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch):
                     floor,
                     p[P_FILM_INNER_REF] + p[P_FILM_OUTER_REF],
                     p[P_FILM_INNER_MAX] + p[P_FILM_OUTER_MAX],
+                    p,
+                    TABLE_SERIES,
                 )
             else:
                 qi = _hertz_dry(d, dd, p[P_K_SERIES], tau)
@@ -363,6 +426,32 @@ def _check(y, nd, limit):
 
 
 @numba.njit(**_JIT)
+def _hermite_record(y0, f0, y1, f1, dt, theta, nd, k, out_state, out_accel, tmp, acc):
+    """Record the cubic Hermite interpolant between two RK4 steps at fraction ``theta``.
+
+    Positions and velocities are O(dt^4) accurate (values and derivatives at both ends);
+    accelerations are the derivative of the velocity interpolant, O(dt^3). At theta = 0 the
+    record is exactly the step-start state and its right-hand side.
+    """
+    th2 = theta * theta
+    th3 = th2 * theta
+    h00 = 2.0 * th3 - 3.0 * th2 + 1.0
+    h10 = th3 - 2.0 * th2 + theta
+    h01 = -2.0 * th3 + 3.0 * th2
+    h11 = th3 - th2
+    d00 = (6.0 * th2 - 6.0 * theta) / dt
+    d10 = 3.0 * th2 - 4.0 * theta + 1.0
+    d01 = (-6.0 * th2 + 6.0 * theta) / dt
+    d11 = 3.0 * th2 - 2.0 * theta
+    n = y0.shape[0]
+    for i in range(n):
+        tmp[i] = h00 * y0[i] + h10 * dt * f0[i] + h01 * y1[i] + h11 * dt * f1[i]
+    for i in range(nd, n):
+        acc[i] = d00 * y0[i] + d10 * f0[i] + d01 * y1[i] + d11 * f1[i]
+    _record(tmp, acc, nd, k, out_state, out_accel)
+
+
+@numba.njit(**_JIT)
 def _rk4_impl(
     scene,
     ehl,
@@ -371,46 +460,48 @@ def _rk4_impl(
     wav,
     t0,
     dt,
-    steps_per_record,
-    n_skip,
+    n_steps,
+    t_first,
+    record_dt,
     n_record,
     out_state,
     out_accel,
     out_loads,
     record_loads,
 ):
-    """Classical RK4 with a fixed step; records every ``steps_per_record`` steps.
+    """Classical RK4 with a fixed step and cubic Hermite dense output.
 
-    The first ``n_skip`` steps (settling) are not recorded. Returns (status, time).
+    Records at ``t_first + k * record_dt`` (k < n_record), interpolating inside the step that
+    contains each record time, so the step may be longer or shorter than the record interval.
+    The right-hand side at the end of a step is the first stage of the next (computed once).
+    Returns (status, time).
     """
+    numba.literally(scene)
+    numba.literally(ehl)
     n = y0.shape[0]
     z = int(p[P_BALL_COUNT])
     nd = n // 2
     limit = p[P_MAX_DISPLACEMENT]
     y = y0.copy()
+    y1 = np.empty(n)
     k1 = np.empty(n)
     k2 = np.empty(n)
     k3 = np.empty(n)
     k4 = np.empty(n)
+    f1 = np.empty(n)
     tmp = np.empty(n)
+    acc = np.zeros(n)
     loads = np.zeros((2, z))
+    loads_start = np.zeros((2, z))
     scratch = np.zeros((8, z))
-    t = t0
     half = 0.5 * dt
-    total = n_skip + n_record * steps_per_record
-    for step in range(total):
-        _rhs(scene, ehl, t, y, p, wav, k1, loads, scratch)
-        rec = step - n_skip
-        if rec >= 0 and rec % steps_per_record == 0:
-            status = _check(y, nd, limit)
-            if status != STATUS_OK:
-                return status, t
-            kr = rec // steps_per_record
-            _record(y, k1, nd, kr, out_state, out_accel)
-            if record_loads:
-                for j in range(z):
-                    out_loads[kr, 0, j] = loads[0, j]
-                    out_loads[kr, 1, j] = loads[1, j]
+    next_rec = 0
+    _rhs(scene, ehl, t0, y, p, wav, k1, loads, scratch)
+    if record_loads:
+        loads_start[:, :] = loads
+    t = t0
+    for step in range(n_steps):
+        t = t0 + step * dt
         for i in range(n):
             tmp[i] = y[i] + half * k1[i]
         _rhs(scene, ehl, t + half, tmp, p, wav, k2, loads, scratch)
@@ -421,49 +512,33 @@ def _rk4_impl(
             tmp[i] = y[i] + dt * k3[i]
         _rhs(scene, ehl, t + dt, tmp, p, wav, k4, loads, scratch)
         for i in range(n):
-            y[i] += dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
-        t = t0 + (step + 1) * dt
-        if step < n_skip and step % 256 == 0:
+            y1[i] = y[i] + dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+        _rhs(scene, ehl, t + dt, y1, p, wav, f1, loads, scratch)
+        while next_rec < n_record:
+            theta = (t_first + next_rec * record_dt - t) / dt
+            if theta >= 1.0 - 1e-9:
+                break
+            if theta < 0.0:
+                theta = 0.0
+            _hermite_record(y, k1, y1, f1, dt, theta, nd, next_rec, out_state, out_accel, tmp, acc)
+            if record_loads:
+                for j in range(z):  # loads at the nearer end of the step
+                    src = loads_start if theta < 0.5 else loads
+                    out_loads[next_rec, 0, j] = src[0, j]
+                    out_loads[next_rec, 1, j] = src[1, j]
+            next_rec += 1
+        for i in range(n):
+            y[i] = y1[i]
+            k1[i] = f1[i]
+        if record_loads:
+            loads_start[:, :] = loads
+        if step % 64 == 0 or next_rec >= n_record:
             status = _check(y, nd, limit)
             if status != STATUS_OK:
-                return status, t
-    status = _check(y, nd, limit)
-    return status, t
-
-
-@numba.njit(**_JIT)
-def _rk4(
-    scene,
-    ehl,
-    y0,
-    p,
-    wav,
-    t0,
-    dt,
-    steps_per_record,
-    n_skip,
-    n_record,
-    out_state,
-    out_accel,
-    out_loads,
-    record_loads,
-):
-    return _rk4_impl(
-        numba.literally(scene),
-        numba.literally(ehl),
-        y0,
-        p,
-        wav,
-        t0,
-        dt,
-        steps_per_record,
-        n_skip,
-        n_record,
-        out_state,
-        out_accel,
-        out_loads,
-        record_loads,
-    )
+                return status, t + dt
+        if next_rec >= n_record:
+            return STATUS_OK, t + dt
+    return _check(y, nd, limit), t0 + n_steps * dt
 
 
 # --------------------------------------------------------------------- Dormand-Prince 5(4)
@@ -512,6 +587,8 @@ def _dopri5_impl(
     the interpolated state (accelerations, loads). ``step_stats`` receives [accepted steps,
     rejected steps, smallest step, largest step]. Returns (status, time).
     """
+    numba.literally(scene)
+    numba.literally(ehl)
     n = y0.shape[0]
     z = int(p[P_BALL_COUNT])
     nd = n // 2
@@ -654,10 +731,224 @@ def _dopri5_impl(
     return STATUS_OK, t
 
 
+# ------------------------------------------------------------------ compiled entry points
+# One entry point per (scene, film) pair: the constants reach the implementations as literal
+# types, so each pair is compiled (and cached) on its own with the other scenes' branches
+# removed; Python picks the entry from ``RK4``, ``DOPRI5`` and ``RHS`` by (scene, ehl).
+
+
 @numba.njit(**_JIT)
-def _dopri5(
-    scene,
-    ehl,
+def _rk4_shaft_dry(
+    y0,
+    p,
+    wav,
+    t0,
+    dt,
+    n_steps,
+    t_first,
+    record_dt,
+    n_record,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+):
+    return _rk4_impl(
+        0,
+        0,
+        y0,
+        p,
+        wav,
+        t0,
+        dt,
+        n_steps,
+        t_first,
+        record_dt,
+        n_record,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+    )
+
+
+@numba.njit(**_JIT)
+def _rk4_shaft_ehl(
+    y0,
+    p,
+    wav,
+    t0,
+    dt,
+    n_steps,
+    t_first,
+    record_dt,
+    n_record,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+):
+    return _rk4_impl(
+        0,
+        1,
+        y0,
+        p,
+        wav,
+        t0,
+        dt,
+        n_steps,
+        t_first,
+        record_dt,
+        n_record,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+    )
+
+
+@numba.njit(**_JIT)
+def _rk4_shaft_housing_dry(
+    y0,
+    p,
+    wav,
+    t0,
+    dt,
+    n_steps,
+    t_first,
+    record_dt,
+    n_record,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+):
+    return _rk4_impl(
+        1,
+        0,
+        y0,
+        p,
+        wav,
+        t0,
+        dt,
+        n_steps,
+        t_first,
+        record_dt,
+        n_record,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+    )
+
+
+@numba.njit(**_JIT)
+def _rk4_shaft_housing_ehl(
+    y0,
+    p,
+    wav,
+    t0,
+    dt,
+    n_steps,
+    t_first,
+    record_dt,
+    n_record,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+):
+    return _rk4_impl(
+        1,
+        1,
+        y0,
+        p,
+        wav,
+        t0,
+        dt,
+        n_steps,
+        t_first,
+        record_dt,
+        n_record,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+    )
+
+
+@numba.njit(**_JIT)
+def _rk4_full_dry(
+    y0,
+    p,
+    wav,
+    t0,
+    dt,
+    n_steps,
+    t_first,
+    record_dt,
+    n_record,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+):
+    return _rk4_impl(
+        2,
+        0,
+        y0,
+        p,
+        wav,
+        t0,
+        dt,
+        n_steps,
+        t_first,
+        record_dt,
+        n_record,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+    )
+
+
+@numba.njit(**_JIT)
+def _rk4_full_ehl(
+    y0,
+    p,
+    wav,
+    t0,
+    dt,
+    n_steps,
+    t_first,
+    record_dt,
+    n_record,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+):
+    return _rk4_impl(
+        2,
+        1,
+        y0,
+        p,
+        wav,
+        t0,
+        dt,
+        n_steps,
+        t_first,
+        record_dt,
+        n_record,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+    )
+
+
+@numba.njit(**_JIT)
+def _dopri5_shaft_dry(
     y0,
     p,
     wav,
@@ -677,8 +968,8 @@ def _dopri5(
     step_stats,
 ):
     return _dopri5_impl(
-        numba.literally(scene),
-        numba.literally(ehl),
+        0,
+        0,
         y0,
         p,
         wav,
@@ -700,7 +991,294 @@ def _dopri5(
 
 
 @numba.njit(**_JIT)
+def _dopri5_shaft_ehl(
+    y0,
+    p,
+    wav,
+    t0,
+    t_first,
+    record_dt,
+    n_record,
+    rtol,
+    atol,
+    h0,
+    h_max,
+    max_steps,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+    step_stats,
+):
+    return _dopri5_impl(
+        0,
+        1,
+        y0,
+        p,
+        wav,
+        t0,
+        t_first,
+        record_dt,
+        n_record,
+        rtol,
+        atol,
+        h0,
+        h_max,
+        max_steps,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+        step_stats,
+    )
+
+
+@numba.njit(**_JIT)
+def _dopri5_shaft_housing_dry(
+    y0,
+    p,
+    wav,
+    t0,
+    t_first,
+    record_dt,
+    n_record,
+    rtol,
+    atol,
+    h0,
+    h_max,
+    max_steps,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+    step_stats,
+):
+    return _dopri5_impl(
+        1,
+        0,
+        y0,
+        p,
+        wav,
+        t0,
+        t_first,
+        record_dt,
+        n_record,
+        rtol,
+        atol,
+        h0,
+        h_max,
+        max_steps,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+        step_stats,
+    )
+
+
+@numba.njit(**_JIT)
+def _dopri5_shaft_housing_ehl(
+    y0,
+    p,
+    wav,
+    t0,
+    t_first,
+    record_dt,
+    n_record,
+    rtol,
+    atol,
+    h0,
+    h_max,
+    max_steps,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+    step_stats,
+):
+    return _dopri5_impl(
+        1,
+        1,
+        y0,
+        p,
+        wav,
+        t0,
+        t_first,
+        record_dt,
+        n_record,
+        rtol,
+        atol,
+        h0,
+        h_max,
+        max_steps,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+        step_stats,
+    )
+
+
+@numba.njit(**_JIT)
+def _dopri5_full_dry(
+    y0,
+    p,
+    wav,
+    t0,
+    t_first,
+    record_dt,
+    n_record,
+    rtol,
+    atol,
+    h0,
+    h_max,
+    max_steps,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+    step_stats,
+):
+    return _dopri5_impl(
+        2,
+        0,
+        y0,
+        p,
+        wav,
+        t0,
+        t_first,
+        record_dt,
+        n_record,
+        rtol,
+        atol,
+        h0,
+        h_max,
+        max_steps,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+        step_stats,
+    )
+
+
+@numba.njit(**_JIT)
+def _dopri5_full_ehl(
+    y0,
+    p,
+    wav,
+    t0,
+    t_first,
+    record_dt,
+    n_record,
+    rtol,
+    atol,
+    h0,
+    h_max,
+    max_steps,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+    step_stats,
+):
+    return _dopri5_impl(
+        2,
+        1,
+        y0,
+        p,
+        wav,
+        t0,
+        t_first,
+        record_dt,
+        n_record,
+        rtol,
+        atol,
+        h0,
+        h_max,
+        max_steps,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+        step_stats,
+    )
+
+
+@numba.njit(**_JIT)
+def _rhs_once_impl(scene, ehl, t, y, p, wav, dydt, loads):
+    numba.literally(scene)
+    numba.literally(ehl)
+    scratch = np.zeros((8, int(p[P_BALL_COUNT])))
+    _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch)
+
+
+@numba.njit(**_JIT)
+def _rhs_shaft_dry(t, y, p, wav, dydt, loads):
+    _rhs_once_impl(0, 0, t, y, p, wav, dydt, loads)
+
+
+@numba.njit(**_JIT)
+def _rhs_shaft_ehl(t, y, p, wav, dydt, loads):
+    _rhs_once_impl(0, 1, t, y, p, wav, dydt, loads)
+
+
+@numba.njit(**_JIT)
+def _rhs_shaft_housing_dry(t, y, p, wav, dydt, loads):
+    _rhs_once_impl(1, 0, t, y, p, wav, dydt, loads)
+
+
+@numba.njit(**_JIT)
+def _rhs_shaft_housing_ehl(t, y, p, wav, dydt, loads):
+    _rhs_once_impl(1, 1, t, y, p, wav, dydt, loads)
+
+
+@numba.njit(**_JIT)
+def _rhs_full_dry(t, y, p, wav, dydt, loads):
+    _rhs_once_impl(2, 0, t, y, p, wav, dydt, loads)
+
+
+@numba.njit(**_JIT)
+def _rhs_full_ehl(t, y, p, wav, dydt, loads):
+    _rhs_once_impl(2, 1, t, y, p, wav, dydt, loads)
+
+
+RK4 = {
+    (0, 0): _rk4_shaft_dry,
+    (0, 1): _rk4_shaft_ehl,
+    (1, 0): _rk4_shaft_housing_dry,
+    (1, 1): _rk4_shaft_housing_ehl,
+    (2, 0): _rk4_full_dry,
+    (2, 1): _rk4_full_ehl,
+}
+DOPRI5 = {
+    (0, 0): _dopri5_shaft_dry,
+    (0, 1): _dopri5_shaft_ehl,
+    (1, 0): _dopri5_shaft_housing_dry,
+    (1, 1): _dopri5_shaft_housing_ehl,
+    (2, 0): _dopri5_full_dry,
+    (2, 1): _dopri5_full_ehl,
+}
+RHS = {
+    (0, 0): _rhs_shaft_dry,
+    (0, 1): _rhs_shaft_ehl,
+    (1, 0): _rhs_shaft_housing_dry,
+    (1, 1): _rhs_shaft_housing_ehl,
+    (2, 0): _rhs_full_dry,
+    (2, 1): _rhs_full_ehl,
+}
+
+
+def _rk4(scene, ehl, *args):
+    """RK4 for a (scene, ehl) pair (Python-side dispatch to the compiled entry point)."""
+    return RK4[int(scene), int(ehl)](*args)
+
+
+def _dopri5(scene, ehl, *args):
+    """DOPRI5 for a (scene, ehl) pair."""
+    return DOPRI5[int(scene), int(ehl)](*args)
+
+
 def _rhs_once(scene, ehl, t, y, p, wav, dydt, loads):
     """One right-hand-side evaluation (static checks, linearisation, reference tests)."""
-    scratch = np.zeros((8, int(p[P_BALL_COUNT])))
-    _rhs(numba.literally(scene), numba.literally(ehl), t, y, p, wav, dydt, loads, scratch)
+    RHS[int(scene), int(ehl)](float(t), y, p, wav, dydt, loads)

@@ -36,6 +36,7 @@ from .contact import (
 )
 from .kinematics import BearingFrequencies, characteristic_frequencies
 from .params import (
+    CHANNELS,
     BearingGeometry,
     OperatingCondition,
     Rig,
@@ -54,25 +55,19 @@ __all__ = [
     "default_step",
     "CHANNELS",
     "natural_frequencies",
+    "rk4_schedule",
 ]
 
 logger = logging.getLogger(__name__)
 
 SCENE_CODES = {"shaft": K.SCENE_SHAFT, "shaft+housing": K.SCENE_SHAFT_HOUSING, "full": K.SCENE_FULL}
 
-#: Output channels, ``<body>_<quantity>_<axis>`` in SI units (m, m/s, m/s^2).
-CHANNELS = tuple(
-    f"{body}_{quantity}_{axis}"
-    for body in ("housing", "shaft")
-    for quantity in ("displacement", "velocity", "acceleration")
-    for axis in ("x", "y")
-)
-
 #: Default fixed RK4 step of the massless-ball scenes [s] (MODEL.md 7.2: converged to 4 digits
 #: at <= 2e-5 s; 5-10 us recommended). See ``cmtool fidelity`` for the measured trade.
-DEFAULT_STEP_MASSLESS = 5e-6
-#: Safety factor on the RK4 stability limit |lambda| dt <= 2.5 used for the ``full`` scene.
-STABILITY_SAFETY = 0.7
+DEFAULT_STEP_MASSLESS = 2e-5
+#: Safety factor on the RK4 stability limit |lambda| dt <= 2.6 used for the ``full`` scene
+#: (dynamic overloads stiffen the contacts beyond the static linearisation).
+STABILITY_SAFETY = 0.8
 #: Default oversampling of the integration record over the output rate (anti-alias margin).
 DEFAULT_OVERSAMPLE = 4
 
@@ -121,7 +116,7 @@ class SimulationResult:
         import pandas as pd
 
         data = {"time": self.time}
-        data.update({name: self.signals[name] for name in CHANNELS})
+        data.update({name: self.signals[name] for name in CHANNELS if name in self.signals})
         return pd.DataFrame(data)
 
 
@@ -158,7 +153,10 @@ def _waviness_table(
             continue
         if w.surface in code:
             phase = rng.uniform(0, 2 * np.pi) if w.phase is None else w.phase
-            rows.append((code[w.surface], -1, w.order, w.amplitude, phase))
+            step = 2 * np.pi * w.order / ball_count
+            rows.append(
+                (code[w.surface], -1, w.order, w.amplitude, phase, np.cos(step), np.sin(step))
+            )
         else:
             balls = range(ball_count) if w.ball is None else (w.ball,)
             for j in balls:
@@ -169,7 +167,9 @@ def _waviness_table(
                 # each ball its own waviness phase and initial spin angle (MODEL.md 5, [A])
                 phase = rng.uniform(0, 2 * np.pi) if w.phase is None else w.phase
                 spin0 = rng.uniform(0, 2 * np.pi)
-                rows.append((K.SURF_BALL, j, w.order, w.amplitude, phase + w.order * spin0))
+                rows.append(
+                    (K.SURF_BALL, j, w.order, w.amplitude, phase + w.order * spin0, 1.0, 0.0)
+                )
     table = np.array(rows, dtype=np.float64).reshape(-1, K.W_SIZE)
     return np.ascontiguousarray(table)
 
@@ -244,6 +244,8 @@ def _pack(
     p = np.zeros(K.P_SIZE)
     z = geometry.ball_count
     p[K.P_BALL_COUNT] = z
+    p[K.P_PITCH_COS] = math.cos(2 * math.pi / z)
+    p[K.P_PITCH_SIN] = math.sin(2 * math.pi / z)
     p[K.P_SHAFT_MASS] = rig.shaft_mass
     p[K.P_HOUSING_MASS] = rig.housing_mass
     p[K.P_BALL_MASS] = geometry.ball_mass
@@ -293,6 +295,56 @@ def _pack(
         ri, ro = kri / (kri + kro), kro / (kri + kro)
         p[K.P_SQUEEZE_SERIES] = p[K.P_SQUEEZE_INNER] * ro**2 + p[K.P_SQUEEZE_OUTER] * ri**2
     return p
+
+
+#: Nodes per film table (see ``_kernels``): 2048 nodes up to a 100-fold overload keep the
+#: interpolation error below 1e-9 relative in the load (checked in tests_generators).
+FILM_TABLE_NODES = 2048
+
+
+def _film_tables(p: np.ndarray) -> np.ndarray:
+    """Append the film tables d(delta) of the three contacts to ``p`` (EHL scenes)."""
+    floor = p[K.P_FILM_LOAD_FLOOR]
+    e = K.FILM_EXPONENT
+    q_hi = 100.0 * (p[K.P_FILM_REFERENCE_LOAD] + 100.0)
+    specs = (
+        (p[K.P_K_INNER], p[K.P_FILM_INNER], p[K.P_FILM_INNER_MAX]),
+        (p[K.P_K_OUTER], p[K.P_FILM_OUTER], p[K.P_FILM_OUTER_MAX]),
+        (
+            p[K.P_K_SERIES],
+            p[K.P_FILM_INNER] + p[K.P_FILM_OUTER],
+            p[K.P_FILM_INNER_MAX] + p[K.P_FILM_OUTER_MAX],
+        ),
+    )
+    n = FILM_TABLE_NODES
+    tables = np.zeros((3, n, 2))
+    out = p.copy()
+    for c, (kc, film, h_max) in enumerate(specs):
+        delta_hi = (q_hi / kc) ** (2.0 / 3.0)
+        step = math.sqrt(delta_hi + h_max) / (n - 1)  # uniform in s = sqrt(delta + h_max)
+        s_nodes = step * np.arange(n)
+        delta = s_nodes**2 - h_max
+        d = np.maximum(delta + h_max, 0.0)
+        for _ in range(60):  # Newton to full convergence
+            pos = d > 0
+            q = kc * np.where(pos, d, 0.0) ** 1.5
+            h = film * (q + floor) ** e
+            slope = np.where(pos, -1.5 * e * h / np.where(pos, d, 1.0) * q / (q + floor), 0.0)
+            d_new = d - (d - delta - h) / (1.0 + slope)
+            if np.max(np.abs(d_new - d)) <= 1e-16 * max(float(np.max(np.abs(d))), 1e-12):
+                d = d_new
+                break
+            d = d_new
+        d = np.maximum(d, 0.0)
+        pos = d > 0
+        q = kc * d**1.5
+        h = film * (q + floor) ** e
+        slope = np.where(pos, -1.5 * e * h / np.where(pos, d, 1.0) * q / (q + floor), 0.0)
+        tables[c, :, 0] = d
+        tables[c, :, 1] = 2.0 * s_nodes / (1.0 + slope)  # dd/ds = dd/d delta * 2 s
+        out[K.P_TABLE_STEP_INNER + c] = step
+    out[K.P_TABLE_NODES] = n
+    return np.concatenate([out, tables.ravel()])
 
 
 def _film_sum(p: np.ndarray, loads: np.ndarray) -> np.ndarray:
@@ -442,28 +494,63 @@ def _static_state(
     return y0, float(np.max(loads)) if loads.size else 0.0
 
 
+def _jacobian(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray) -> np.ndarray:
+    """Jacobian of the first-order right-hand side at ``y0``, t = 0, by central differences.
+
+    Displacements are perturbed by 1e-11 m, velocities by 1e-7 m/s (MODEL.md 7.5).
+    """
+    n = y0.size
+    nd = n // 2
+    loads = np.zeros((2, int(p[K.P_BALL_COUNT])))
+    jac = np.zeros((n, n))
+    fp, fm = np.zeros(n), np.zeros(n)
+    for i in range(n):
+        h = 1e-11 if i < nd else 1e-7
+        yp, ym = y0.copy(), y0.copy()
+        yp[i] += h
+        ym[i] -= h
+        K._rhs_once(code, int(ehl), 0.0, yp, p, wav, fp, loads)
+        K._rhs_once(code, int(ehl), 0.0, ym, p, wav, fm, loads)
+        jac[:, i] = (fp - fm) / (2 * h)
+    return jac
+
+
 def default_step(
-    level: str, geometry: BearingGeometry, rig: Rig, p: np.ndarray, max_ball_load: float
+    level: str, code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray
 ) -> float:
     """Default RK4 step [s] of a scene.
 
-    Massless-ball scenes: ``DEFAULT_STEP_MASSLESS``. ``full``: the smaller of that and
-    ``STABILITY_SAFETY * 2.5 / |lambda|`` of the fastest ball mode, |lambda| the larger of the
-    undamped frequency sqrt((k_i + k_o) / m_b) and the damping rate (c_i + c_o) / m_b at the
-    largest static ball load (MODEL.md 7.2).
+    Massless-ball scenes: ``DEFAULT_STEP_MASSLESS`` (accuracy-limited, MODEL.md 7.2). ``full``:
+    the smaller of that and ``STABILITY_SAFETY * 2.6 / |lambda|_max``, lambda the eigenvalues
+    of the right-hand side linearised at the static start (the fastest is the ball radial mode,
+    oscillatory or, with the squeeze film, overdamped; RK4 is stable for |lambda| dt up to
+    2.78 on the real and 2.83 on the imaginary axis, 2.6 covers the arc between).
     """
     if level != "full":
         return DEFAULT_STEP_MASSLESS
-    q = max(max_ball_load, 1.0) * 1.5  # margin for dynamic overload
-    ki, ko = p[K.P_K_INNER], p[K.P_K_OUTER]
-    k_lin = 1.5 * (ki ** (2 / 3) + ko ** (2 / 3)) * q ** (1 / 3)
-    mb = p[K.P_BALL_MASS]
-    omega = math.sqrt(k_lin / mb)
-    c = p[K.P_CONTACT_DAMPING_TIME] * k_lin
-    qf = max(q, p[K.P_FILM_LOAD_FLOOR])
-    c += (p[K.P_SQUEEZE_INNER] + p[K.P_SQUEEZE_OUTER]) * qf ** (-K.FILM_EXPONENT)
-    lam = max(omega, c / mb)
-    return min(DEFAULT_STEP_MASSLESS, STABILITY_SAFETY * 2.5 / lam)
+    lam = float(np.max(np.abs(np.linalg.eigvals(_jacobian(code, ehl, p, wav, y0)))))
+    return min(DEFAULT_STEP_MASSLESS, STABILITY_SAFETY * 2.6 / max(lam, 1e-300))
+
+
+def rk4_schedule(
+    step: float, record_dt: float, settle_time: float, n_record: int
+) -> tuple[float, int, float]:
+    """RK4 step, number of steps and first record time for a requested step [s].
+
+    A step shorter than the record interval is shortened to divide it exactly when that costs
+    at most 20 % more steps (records then fall on step starts, no interpolation); otherwise the
+    step is kept and the records are interpolated (cubic Hermite dense output).
+    """
+    divisor = record_dt / max(1, int(math.ceil(record_dt / step - 1e-9)))
+    if step <= record_dt * (1 + 1e-9) and divisor >= 0.8 * step:
+        dt = divisor
+        t_first = math.ceil(settle_time / dt - 1e-9) * dt
+    else:
+        dt = step
+        t_first = settle_time
+    t_last = t_first + (n_record - 1) * record_dt
+    n_steps = int(math.floor(t_last / dt + 1e-9)) + 1
+    return dt, n_steps, t_first
 
 
 def _params_record(geometry, operating, rig, scene, level, reason, settings, defects, extra):
@@ -550,6 +637,8 @@ def prepare(
             geometry, operating.shaft_frequency, cage_slip=operating.cage_slip
         )
     p = _pack(geometry, operating, rig, ehl, freqs)
+    if ehl:
+        p = _film_tables(p)
     p[K.P_CAGE_ANGLE0] = settings.cage_angle
     wav = _waviness_table(defect_list, z, rng)
     y0, qmax = _static_state(level, ehl, geometry, operating, rig, p, wav)
@@ -672,10 +761,8 @@ def simulate(
     out_loads = np.zeros((n_record if record_loads else 1, 2, z))
     extra: dict = {}
     if settings.integrator == "rk4":
-        step = settings.step or default_step(level, geometry, rig, p, qmax)
-        steps_per_record = max(1, int(math.ceil(record_dt / step - 1e-9)))
-        dt = record_dt / steps_per_record
-        n_skip = int(math.ceil(settings.settle_time / dt))
+        step = settings.step or default_step(level, code, ehl, p, wav, y0)
+        dt, n_steps, t_first = rk4_schedule(step, record_dt, settings.settle_time, n_record)
         status, t_fail = K._rk4(
             code,
             int(ehl),
@@ -684,16 +771,16 @@ def simulate(
             wav,
             0.0,
             dt,
-            steps_per_record,
-            n_skip,
+            n_steps,
+            t_first,
+            record_dt,
             n_record,
             out_state,
             out_accel,
             out_loads,
             record_loads,
         )
-        extra["integrator_stats"] = {"step_s": dt, "steps": n_skip + n_record * steps_per_record}
-        t_first = n_skip * dt
+        extra["integrator_stats"] = {"step_s": dt, "steps": n_steps}
     else:
         nd = K.n_dof(code, z)
         atol = np.empty(2 * nd)
@@ -740,7 +827,7 @@ def simulate(
             time=float(t_fail),
             reason=why,
         )
-    signals = _decimate(out_state, out_accel, oversample)
+    signals = _decimate(out_state, out_accel, oversample, settings.channels or CHANNELS)
     time = np.arange(n_out) / settings.fs
     loads = out_loads[::oversample].copy() if record_loads else None
     extra.update(
@@ -761,7 +848,9 @@ def simulate(
     )
 
 
-def _decimate(out_state: np.ndarray, out_accel: np.ndarray, factor: int) -> dict[str, np.ndarray]:
+def _decimate(
+    out_state: np.ndarray, out_accel: np.ndarray, factor: int, channels: Sequence[str]
+) -> dict[str, np.ndarray]:
     """Anti-alias filter and downsample the integration record to the output rate."""
 
     def down(x: np.ndarray) -> np.ndarray:
@@ -785,7 +874,7 @@ def _decimate(out_state: np.ndarray, out_accel: np.ndarray, factor: int) -> dict
         "shaft_acceleration_x": a[:, 0],
         "shaft_acceleration_y": a[:, 1],
     }
-    return {name: np.ascontiguousarray(down(cols[name])) for name in CHANNELS}
+    return {name: np.ascontiguousarray(down(cols[name])) for name in channels}
 
 
 def natural_frequencies(
@@ -821,21 +910,8 @@ def natural_frequencies(
     """
     frozen = dataclasses.replace(operating, shaft_frequency=0.0)
     prep = prepare(bearing, frozen, scene=scene, rig=rig)
-    y0 = prep.y0
-    n = y0.size
-    nd = n // 2
-    f0 = np.zeros(n)
-    loads = np.zeros((2, bearing.ball_count))
-    jac = np.zeros((n, n))
-    for i in range(n):
-        h = 1e-11 if i < nd else 1e-7
-        yp, ym = y0.copy(), y0.copy()
-        yp[i] += h
-        ym[i] -= h
-        fp, fm = f0.copy(), f0.copy()
-        K._rhs_once(prep.code, int(prep.ehl), 0.0, yp, prep.p, prep.wav, fp, loads)
-        K._rhs_once(prep.code, int(prep.ehl), 0.0, ym, prep.p, prep.wav, fm, loads)
-        jac[:, i] = (fp - fm) / (2 * h)
+    nd = prep.y0.size // 2
+    jac = _jacobian(prep.code, prep.ehl, prep.p, prep.wav, prep.y0)
     if prep.level == "shaft":
         # the one-way housing estimate is not part of the shaft scene's dynamics
         keep = [0, 1, nd, nd + 1]

@@ -61,7 +61,7 @@ class ReferenceModel:
         theta = self.theta0 + self.wc * t + 2 * np.pi * np.arange(z) / z
         phi_s = self.ws * t
         w = np.zeros((8, z))
-        for surf, ball, k, a, ph in self.wav:
+        for surf, ball, k, a, ph in self.wav[:, :5]:
             if surf == SURF_OUTER:
                 w[0] += a * np.cos(k * theta + ph)
                 w[1] += -a * k * self.wc * np.sin(k * theta + ph)
@@ -185,3 +185,35 @@ def reference_solution(prep, t_eval: np.ndarray) -> np.ndarray:
     )
     assert sol.success, sol.message
     return sol.y.T
+
+
+def rk4_records(prep, record_dt, n_record, substeps, *, y0=None, ehl=None):
+    """Kernel RK4 records (states, accelerations) every ``record_dt`` from t = 0, with
+    ``substeps`` steps per record; raises if the kernel reports divergence."""
+    from generators import _kernels as K
+
+    y0 = prep.y0 if y0 is None else y0
+    ehl = prep.ehl if ehl is None else ehl
+    dt = record_dt / substeps
+    st = np.zeros((n_record, K.N_OUT_STATE))
+    ac = np.zeros((n_record, K.N_OUT_ACCEL))
+    ld = np.zeros((1, 2, prep.geometry.ball_count))
+    status, _ = K._rk4(
+        prep.code,
+        int(ehl),
+        y0,
+        prep.p,
+        prep.wav,
+        0.0,
+        dt,
+        (n_record - 1) * substeps + 1,
+        0.0,
+        record_dt,
+        n_record,
+        st,
+        ac,
+        ld,
+        False,
+    )
+    assert status == K.STATUS_OK, status
+    return st, ac

@@ -14,6 +14,8 @@ Sources and tolerances (each named once):
 
 import dataclasses
 import math
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -31,6 +33,9 @@ from generators import (
 )
 from generators import _kernels as K
 from generators.model import prepare
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from reference import rk4_records  # noqa: E402
 
 pytestmark = pytest.mark.validation
 
@@ -315,25 +320,7 @@ def test_free_decay_matches_linearised_frequencies():
     y0[nd] += 1e-4  # small kick, x and y, so both modes ring
     y0[nd + 1] += 1e-4
     n, rec = 32768, 2e-5
-    st = np.zeros((n, K.N_OUT_STATE))
-    ac = np.zeros((n, K.N_OUT_ACCEL))
-    status, _ = K._rk4(
-        prep.code,
-        0,
-        y0,
-        prep.p,
-        prep.wav,
-        0.0,
-        rec / 4,
-        4,
-        0,
-        n,
-        st,
-        ac,
-        np.zeros((1, 2, 9)),
-        False,
-    )
-    assert status == 0
+    st, _ = rk4_records(prep, rec, n, 4, y0=y0)
     fn = natural_frequencies(G, op, scene=scene, rig=rig)
     for axis, mode in ((1, fn[0]), (0, fn[1])):
         x = st[:, axis] - st[:, axis].mean()
@@ -356,25 +343,7 @@ def energy_drift(dt):
     y0 = np.zeros_like(prep.y0)
     y0[0], y0[1] = 3e-6, -20e-6
     n = int(round(0.2 / 1e-4))
-    steps = int(round(1e-4 / dt))
-    st = np.zeros((n + 1, K.N_OUT_STATE))
-    ac = np.zeros((n + 1, K.N_OUT_ACCEL))
-    K._rk4(
-        prep.code,
-        0,
-        y0,
-        prep.p,
-        prep.wav,
-        0.0,
-        dt,
-        steps,
-        0,
-        n + 1,
-        st,
-        ac,
-        np.zeros((1, 2, 9)),
-        False,
-    )
+    st, _ = rk4_records(prep, 1e-4, n + 1, int(round(1e-4 / dt)), y0=y0)
     theta = 2 * np.pi * np.arange(9) / 9
     delta = st[:, [0]] * np.cos(theta) + st[:, [1]] * np.sin(theta) - prep.p[K.P_GAP]
     kt = prep.p[K.P_K_SERIES]
@@ -405,25 +374,7 @@ def test_rk4_step_halving_is_fourth_order(ehl):
     n, rec = 201, 1e-4
 
     def states(substeps):
-        st = np.zeros((n, K.N_OUT_STATE))
-        ac = np.zeros((n, K.N_OUT_ACCEL))
-        K._rk4(
-            prep.code,
-            int(ehl),
-            prep.y0,
-            prep.p,
-            prep.wav,
-            0.0,
-            rec / substeps,
-            substeps,
-            0,
-            n,
-            st,
-            ac,
-            np.zeros((1, 2, 9)),
-            False,
-        )
-        return st[:, 4:]
+        return rk4_records(prep, rec, n, substeps)[0][:, 4:]
 
     fine = states(256)
     errors = [np.abs(states(s) - fine).max() for s in (1, 2, 4)]  # 100, 50, 25 us
