@@ -261,8 +261,21 @@ def _waviness(wav, z, theta0, shaft_angle, t, p, out):
 
 
 @numba.njit(**_JIT)
+def _scratch(z):
+    """Work array of :func:`_rhs`: waviness per ball and the time-only cache (time = NaN)."""
+    scratch = np.zeros((9, max(z, 3)))
+    scratch[8, 0] = np.nan
+    return scratch
+
+
+@numba.njit(**_JIT)
 def _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch):
-    """First-order right-hand side dy/dt of a scene; fills ``loads[0/1, j]`` (inner/outer)."""
+    """First-order right-hand side dy/dt of a scene; fills ``loads[0/1, j]`` (inner/outer).
+
+    ``scratch`` (shape (9, max(Z, 3)), from :func:`_scratch`) holds the waviness seen by each
+    ball (rows 0-7) and, in row 8, the time and cage-angle cosine/sine they were computed for:
+    the terms that depend on time only are reused by RK stages that share a time.
+    """
     numba.literally(scene)
     numba.literally(ehl)
     z = int(p[P_BALL_COUNT])
@@ -272,14 +285,20 @@ def _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch):
     wc = p[P_CAGE_SPEED]
     theta0 = p[P_CAGE_ANGLE0] + wc * t
     shaft_angle = p[P_SHAFT_ANGLE0] + p[P_SHAFT_SPEED] * t
-    c0, s0 = math.cos(theta0), math.sin(theta0)
+    has_waviness = wav.shape[0] > 0
+    if t == scratch[8, 0]:
+        c0, s0 = scratch[8, 1], scratch[8, 2]
+    else:
+        c0, s0 = math.cos(theta0), math.sin(theta0)
+        if has_waviness:
+            _waviness(wav, z, theta0, shaft_angle, t, p, scratch)
+        scratch[8, 0] = t
+        scratch[8, 1] = c0
+        scratch[8, 2] = s0
     cd, sd = p[P_PITCH_COS], p[P_PITCH_SIN]
     gap = p[P_GAP]
     tau = p[P_CONTACT_DAMPING_TIME]
     floor = p[P_FILM_LOAD_FLOOR]
-    has_waviness = wav.shape[0] > 0
-    if has_waviness:
-        _waviness(wav, z, theta0, shaft_angle, t, p, scratch)
     fxs = 0.0
     fys = 0.0
     fxh = 0.0
@@ -493,7 +512,7 @@ def _rk4_impl(
     acc = np.zeros(n)
     loads = np.zeros((2, z))
     loads_start = np.zeros((2, z))
-    scratch = np.zeros((8, z))
+    scratch = _scratch(z)
     half = 0.5 * dt
     next_rec = 0
     _rhs(scene, ehl, t0, y, p, wav, k1, loads, scratch)
@@ -609,7 +628,7 @@ def _dopri5_impl(
     r4 = np.empty(n)
     acc = np.empty(n)
     loads = np.zeros((2, z))
-    scratch = np.zeros((8, z))
+    scratch = _scratch(z)
     t = t0
     t_end = t_first + (n_record - 1) * record_dt
     h = h0
@@ -1209,7 +1228,7 @@ def _dopri5_full_ehl(
 def _rhs_once_impl(scene, ehl, t, y, p, wav, dydt, loads):
     numba.literally(scene)
     numba.literally(ehl)
-    scratch = np.zeros((8, int(p[P_BALL_COUNT])))
+    scratch = _scratch(int(p[P_BALL_COUNT]))
     _rhs(scene, ehl, t, y, p, wav, dydt, loads, scratch)
 
 

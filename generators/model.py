@@ -532,6 +532,18 @@ def default_step(
     return min(DEFAULT_STEP_MASSLESS, STABILITY_SAFETY * 2.6 / max(lam, 1e-300))
 
 
+def default_oversample(step: float | None, fs: float) -> int:
+    """Record rate / output rate: ``DEFAULT_OVERSAMPLE``, less when the RK4 step is long.
+
+    The record feeds the zero-phase FIR decimation; a record faster than the integration step
+    only samples the step's cubic interpolant, whose content above 1 / (2 dt) is not resolved
+    anyway, so it is capped at about one record per step (at least 1).
+    """
+    if step is None:
+        return DEFAULT_OVERSAMPLE
+    return int(min(DEFAULT_OVERSAMPLE, max(1, round(1.0 / (fs * step)))))
+
+
 def rk4_schedule(
     step: float, record_dt: float, settle_time: float, n_record: int
 ) -> tuple[float, int, float]:
@@ -751,7 +763,10 @@ def simulate(
         prep.freqs,
     )
 
-    oversample = settings.oversample or DEFAULT_OVERSAMPLE
+    step = None
+    if settings.integrator == "rk4":
+        step = settings.step or default_step(level, code, ehl, p, wav, y0)
+    oversample = settings.oversample or default_oversample(step, settings.fs)
     record_dt = 1.0 / (settings.fs * oversample)
     n_out = int(round(settings.duration * settings.fs))
     n_record = n_out * oversample
@@ -761,7 +776,6 @@ def simulate(
     out_loads = np.zeros((n_record if record_loads else 1, 2, z))
     extra: dict = {}
     if settings.integrator == "rk4":
-        step = settings.step or default_step(level, code, ehl, p, wav, y0)
         dt, n_steps, t_first = rk4_schedule(step, record_dt, settings.settle_time, n_record)
         status, t_fail = K._rk4(
             code,
