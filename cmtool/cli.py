@@ -286,6 +286,74 @@ def cmd_frequencies(args: argparse.Namespace) -> int:
     return 0
 
 
+def _progress_bar(total: int, desc: str):
+    """A tqdm progress bar (count, rate, ETA) on stderr, quiet when not a terminal."""
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc=desc, unit="run", disable=None, file=sys.stderr)
+
+
+def cmd_fidelity(args: argparse.Namespace) -> int:
+    """Run the speed/accuracy study and print, write and plot the table."""
+    from .fidelity import fidelity_study, plot_fidelity, recommend
+
+    geometry, operating, defects, _, rig, settings = _model_inputs(args)
+    steps = tuple(float(v) for v in args.steps.split(",")) if args.steps else None
+    rtols = tuple(float(v) for v in args.rtols.split(",")) if args.rtols else None
+    levels = tuple(args.levels.split(","))
+    kwargs = {}
+    if steps is not None:
+        kwargs["rk4_steps"] = steps
+    if rtols is not None:
+        kwargs["dopri5_rtols"] = rtols
+    bar = None
+
+    def progress(done: int, total: int, label: str) -> None:
+        nonlocal bar
+        if bar is None:
+            bar = _progress_bar(total, "fidelity")
+        bar.set_postfix_str(label)
+        bar.update(1)
+
+    table = fidelity_study(
+        geometry,
+        operating,
+        defects,
+        rig=rig,
+        settings=settings,
+        levels=levels,
+        f_max=args.f_max,
+        progress=progress,
+        **kwargs,
+    )
+    if bar is not None:
+        bar.close()
+    with __import__("pandas").option_context("display.width", 160, "display.max_rows", 200):
+        print(table.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
+    print(
+        f"band line {table.attrs['band_frequency_hz']:.2f} Hz, reference "
+        f"{table.attrs['reference']}, spectrum error up to {args.f_max:g} Hz"
+    )
+    best = recommend(table, args.error_bound)
+    if best is None:
+        print(f"no stable setting meets the error bound {args.error_bound:g}")
+    else:
+        print(
+            f"recommended under a {args.error_bound:g} band-amplitude error bound: "
+            f"{best.scene}/{'ehl' if best.ehl else 'dry'} {best.integrator} "
+            f"{best.step_or_tolerance:g} ({best.wall_s_per_simulated_s:.4f} s per simulated s,"
+            f" error {best.band_amplitude_error:.2e})"
+        )
+    if args.out:
+        from .io import atomic_write
+
+        atomic_write(Path(args.out), lambda tmp: table.to_csv(tmp, index=False))
+        print(f"wrote {args.out}")
+    if args.plot:
+        print(f"wrote {plot_fidelity(table, args.plot, error_bound=args.error_bound)}")
+    return 0
+
+
 def cmd_demo(args: argparse.Namespace) -> int:
     """The main job on the embedded default."""
     from .demo import run_demo
@@ -313,6 +381,24 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--rpm", type=float, required=True, help="shaft speed [rev/min]")
     p.add_argument("--json", action="store_true")
     p.set_defaults(func=cmd_frequencies)
+
+    p = sub.add_parser(
+        "fidelity", help="speed against accuracy of every model level and integrator setting"
+    )
+    _add_model_arguments(p)
+    p.add_argument("--levels", default="shaft,shaft+housing,full")
+    p.add_argument("--steps", default=None, help="comma-separated RK4 steps [s]")
+    p.add_argument("--rtols", default=None, help="comma-separated DOPRI5 tolerances")
+    p.add_argument("--f-max", type=float, default=5000.0, help="spectrum error band [Hz]")
+    p.add_argument(
+        "--error-bound",
+        type=float,
+        default=0.01,
+        help="band amplitude error bound for the recommendation [-]",
+    )
+    p.add_argument("--out", help="table as CSV")
+    p.add_argument("--plot", help="runtime against error plot (.png)")
+    p.set_defaults(func=cmd_fidelity)
 
     p = sub.add_parser("demo", help="the main job on the embedded default")
     p.add_argument("--out", default="out/demo", help="output folder")
