@@ -11,6 +11,7 @@ import argparse
 import json
 import logging
 import math
+import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -354,6 +355,54 @@ def cmd_fidelity(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_generate(args: argparse.Namespace) -> int:
+    """Generate a dataset from a recipe."""
+    from .datasets import generate_dataset
+
+    bar = None
+
+    def progress(done: int, total: int) -> None:
+        nonlocal bar
+        if bar is None:
+            from tqdm import tqdm
+
+            bar = tqdm(
+                total=total,
+                desc="generate",
+                unit="signal",
+                disable=None,
+                file=sys.stderr,
+                initial=done,
+            )
+        else:
+            bar.update(done - bar.n)
+
+    summary = generate_dataset(
+        args.recipe,
+        args.out,
+        workers=args.workers,
+        resume=args.resume,
+        scheduler=args.scheduler,
+        progress=progress,
+    )
+    if bar is not None:
+        bar.close()
+    print(
+        f"dataset {summary['name']} in {args.out}: {summary['written']} written, "
+        f"{summary['failed']} failed, {summary['skipped_existing']} already present "
+        f"(of {summary['signals']})"
+    )
+    return 0
+
+
+def cmd_dataset_info(args: argparse.Namespace) -> int:
+    """Print counts per label and parameter ranges."""
+    from .datasets import dataset_info
+
+    print(dataset_info(args.path))
+    return 0
+
+
 def cmd_demo(args: argparse.Namespace) -> int:
     """The main job on the embedded default."""
     from .demo import run_demo
@@ -400,6 +449,29 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--plot", help="runtime against error plot (.png)")
     p.set_defaults(func=cmd_fidelity)
 
+    p = sub.add_parser("generate", help="generate a labelled synthetic dataset from a recipe")
+    p.add_argument("recipe", help="TOML recipe (see datasets/)")
+    p.add_argument("--out", required=True, help="dataset folder")
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=os.cpu_count() or 1,
+        help="local worker processes (default: all cores)",
+    )
+    p.add_argument("--resume", action="store_true", help="continue an interrupted run")
+    p.add_argument(
+        "--scheduler",
+        default=None,
+        help="Dask distributed scheduler address (e.g. tcp://127.0.0.1:8786)",
+    )
+    p.set_defaults(func=cmd_generate)
+
+    p = sub.add_parser("dataset", help="inspect a dataset")
+    dsub = p.add_subparsers(dest="dataset_command", required=True)
+    q = dsub.add_parser("info", help="counts per label and parameter ranges")
+    q.add_argument("path")
+    q.set_defaults(func=cmd_dataset_info)
+
     p = sub.add_parser("demo", help="the main job on the embedded default")
     p.add_argument("--out", default="out/demo", help="output folder")
     p.set_defaults(func=cmd_demo)
@@ -416,7 +488,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     try:
         return int(args.func(args))
-    except (CliError, ParameterError, ValueError) as exc:
+    except (CliError, ParameterError, ValueError, FileNotFoundError) as exc:
         print(f"cmtool {args.command}: error: {exc}", file=sys.stderr)
         return 2
     except SimulationDivergedError as exc:

@@ -1,0 +1,308 @@
+"""``cmtool generate``: write a labelled synthetic dataset from a recipe, locally or on Dask.
+
+Layout of a dataset folder::
+
+    recipe.toml                  the recipe, as given
+    data/part-00000.parquet      one file per chunk of cases: metadata columns + ``signal``
+    failures/part-00000.parquet  cases whose simulation diverged, with the reason
+    _dataset.json                written last: counts, recipe hash, cmtool version
+
+A chunk's data file is written atomically (temporary file, then rename) after its failures
+file, so its presence means the chunk is complete: ``--resume`` skips those chunks and an
+interrupted run ends with every signal exactly once. Signals depend only on the recipe and the
+case index, so the files are identical whatever the number of workers or the finishing order.
+``data/`` is a plain directory of parquet files that pandas, pyarrow, DuckDB, Spark and Dask
+read directly; ``operating_point_id`` groups cases for leakage-free splits.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import tomllib
+from collections.abc import Callable, Iterable
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+import pyarrow as pa
+import pyarrow.parquet as pq
+
+from generators.dataset import CASE_COLUMNS, Case, expand_cases, generate_case, validate_recipe
+
+from . import __version__
+from .io import atomic_write, to_jsonable
+
+__all__ = [
+    "load_recipe",
+    "generate_dataset",
+    "read_dataset",
+    "dataset_info",
+    "DATASET_SCHEMA_VERSION",
+    "DatasetError",
+]
+
+DATASET_SCHEMA_VERSION = 1
+
+_TYPES = {
+    "id": pa.string(),
+    "label": pa.string(),
+    "bearing": pa.string(),
+    "surface": pa.string(),
+    "scene": pa.string(),
+    "integrator": pa.string(),
+    "quantity": pa.string(),
+    "body": pa.string(),
+    "direction": pa.string(),
+    "ehl": pa.bool_(),
+    "index": pa.int64(),
+    "condition": pa.int64(),
+    "operating_point_id": pa.int64(),
+    "waviness_order": pa.int64(),
+    "seed": pa.uint64(),
+}
+DATA_SCHEMA = pa.schema(
+    [pa.field(c, _TYPES.get(c, pa.float64())) for c in CASE_COLUMNS]
+    + [pa.field("signal", pa.list_(pa.float32()))]
+)
+FAILURE_SCHEMA = pa.schema(
+    [pa.field(c, _TYPES.get(c, pa.float64())) for c in CASE_COLUMNS]
+    + [pa.field("error", pa.string())]
+)
+
+
+class DatasetError(ValueError):
+    """A dataset folder or recipe cannot be used as asked."""
+
+
+def load_recipe(path: str | os.PathLike) -> tuple[dict, str]:
+    """Read and validate a TOML recipe: ``(normalised recipe, raw text)``."""
+    path = Path(path)
+    if not path.is_file():
+        raise DatasetError(f"recipe {path}: no such file")
+    text = path.read_text()
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DatasetError(f"recipe {path}: not valid TOML ({exc})") from None
+    return validate_recipe(raw), text
+
+
+def _chunks(cases: list[Case], size: int) -> list[tuple[int, list[Case]]]:
+    return [(i // size, cases[i : i + size]) for i in range(0, len(cases), size)]
+
+
+def run_chunk(recipe: dict, cases: list[Case]) -> list[dict]:
+    """Generate the signals of one chunk (runs in a worker process)."""
+    return [generate_case(recipe, case) for case in cases]
+
+
+def _table(rows: list[dict], schema: pa.Schema) -> pa.Table:
+    columns = {}
+    for field in schema:
+        values = [row[field.name] for row in rows]
+        if field.name == "signal":
+            columns["signal"] = pa.array(
+                [np.asarray(v, dtype=np.float32) for v in values], type=field.type
+            )
+        else:
+            columns[field.name] = pa.array(values, type=field.type)
+    return pa.table(columns, schema=schema)
+
+
+def _file_metadata(recipe_text: str) -> dict[bytes, bytes]:
+    return {
+        b"cmtool_version": __version__.encode(),
+        b"schema_version": str(DATASET_SCHEMA_VERSION).encode(),
+        b"recipe": recipe_text.encode(),
+    }
+
+
+def _write_chunk(out: Path, chunk: int, rows: list[dict], recipe_text: str) -> tuple[int, int]:
+    good = [r for r in rows if r.get("error") is None]
+    bad = [r for r in rows if r.get("error") is not None]
+    meta = _file_metadata(recipe_text)
+    name = f"part-{chunk:05d}.parquet"
+    if bad:
+        table = _table(bad, FAILURE_SCHEMA).replace_schema_metadata(meta)
+        atomic_write(out / "failures" / name, lambda tmp: pq.write_table(table, tmp))
+    table = _table(good, DATA_SCHEMA).replace_schema_metadata(meta)
+    atomic_write(out / "data" / name, lambda tmp: pq.write_table(table, tmp))
+    return len(good), len(bad)
+
+
+def _recipe_hash(recipe: dict) -> str:
+    return hashlib.sha256(json.dumps(to_jsonable(recipe), sort_keys=True).encode()).hexdigest()
+
+
+def generate_dataset(
+    recipe_path: str | os.PathLike,
+    out: str | os.PathLike,
+    *,
+    workers: int = 1,
+    resume: bool = False,
+    scheduler: str | None = None,
+    progress: Callable[[int, int], None] | None = None,
+) -> dict[str, Any]:
+    """Generate the dataset of a recipe into ``out`` (see the module docstring).
+
+    Parameters
+    ----------
+    recipe_path : path
+        TOML recipe.
+    out : path
+        Dataset folder (created).
+    workers : int
+        Local worker processes (1 runs in this process).
+    resume : bool
+        Continue an interrupted run in ``out`` (same recipe required).
+    scheduler : str, optional
+        Address of a Dask distributed scheduler; the chunks run on its workers.
+    progress : callable, optional
+        ``progress(signals_done, signals_total)`` after each chunk.
+
+    Returns
+    -------
+    dict
+        Summary: counts of signals written, failed and skipped (already present).
+    """
+    recipe, text = load_recipe(recipe_path)
+    out = Path(out)
+    digest = _recipe_hash(recipe)
+    stamp = out / "recipe.toml"
+    if out.exists() and any(out.iterdir()):
+        if not resume:
+            raise DatasetError(
+                f"out = {str(out)!r} is not empty; use --resume to continue "
+                "an interrupted run or choose a new folder"
+            )
+        if stamp.is_file():
+            old = validate_recipe(tomllib.loads(stamp.read_text()))
+            if _recipe_hash(old) != digest:
+                raise DatasetError(
+                    f"out = {str(out)!r} was made from a different recipe; cannot resume"
+                )
+    out.mkdir(parents=True, exist_ok=True)
+    atomic_write(stamp, lambda tmp: tmp.write_text(text))
+    cases = expand_cases(recipe)
+    chunks = _chunks(cases, recipe["chunk_size"])
+    todo = [(c, cs) for c, cs in chunks if not (out / "data" / f"part-{c:05d}.parquet").is_file()]
+    skipped = len(cases) - sum(len(cs) for _, cs in todo)
+    done, written, failed = skipped, 0, 0
+    if progress:
+        progress(done, len(cases))
+
+    def finish(chunk: int, rows: list[dict]) -> None:
+        nonlocal done, written, failed
+        g, b = _write_chunk(out, chunk, rows, text)
+        written += g
+        failed += b
+        done += len(rows)
+        if progress:
+            progress(done, len(cases))
+
+    for chunk, rows in _run(recipe, todo, workers=workers, scheduler=scheduler):
+        finish(chunk, rows)
+    summary = {
+        "name": recipe["name"],
+        "signals": len(cases),
+        "written": written,
+        "failed": failed,
+        "skipped_existing": skipped,
+        "recipe_sha256": digest,
+        "cmtool_version": __version__,
+        "schema_version": DATASET_SCHEMA_VERSION,
+        "chunks": len(chunks),
+    }
+    atomic_write(out / "_dataset.json", lambda tmp: tmp.write_text(json.dumps(summary, indent=2)))
+    return summary
+
+
+def _run(
+    recipe: dict, todo: list[tuple[int, list[Case]]], *, workers: int, scheduler: str | None
+) -> Iterable[tuple[int, list[dict]]]:
+    if not todo:
+        return
+    if scheduler:
+        from dask.distributed import Client
+        from dask.distributed import as_completed as dask_completed
+
+        with Client(scheduler) as client:
+            futures = {
+                client.submit(run_chunk, recipe, cs, pure=False, retries=3): c for c, cs in todo
+            }
+            for fut in dask_completed(futures):
+                yield futures[fut], fut.result()
+        return
+    if workers <= 1:
+        for c, cs in todo:
+            yield c, run_chunk(recipe, cs)
+        return
+    import multiprocessing
+
+    ctx = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
+        futures = {pool.submit(run_chunk, recipe, cs): c for c, cs in todo}
+        for fut in as_completed(futures):
+            yield futures[fut], fut.result()
+
+
+def read_dataset(path: str | os.PathLike, *, columns: list[str] | None = None) -> pd.DataFrame:
+    """Read the signals of a dataset folder (``data/``) as a DataFrame sorted by index."""
+    path = Path(path)
+    data = path / "data" if (path / "data").is_dir() else path
+    if not data.is_dir() or not any(data.glob("*.parquet")):
+        raise DatasetError(f"{path}: no data/*.parquet files")
+    frame = pq.read_table(data, columns=columns).to_pandas()
+    if "index" in frame.columns:
+        frame = frame.sort_values("index").reset_index(drop=True)
+    return frame
+
+
+def dataset_info(path: str | os.PathLike) -> str:
+    """Counts per label and parameter ranges of a dataset, as text."""
+    path = Path(path)
+    cols = [
+        "label",
+        "bearing",
+        "rpm",
+        "radial_load_n",
+        "waviness_order",
+        "waviness_amplitude_m",
+        "snr_db",
+        "fs_hz",
+        "duration_s",
+        "operating_point_id",
+    ]
+    frame = read_dataset(path, columns=cols)
+    lines = [f"dataset {path}: {len(frame)} signals"]
+    failures = path / "failures"
+    if failures.is_dir() and any(failures.glob("*.parquet")):
+        nfail = pq.read_table(failures, columns=["id"]).num_rows
+        lines.append(f"failed simulations: {nfail} (see failures/)")
+    lines.append("signals per label:")
+    for label, n in frame["label"].value_counts().sort_index().items():
+        lines.append(f"  {label:<16s} {n}")
+    lines.append(
+        f"operating points: {frame['operating_point_id'].nunique()}; bearings: "
+        f"{', '.join(sorted(frame['bearing'].unique()))}"
+    )
+    lines.append("parameter ranges:")
+    for col in (
+        "rpm",
+        "radial_load_n",
+        "waviness_order",
+        "waviness_amplitude_m",
+        "snr_db",
+        "fs_hz",
+        "duration_s",
+    ):
+        values = frame[col].dropna()
+        if col.startswith("waviness"):
+            values = values[frame["label"] != "healthy"]
+        if len(values):
+            lines.append(f"  {col:<22s} {values.min():.6g} .. {values.max():.6g}")
+    return "\n".join(lines)

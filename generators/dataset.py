@@ -1,0 +1,495 @@
+"""Synthetic fault datasets: recipe -> validated case list -> one labelled signal per case.
+
+A recipe (TOML, see ``datasets/small.toml``) names bearings, an operating grid or random ranges,
+conditions with their waviness ranges and counts, the model and integrator, the sensor
+(quantity, direction, sample rate, duration, noise, optional resonance) and a seed. Everything
+is validated before any simulation starts (errors name the key and the value).
+
+Reproducibility: every case gets its own seed from ``numpy.random.SeedSequence(recipe seed)``
+spawned in case order, so a case's signal depends only on the recipe and its index, never on
+the number of workers or the order they finish in.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from scipy import signal as sp_signal
+
+from ._validate import ParameterError, SimulationDivergedError
+from .catalog import BEARINGS, bearing
+from .kinematics import characteristic_frequencies, waviness_passage_frequencies
+from .model import simulate
+from .params import (
+    INTEGRATORS,
+    SCENE_LEVELS,
+    OperatingCondition,
+    Scene,
+    SimulationSettings,
+    Waviness,
+)
+
+__all__ = [
+    "validate_recipe",
+    "expand_cases",
+    "generate_case",
+    "Case",
+    "QUANTITIES",
+    "DIRECTIONS",
+    "CASE_COLUMNS",
+]
+
+QUANTITIES = ("displacement", "velocity", "acceleration")
+DIRECTIONS = ("x", "y")
+CONDITION_SURFACES = {"healthy": None, "inner": "inner", "outer": "outer", "ball": "ball"}
+
+#: Metadata columns of a generated signal, in order (units in the names).
+CASE_COLUMNS = (
+    "id",
+    "index",
+    "label",
+    "condition",
+    "bearing",
+    "operating_point_id",
+    "rpm",
+    "shaft_frequency_hz",
+    "radial_load_n",
+    "radial_internal_clearance_m",
+    "surface",
+    "waviness_order",
+    "waviness_amplitude_m",
+    "seed",
+    "scene",
+    "ehl",
+    "integrator",
+    "step_s",
+    "quantity",
+    "body",
+    "direction",
+    "fs_hz",
+    "duration_s",
+    "snr_db",
+    "noise_rms",
+    "resonance_hz",
+    "ftf_hz",
+    "bpfo_hz",
+    "bpfi_hz",
+    "bsf_hz",
+    "two_bsf_hz",
+    "wpf_hz",
+)
+
+_TOP_KEYS = {
+    "name",
+    "seed",
+    "description",
+    "bearings",
+    "operating",
+    "conditions",
+    "model",
+    "sensor",
+    "chunk_size",
+}
+
+
+def _fail(key: str, value: Any, why: str) -> ParameterError:
+    return ParameterError(f"recipe key {key} = {value!r}: {why}")
+
+
+def _range_or_grid(key: str, value: Any, *, low: float, high: float, unit: str) -> dict:
+    """A list of numbers (grid) or a table {min, max} (random uniform per case)."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        value = [value]
+    if isinstance(value, list):
+        if not value:
+            raise _fail(key, value, "the list is empty")
+        for v in value:
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not low <= v <= high:
+                raise _fail(
+                    key, value, f"every value must be a number in [{low:g}, {high:g}] {unit}"
+                )
+        return {"grid": [float(v) for v in value]}
+    if isinstance(value, dict):
+        if set(value) != {"min", "max"}:
+            raise _fail(key, value, "a range is a table with exactly 'min' and 'max'")
+        lo, hi = value["min"], value["max"]
+        for v in (lo, hi):
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not low <= v <= high:
+                raise _fail(
+                    key, value, f"min and max must be numbers in [{low:g}, {high:g}] {unit}"
+                )
+        if lo > hi:
+            raise _fail(key, value, "min is larger than max")
+        return {"range": (float(lo), float(hi))}
+    raise _fail(key, value, "expected a number, a list of numbers or {min, max}")
+
+
+def validate_recipe(recipe: dict) -> dict:
+    """Check a recipe completely and return a normalised copy (raises ParameterError).
+
+    Parameters
+    ----------
+    recipe : dict
+        Parsed TOML.
+
+    Returns
+    -------
+    dict
+        The recipe with defaults filled in and ranges normalised.
+    """
+    r = copy.deepcopy(recipe)
+    unknown = set(r) - _TOP_KEYS
+    if unknown:
+        raise _fail(
+            sorted(unknown)[0], r[sorted(unknown)[0]], f"unknown key; allowed: {sorted(_TOP_KEYS)}"
+        )
+    name = r.get("name")
+    if not isinstance(name, str) or not name.replace("-", "").replace("_", "").isalnum():
+        raise _fail("name", name, "a name of letters, digits, - and _ is required")
+    seed = r.get("seed")
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise _fail("seed", seed, "a non-negative integer is required")
+    chunk = r.setdefault("chunk_size", 16)
+    if isinstance(chunk, bool) or not isinstance(chunk, int) or not 1 <= chunk <= 10000:
+        raise _fail("chunk_size", chunk, "an integer in [1, 10000] is required")
+    bearings = r.get("bearings", ["6205"])
+    if isinstance(bearings, str):
+        bearings = [bearings]
+    if not isinstance(bearings, list) or not bearings:
+        raise _fail("bearings", bearings, "a non-empty list of catalog names is required")
+    for b in bearings:
+        if str(b).lower() not in BEARINGS:
+            raise _fail("bearings", bearings, f"{b!r} is not in the catalog {sorted(BEARINGS)}")
+    r["bearings"] = [str(b).lower() for b in bearings]
+    op = r.get("operating")
+    if not isinstance(op, dict) or "rpm" not in op or "load_n" not in op:
+        raise _fail("operating", op, "a table with rpm and load_n is required")
+    extra = set(op) - {"rpm", "load_n", "clearance_m"}
+    if extra:
+        raise _fail(f"operating.{sorted(extra)[0]}", op[sorted(extra)[0]], "unknown key")
+    r["operating"] = {
+        "rpm": _range_or_grid("operating.rpm", op["rpm"], low=1.0, high=60000.0, unit="rpm"),
+        "load_n": _range_or_grid("operating.load_n", op["load_n"], low=0.0, high=1e6, unit="N"),
+    }
+    if "clearance_m" in op:
+        r["operating"]["clearance_m"] = _range_or_grid(
+            "operating.clearance_m", op["clearance_m"], low=-20e-6, high=200e-6, unit="m"
+        )
+    model = r.setdefault("model", {})
+    if not isinstance(model, dict):
+        raise _fail("model", model, "a table is required")
+    extra = set(model) - {"scene", "ehl", "integrator", "step_s", "rtol"}
+    if extra:
+        raise _fail(f"model.{sorted(extra)[0]}", model[sorted(extra)[0]], "unknown key")
+    model.setdefault("scene", "shaft+housing")
+    model.setdefault("ehl", True)
+    model.setdefault("integrator", "rk4")
+    if model["scene"] not in SCENE_LEVELS:
+        raise _fail("model.scene", model["scene"], f"allowed: {SCENE_LEVELS}")
+    if not isinstance(model["ehl"], bool):
+        raise _fail("model.ehl", model["ehl"], "true or false")
+    if model["integrator"] not in INTEGRATORS:
+        raise _fail("model.integrator", model["integrator"], f"allowed: {INTEGRATORS}")
+    sensor = r.get("sensor")
+    if not isinstance(sensor, dict):
+        raise _fail("sensor", sensor, "a table is required")
+    extra = set(sensor) - {
+        "quantity",
+        "direction",
+        "body",
+        "fs_hz",
+        "duration_s",
+        "settle_s",
+        "snr_db",
+        "noise_rms",
+        "resonance_hz",
+        "resonance_damping",
+    }
+    if extra:
+        raise _fail(f"sensor.{sorted(extra)[0]}", sensor[sorted(extra)[0]], "unknown key")
+    sensor.setdefault("quantity", "acceleration")
+    sensor.setdefault("direction", "y")
+    sensor.setdefault("body", "housing")
+    sensor.setdefault("settle_s", 0.1)
+    if sensor["quantity"] not in QUANTITIES:
+        raise _fail("sensor.quantity", sensor["quantity"], f"allowed: {QUANTITIES}")
+    if sensor["direction"] not in DIRECTIONS:
+        raise _fail("sensor.direction", sensor["direction"], f"allowed: {DIRECTIONS}")
+    if sensor["body"] not in ("housing", "shaft"):
+        raise _fail("sensor.body", sensor["body"], "allowed: housing, shaft")
+    for key, lo, hi in (
+        ("fs_hz", 100.0, 1e7),
+        ("duration_s", 1e-3, 3600.0),
+        ("settle_s", 0.0, 3600.0),
+    ):
+        v = sensor.get(key)
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
+            raise _fail(f"sensor.{key}", v, f"a number in [{lo:g}, {hi:g}] is required")
+    if "snr_db" in sensor and "noise_rms" in sensor:
+        raise _fail("sensor.snr_db", sensor["snr_db"], "give snr_db or noise_rms, not both")
+    if "snr_db" in sensor:
+        sensor["snr_db"] = _range_or_grid(
+            "sensor.snr_db", sensor["snr_db"], low=-40.0, high=200.0, unit="dB"
+        )
+    if "noise_rms" in sensor:
+        v = sensor["noise_rms"]
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or v < 0:
+            raise _fail("sensor.noise_rms", v, "a non-negative number (signal unit) is required")
+    if "resonance_hz" in sensor:
+        v = sensor["resonance_hz"]
+        if (
+            isinstance(v, bool)
+            or not isinstance(v, (int, float))
+            or not 0 < v < sensor["fs_hz"] / 2
+        ):
+            raise _fail(
+                "sensor.resonance_hz",
+                v,
+                f"a number in (0, fs/2 = {sensor['fs_hz'] / 2:g}) Hz is required",
+            )
+        sensor.setdefault("resonance_damping", 0.05)
+    conditions = r.get("conditions")
+    if not isinstance(conditions, list) or not conditions:
+        raise _fail("conditions", conditions, "a non-empty list of [[conditions]] is required")
+    labels = set()
+    for i, c in enumerate(conditions):
+        key = f"conditions[{i}]"
+        if not isinstance(c, dict):
+            raise _fail(key, c, "a table is required")
+        extra = set(c) - {"label", "count", "surface", "order", "amplitude_m"}
+        if extra:
+            raise _fail(f"{key}.{sorted(extra)[0]}", c[sorted(extra)[0]], "unknown key")
+        label = c.get("label")
+        if not isinstance(label, str) or not label:
+            raise _fail(f"{key}.label", label, "a label is required")
+        if label in labels:
+            raise _fail(f"{key}.label", label, "labels must be unique")
+        labels.add(label)
+        count = c.get("count")
+        if isinstance(count, bool) or not isinstance(count, int) or count < 1:
+            raise _fail(f"{key}.count", count, "a positive integer is required")
+        surface = c.get("surface", CONDITION_SURFACES.get(label))
+        if surface is None:
+            if "order" in c or "amplitude_m" in c:
+                raise _fail(
+                    f"{key}.surface",
+                    None,
+                    "a waviness condition needs a surface (inner, outer or ball)",
+                )
+            c["surface"] = None
+            continue
+        if surface not in ("inner", "outer", "ball"):
+            raise _fail(f"{key}.surface", surface, "allowed: inner, outer, ball")
+        c["surface"] = surface
+        order = c.get("order")
+        grid = _range_or_grid(f"{key}.order", order, low=1, high=500, unit="")
+        if "range" in grid and any(v != int(v) for v in grid["range"]):
+            raise _fail(f"{key}.order", order, "orders are integers")
+        c["order"] = grid
+        c["amplitude_m"] = _range_or_grid(
+            f"{key}.amplitude_m", c.get("amplitude_m"), low=0.0, high=1e-4, unit="m"
+        )
+    return r
+
+
+@dataclass(frozen=True)
+class Case:
+    """One signal to generate (all parameters drawn, SI units)."""
+
+    index: int
+    label: str
+    condition: int
+    bearing: str
+    operating_point_id: int
+    rpm: float
+    radial_load_n: float
+    clearance_m: float | None
+    surface: str | None
+    waviness_order: int
+    waviness_amplitude_m: float
+    snr_db: float | None
+    seed: int
+
+
+def _draw(spec: dict, rng: np.random.Generator, cycle: int, *, integer: bool = False):
+    if "grid" in spec:
+        v = spec["grid"][cycle % len(spec["grid"])]
+    else:
+        lo, hi = spec["range"]
+        v = rng.integers(int(lo), int(hi) + 1) if integer else rng.uniform(lo, hi)
+    return int(v) if integer else float(v)
+
+
+def expand_cases(recipe: dict) -> list[Case]:
+    """All cases of a validated recipe, in index order (deterministic).
+
+    Grid operating points: each condition cycles through the full grid (bearing x rpm x load
+    x clearance) so every label sees every operating point; ranges draw one value per case.
+    ``operating_point_id`` numbers the distinct (bearing, rpm, load, clearance) points so
+    that splits can group by it.
+    """
+    r = recipe
+    op = r["operating"]
+    seeds = np.random.SeedSequence(r["seed"]).spawn(sum(c["count"] for c in r["conditions"]))
+    grids = [
+        (b, rpm, load, cl)
+        for b in r["bearings"]
+        for rpm in (op["rpm"].get("grid") or [None])
+        for load in (op["load_n"].get("grid") or [None])
+        for cl in ((op.get("clearance_m") or {}).get("grid") or [None])
+    ]
+    point_ids: dict[tuple, int] = {}
+    cases = []
+    index = 0
+    for ci, cond in enumerate(r["conditions"]):
+        for k in range(cond["count"]):
+            ss = seeds[index]
+            rng = np.random.default_rng(ss)
+            b, rpm, load, cl = grids[k % len(grids)]
+            rpm = rpm if rpm is not None else _draw(op["rpm"], rng, k)
+            load = load if load is not None else _draw(op["load_n"], rng, k)
+            if "clearance_m" in op:
+                cl = cl if cl is not None else _draw(op["clearance_m"], rng, k)
+            key = (b, round(rpm, 6), round(load, 6), None if cl is None else round(cl, 12))
+            pid = point_ids.setdefault(key, len(point_ids))
+            order, amp = 0, 0.0
+            if cond["surface"] is not None:
+                order = _draw(cond["order"], rng, k, integer=True)
+                amp = _draw(cond["amplitude_m"], rng, k)
+            snr = None
+            if "snr_db" in r["sensor"]:
+                snr = _draw(r["sensor"]["snr_db"], rng, k)
+            cases.append(
+                Case(
+                    index=index,
+                    label=cond["label"],
+                    condition=ci,
+                    bearing=b,
+                    operating_point_id=pid,
+                    rpm=rpm,
+                    radial_load_n=load,
+                    clearance_m=cl,
+                    surface=cond["surface"],
+                    waviness_order=order,
+                    waviness_amplitude_m=amp,
+                    snr_db=snr,
+                    seed=int(ss.generate_state(1)[0]),
+                )
+            )
+            index += 1
+    return cases
+
+
+def _resonance(x: np.ndarray, fs: float, f0: float, zeta: float) -> np.ndarray:
+    """Sensor/structure resonance: a second-order band-pass (unit gain at f0), bilinear."""
+    w0 = 2 * np.pi * f0
+    # H(s) = 2 zeta w0 s / (s^2 + 2 zeta w0 s + w0^2): |H(j w0)| = 1
+    b, a = sp_signal.bilinear([2 * zeta * w0, 0.0], [1.0, 2 * zeta * w0, w0 * w0], fs)
+    return sp_signal.lfilter(b, a, x)
+
+
+def generate_case(recipe: dict, case: Case) -> dict:
+    """Simulate one case: metadata (``CASE_COLUMNS``) plus ``signal`` (float32) or ``error``.
+
+    A diverged simulation returns the metadata with ``error`` set and no signal.
+    """
+    r = recipe
+    sensor, model = r["sensor"], r["model"]
+    overrides = {} if case.clearance_m is None else {"radial_internal_clearance": case.clearance_m}
+    geometry = bearing(case.bearing, **overrides)
+    operating = OperatingCondition.from_rpm(case.rpm, case.radial_load_n)
+    defects = []
+    if case.surface is not None:
+        defects.append(
+            Waviness(
+                surface=case.surface,
+                order=case.waviness_order,
+                amplitude=case.waviness_amplitude_m,
+                phase=None,
+            )
+        )
+    channel = f"{sensor['body']}_{sensor['quantity']}_{sensor['direction']}"
+    settings = SimulationSettings(
+        fs=float(sensor["fs_hz"]),
+        duration=float(sensor["duration_s"]),
+        settle_time=float(sensor["settle_s"]),
+        integrator=model["integrator"],
+        step=model.get("step_s"),
+        rtol=model.get("rtol", 1e-6),
+        channels=(channel,),
+    )
+    freqs = characteristic_frequencies(geometry, operating.shaft_frequency)
+    wpf = math.nan
+    if case.surface is not None:
+        lines = waviness_passage_frequencies(
+            geometry, operating.shaft_frequency, case.surface, case.waviness_order, max_harmonic=2
+        )
+        strong = [ln.frequency for ln in lines if ln.strength == "strong"]
+        wpf = strong[0] if strong else (lines[0].frequency if lines else math.nan)
+    meta = {
+        "id": f"{r['name']}-{case.index:06d}",
+        "index": case.index,
+        "label": case.label,
+        "condition": case.condition,
+        "bearing": case.bearing,
+        "operating_point_id": case.operating_point_id,
+        "rpm": case.rpm,
+        "shaft_frequency_hz": operating.shaft_frequency,
+        "radial_load_n": case.radial_load_n,
+        "radial_internal_clearance_m": geometry.radial_internal_clearance,
+        "surface": case.surface or "none",
+        "waviness_order": case.waviness_order,
+        "waviness_amplitude_m": case.waviness_amplitude_m,
+        "seed": case.seed,
+        "scene": model["scene"],
+        "ehl": model["ehl"],
+        "integrator": model["integrator"],
+        "step_s": float(model.get("step_s") or math.nan),
+        "quantity": sensor["quantity"],
+        "body": sensor["body"],
+        "direction": sensor["direction"],
+        "fs_hz": float(sensor["fs_hz"]),
+        "duration_s": float(sensor["duration_s"]),
+        "snr_db": math.nan if case.snr_db is None else case.snr_db,
+        "noise_rms": 0.0,
+        "resonance_hz": float(sensor.get("resonance_hz", math.nan)),
+        "ftf_hz": freqs.ftf,
+        "bpfo_hz": freqs.bpfo,
+        "bpfi_hz": freqs.bpfi,
+        "bsf_hz": freqs.bsf,
+        "two_bsf_hz": freqs.two_bsf,
+        "wpf_hz": wpf,
+    }
+    rng = np.random.default_rng(case.seed)
+    try:
+        result = simulate(
+            geometry,
+            operating,
+            defects,
+            scene=Scene(level=model["scene"], ehl=model["ehl"]),
+            settings=settings,
+            random_state=rng,
+        )
+    except SimulationDivergedError as err:
+        return {**meta, "error": str(err)}
+    x = result[channel]
+    x = x - x.mean() if sensor["quantity"] == "displacement" else x.copy()
+    if "resonance_hz" in sensor:
+        x = _resonance(
+            x, settings.fs, float(sensor["resonance_hz"]), float(sensor["resonance_damping"])
+        )
+    noise_rms = 0.0
+    if case.snr_db is not None:
+        noise_rms = float(np.sqrt(np.mean(x * x))) * 10.0 ** (-case.snr_db / 20.0)
+    elif "noise_rms" in sensor:
+        noise_rms = float(sensor["noise_rms"])
+    if noise_rms > 0:
+        x = x + rng.normal(0.0, noise_rms, x.size)
+    if not np.all(np.isfinite(x)):
+        return {**meta, "error": "non-finite samples after the sensor model"}
+    meta["noise_rms"] = noise_rms
+    return {**meta, "signal": x.astype(np.float32), "error": None}

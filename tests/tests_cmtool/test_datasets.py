@@ -1,0 +1,219 @@
+"""Synthetic datasets: recipe validation, reproducibility, atomic/resumable writes, failures,
+local parallel and Dask distributed generation."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pyarrow.parquet as pq
+import pytest
+
+from cmtool.cli import main
+from cmtool.datasets import DatasetError, dataset_info, generate_dataset, read_dataset
+from generators import ParameterError
+from generators.dataset import expand_cases, validate_recipe
+
+REPO = Path(__file__).resolve().parents[2]
+
+TINY = """
+name = "tiny"
+seed = 11
+chunk_size = 2
+[operating]
+rpm = [1500, 2100]
+load_n = { min = 200, max = 800 }
+[sensor]
+fs_hz = 5120
+duration_s = 0.1
+settle_s = 0.02
+snr_db = 10
+[[conditions]]
+label = "healthy"
+count = 3
+[[conditions]]
+label = "outer"
+surface = "outer"
+order = { min = 8, max = 10 }
+amplitude_m = { min = 0.5e-6, max = 1e-6 }
+count = 3
+"""
+
+
+@pytest.fixture
+def tiny(tmp_path):
+    path = tmp_path / "tiny.toml"
+    path.write_text(TINY)
+    return path
+
+
+def test_shipped_recipes_validate():
+    for name in ("small.toml", "waviness.toml"):
+        recipe = validate_recipe(tomllib.loads((REPO / "datasets" / name).read_text()))
+        cases = expand_cases(recipe)
+        assert len(cases) == sum(c["count"] for c in recipe["conditions"])
+    big = validate_recipe(tomllib.loads((REPO / "datasets" / "waviness.toml").read_text()))
+    assert len(expand_cases(big)) >= 1000
+
+
+@pytest.mark.parametrize(
+    ("patch", "match"),
+    [
+        (("seed = 11", "seed = -1"), "recipe key seed = -1"),
+        (("rpm = [1500, 2100]", "rpm = []"), "recipe key operating.rpm"),
+        (
+            ("load_n = { min = 200, max = 800 }", "load_n = { min = 900, max = 800 }"),
+            "min is larger than max",
+        ),
+        (('surface = "outer"', 'surface = "cage"'), "conditions\\[1\\].surface = 'cage'"),
+        (("fs_hz = 5120", "fs_hz = 5"), "sensor.fs_hz = 5"),
+        (("count = 3\n[[conditions]]", "count = 0\n[[conditions]]"), "conditions\\[0\\].count = 0"),
+        (("snr_db = 10", "snr_db = 10\ncolour = 3"), "sensor.colour"),
+    ],
+)
+def test_recipe_errors_name_key_and_value(patch, match):
+    raw = tomllib.loads(TINY.replace(*patch, 1))
+    with pytest.raises(ParameterError, match=match):
+        validate_recipe(raw)
+
+
+def test_generate_writes_labelled_parquet(tiny, tmp_path):
+    out = tmp_path / "ds"
+    summary = generate_dataset(tiny, out, workers=1)
+    assert summary["written"] == 6 and summary["failed"] == 0
+    frame = read_dataset(out)
+    assert list(frame["id"]) == [f"tiny-{i:06d}" for i in range(6)]
+    assert set(frame["label"]) == {"healthy", "outer"}
+    assert frame["signal"].map(len).eq(512).all()
+    assert frame["signal"].iloc[0].dtype == np.float32
+    for col in ("rpm", "radial_load_n", "bpfo_hz", "seed", "operating_point_id", "snr_db"):
+        assert col in frame.columns
+    outer = frame[frame.label == "outer"]
+    assert outer["waviness_order"].between(8, 10).all()
+    meta = pq.read_schema(next((out / "data").glob("*.parquet"))).metadata
+    assert b"tiny" in meta[b"recipe"] and meta[b"cmtool_version"]
+    text = dataset_info(out)
+    assert "healthy" in text and "rpm" in text
+    # noise level follows the SNR: 10 dB -> noise rms = signal rms / 3.16
+    assert (frame["noise_rms"] > 0).all()
+
+
+def test_same_recipe_same_bytes_whatever_the_workers(tiny, tmp_path):
+    a, b = tmp_path / "a", tmp_path / "b"
+    generate_dataset(tiny, a, workers=1)
+    generate_dataset(tiny, b, workers=2)
+    files = sorted(p.name for p in (a / "data").glob("*.parquet"))
+    assert files == sorted(p.name for p in (b / "data").glob("*.parquet"))
+    for name in files:
+        assert (a / "data" / name).read_bytes() == (b / "data" / name).read_bytes()
+
+
+def test_refuses_to_overwrite_and_resume_checks_recipe(tiny, tmp_path):
+    out = tmp_path / "ds"
+    generate_dataset(tiny, out)
+    with pytest.raises(DatasetError, match="not empty; use --resume"):
+        generate_dataset(tiny, out)
+    other = tmp_path / "other.toml"
+    other.write_text(TINY.replace("seed = 11", "seed = 12"))
+    with pytest.raises(DatasetError, match="different recipe"):
+        generate_dataset(other, out, resume=True)
+
+
+def test_resume_after_a_killed_run_gives_every_signal_once(tiny, tmp_path):
+    out = tmp_path / "ds"
+    env = {**os.environ, "PYTHONUNBUFFERED": "1"}
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "cmtool",
+            "generate",
+            str(tiny),
+            "--out",
+            str(out),
+            "--workers",
+            "1",
+        ],
+        env=env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and not (out / "data" / "part-00000.parquet").exists():
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    assert (out / "data" / "part-00000.parquet").exists()
+    assert not list((out / "data").glob("*.tmp"))  # no half-written part visible as data
+    summary = generate_dataset(tiny, out, resume=True)
+    frame = read_dataset(out)
+    assert sorted(frame["id"]) == [f"tiny-{i:06d}" for i in range(6)]
+    assert summary["skipped_existing"] >= 2
+    # the resumed dataset equals an uninterrupted one
+    ref = tmp_path / "ref"
+    generate_dataset(tiny, ref)
+    for p in (ref / "data").glob("*.parquet"):
+        assert p.read_bytes() == (out / "data" / p.name).read_bytes()
+
+
+def test_diverging_simulations_are_recorded_as_failures(tmp_path):
+    recipe = tmp_path / "bad.toml"
+    recipe.write_text(
+        TINY.replace("[sensor]", '[model]\nscene = "full"\nehl = false\nstep_s = 1e-4\n[sensor]')
+    )
+    summary = generate_dataset(recipe, tmp_path / "ds")
+    assert summary["failed"] == 6 and summary["written"] == 0
+    failures = pq.read_table(tmp_path / "ds" / "failures").to_pandas()
+    assert failures["error"].str.contains("diverged").all()
+    assert "signal" not in failures.columns
+
+
+def test_cli_generate_and_info(tiny, tmp_path, capsys):
+    out = tmp_path / "ds"
+    assert main(["generate", str(tiny), "--out", str(out), "--workers", "1"]) == 0
+    assert "6 written" in capsys.readouterr().out
+    assert main(["dataset", "info", str(out)]) == 0
+    assert "signals per label" in capsys.readouterr().out
+    assert main(["generate", str(tiny), "--out", str(out)]) == 2
+    assert "--resume" in capsys.readouterr().err
+
+
+def test_dask_cluster_with_a_worker_killed_mid_run(tiny, tmp_path):
+    distributed = pytest.importorskip("distributed")
+    out = tmp_path / "ds"
+    recipe = tmp_path / "more.toml"
+    recipe.write_text(
+        TINY.replace("count = 3", "count = 8").replace("chunk_size = 2", "chunk_size = 1")
+    )
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
+    ) as cluster:
+        import threading
+
+        result = {}
+
+        def run():
+            result["summary"] = generate_dataset(recipe, out, scheduler=cluster.scheduler_address)
+
+        thread = threading.Thread(target=run)
+        thread.start()
+        deadline = time.monotonic() + 120
+        while (
+            time.monotonic() < deadline
+            and len(list((out / "data").glob("*.parquet")) if (out / "data").exists() else []) < 2
+        ):
+            time.sleep(0.05)
+        # kill one worker process outright (as a crash would)
+        with distributed.Client(cluster.scheduler_address) as client:
+            pids = client.run(os.getpid)
+            victim = sorted(pids.values())[0]
+        os.kill(victim, signal.SIGKILL)
+        thread.join(timeout=300)
+        assert not thread.is_alive()
+    frame = read_dataset(out)
+    assert sorted(frame["id"]) == [f"tiny-{i:06d}" for i in range(16)]
+    assert result["summary"]["written"] + result["summary"]["skipped_existing"] == 16
