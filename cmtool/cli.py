@@ -403,6 +403,111 @@ def cmd_dataset_info(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_train(args: argparse.Namespace) -> int:
+    """Train classifiers with grouped cross-validation and save the best."""
+    from .classifier import save_model, train
+    from .datasets import read_dataset
+
+    frame = read_dataset(args.dataset)
+    recipe = Path(args.dataset, "recipe.toml")
+    bundle = train(
+        frame, recipe=recipe.read_text() if recipe.is_file() else "", random_state=args.seed
+    )
+    print(
+        f"trained on {len(frame)} signals, {frame['operating_point_id'].nunique()} operating "
+        f"points; grouped {bundle['n_splits']}-fold accuracy (no operating point in both "
+        "train and test):"
+    )
+    for name, score in sorted(bundle["scores"].items(), key=lambda kv: -kv[1]):
+        print(f"  {name:<22s} {score:.3f}{'  <- kept' if name == bundle['best'] else ''}")
+    for key, value in bundle["extrapolation"].items():
+        print(f"  extrapolation {key:<28s} {value:.3f}")
+    print(f"wrote {save_model(bundle, args.out)}")
+    return 0
+
+
+def cmd_evaluate(args: argparse.Namespace) -> int:
+    """Accuracy, per-class precision/recall and confusion matrix of a model on a dataset."""
+    from .classifier import evaluate, load_model
+    from .datasets import read_dataset
+    from .plots import plot_confusion
+
+    bundle = load_model(args.model)
+    result = evaluate(bundle, read_dataset(args.dataset))
+    print(f"accuracy {result['accuracy']:.3f} on {len(result['predictions'])} signals")
+    print(f"{'label':<12s} {'precision':>9s} {'recall':>7s} {'f1':>6s}")
+    for label, m in result["per_class"].items():
+        print(f"{label:<12s} {m['precision']:9.3f} {m['recall']:7.3f} {m['f1-score']:6.3f}")
+    labels = result["labels"]
+    print("confusion matrix (rows true, columns predicted): " + ", ".join(labels))
+    for label, row in zip(labels, result["confusion"], strict=True):
+        print(f"  {label:<12s} " + " ".join(f"{v:4d}" for v in row))
+    if args.out:
+        out = Path(args.out)
+        png = plot_confusion(
+            result["confusion"],
+            labels,
+            out / "confusion.png",
+            title=f"{Path(args.model).name} on {Path(args.dataset).name}",
+        )
+        (out / "evaluation.json").write_text(
+            json.dumps({k: v for k, v in result.items() if k != "predictions"}, indent=2)
+        )
+        print(f"wrote {png}")
+    return 0
+
+
+def cmd_diagnose(args: argparse.Namespace) -> int:
+    """Diagnose a recording: verdict, evidence, optional report and JSON."""
+    from .diagnose import diagnose_signal, write_report
+    from .io import read_recording
+
+    x, meta = read_recording(args.recording, variable=args.variable, channel=args.channel)
+    warnings = []
+    fs = args.fs if args.fs is not None else meta.get("fs_hz")
+    if fs is None:
+        raise CliError(f"{args.recording}: the file holds no sample rate; give --fs")
+    if args.fs is not None and "fs_hz" in meta and abs(meta["fs_hz"] - args.fs) > 1e-6 * args.fs:
+        warnings.append(
+            f"--fs {args.fs:g} Hz differs from the file's {meta['fs_hz']:g} Hz; using --fs"
+        )
+    rpm = args.rpm if args.rpm is not None else meta.get("rpm")
+    if rpm is None:
+        raise CliError(f"{args.recording}: the file holds no shaft speed; give --rpm")
+    model = None
+    if args.model:
+        from .classifier import load_model
+
+        model = load_model(args.model)
+    diagnosis = diagnose_signal(x, float(fs), float(rpm), args.bearing, model=model)
+    diagnosis.warnings = warnings + diagnosis.warnings
+    if args.report:
+        report = write_report(
+            diagnosis, args.report, title=Path(args.recording).name, x=x, fs=float(fs)
+        )
+        if not args.json:
+            print(f"wrote {report}")
+    if args.json:
+        print(json.dumps(diagnosis.to_dict(), indent=2))
+    else:
+        print(
+            f"{Path(args.recording).name}: {diagnosis.verdict} (confidence "
+            f"{diagnosis.confidence:.2f}); envelope band {diagnosis.band_hz[0]:.0f}-"
+            f"{diagnosis.band_hz[1]:.0f} Hz"
+        )
+        for c in diagnosis.candidates:
+            print(
+                f"  {c['fault']:<11s} {c['frequency_hz']:9.3f} Hz  envelope SNR "
+                f"{c['envelope_snr_db'][0]:6.1f} / {c['envelope_snr_db'][1]:6.1f} / "
+                f"{c['envelope_snr_db'][2]:6.1f} dB (1x/2x/3x)"
+            )
+        if diagnosis.model_verdict:
+            print(f"  model: {diagnosis.model_verdict}")
+        for w in diagnosis.warnings:
+            print(f"  warning: {w}")
+    return 0
+
+
 def cmd_demo(args: argparse.Namespace) -> int:
     """The main job on the embedded default."""
     from .demo import run_demo
@@ -471,6 +576,30 @@ def build_parser() -> argparse.ArgumentParser:
     q = dsub.add_parser("info", help="counts per label and parameter ranges")
     q.add_argument("path")
     q.set_defaults(func=cmd_dataset_info)
+
+    p = sub.add_parser("train", help="train a classifier on a dataset")
+    p.add_argument("dataset", help="dataset folder (cmtool generate)")
+    p.add_argument("--out", required=True, help="model file (.joblib)")
+    p.add_argument("--seed", type=int, default=0)
+    p.set_defaults(func=cmd_train)
+
+    p = sub.add_parser("evaluate", help="accuracy and confusion matrix of a model")
+    p.add_argument("model")
+    p.add_argument("dataset")
+    p.add_argument("--out", help="folder for confusion.png and evaluation.json")
+    p.set_defaults(func=cmd_evaluate)
+
+    p = sub.add_parser("diagnose", help="diagnose a measured recording")
+    p.add_argument("recording", help="CSV, WAV, MATLAB .mat, .npy/.npz or parquet file")
+    p.add_argument("--fs", type=float, default=None, help="sample rate [Hz] (if not in file)")
+    p.add_argument("--rpm", type=float, default=None, help="shaft speed [rev/min]")
+    p.add_argument("--bearing", default="6205", choices=sorted(BEARINGS))
+    p.add_argument("--variable", default=None, help="variable of a .mat/.npz file")
+    p.add_argument("--channel", default=None, help="column or channel")
+    p.add_argument("--model", default=None, help="trained model (cmtool train)")
+    p.add_argument("--report", default=None, help="folder for report.md and plots")
+    p.add_argument("--json", action="store_true", help="print the verdict as JSON")
+    p.set_defaults(func=cmd_diagnose)
 
     p = sub.add_parser("demo", help="the main job on the embedded default")
     p.add_argument("--out", default="out/demo", help="output folder")

@@ -15,7 +15,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-__all__ = ["plot_spectrum", "plot_kurtogram"]
+__all__ = ["plot_spectrum", "plot_kurtogram", "plot_confusion"]
 
 _COLORS = {
     "bpfo": "tab:red",
@@ -133,6 +133,36 @@ def plot_kurtogram(result, path: str | Path, *, title: str = "kurtogram") -> Pat
     ax.set_ylabel("level")
     ax.set_title(f"{title}: band {low:.0f}-{high:.0f} Hz, SK = {result.kurtosis:.2f}")
     fig.colorbar(im, ax=ax, label="spectral kurtosis")
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+    return path
+
+
+def plot_confusion(matrix, labels, path: str | Path, *, title: str) -> Path:
+    """Confusion matrix (rows: true label, columns: predicted) with counts in the cells."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    m = np.asarray(matrix)
+    fig, ax = plt.subplots(figsize=(5.5, 4.8), dpi=110)
+    ax.imshow(m, cmap="Blues")
+    ax.set_xticks(range(len(labels)))
+    ax.set_xticklabels(labels, rotation=30, ha="right")
+    ax.set_yticks(range(len(labels)))
+    ax.set_yticklabels(labels)
+    for i in range(m.shape[0]):
+        for j in range(m.shape[1]):
+            ax.text(
+                j,
+                i,
+                str(m[i, j]),
+                ha="center",
+                va="center",
+                color="white" if m[i, j] > m.max() / 2 else "black",
+            )
+    ax.set_xlabel("predicted")
+    ax.set_ylabel("true")
+    ax.set_title(title)
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)

@@ -14,7 +14,13 @@ Feature names and units (U = unit of the signal, dB = 20 log10 of a ratio):
   spectrum of the band chosen by the kurtogram (or given);
 * ``envelope_<fault>_sideband_snr`` [dB]: mean SNR of the first lower and upper sidebands of
   the fundamental (spacing: shaft frequency for ``bpfi``, cage frequency for ``two_bsf``);
+* ``spectrum_<fault>_h<k>_sideband_snr`` [dB]: largest SNR in the amplitude spectrum among the
+  sidebands k x fault +/- m x spacing, m = 1 .. ``SPECTRUM_SIDEBANDS`` (waviness of the inner
+  race puts its lines at q BPFI + (N_w - qZ) f_s, of the balls at 2p BSF +/- FTF: MODEL.md
+  2.1);
 * the kurtogram band is at least ``MIN_BAND_FACTOR`` times the fastest fault rate wide;
+* ``spectrum_<fault>_max_snr`` [dB]: the largest of the fault's spectrum SNRs above (its
+  harmonics and, where defined, their sidebands): one number per fault family;
 * ``kurtogram_kurtosis`` [-], ``kurtogram_center_rel`` [-] (centre / (fs/2)),
   ``kurtogram_bandwidth_rel`` [-] (bandwidth / (fs/2)).
 """
@@ -45,6 +51,8 @@ __all__ = [
 DEFAULT_FAULTS = ("bpfo", "bpfi", "two_bsf", "ftf")
 #: Sideband spacing per fault: the context key that gives it.
 SIDEBAND_SPACING = {"bpfi": "shaft", "two_bsf": "ftf"}
+#: Sidebands searched per harmonic in the amplitude spectrum.
+SPECTRUM_SIDEBANDS = 1
 #: Relative width of the noise-floor window around a line.
 FLOOR_WINDOW = 0.10
 #: The kurtogram may only choose bands at least this many times wider than the fastest fault
@@ -127,6 +135,13 @@ def feature_names(faults=DEFAULT_FAULTS, n_harmonics: int = 3) -> list[str]:
             for k in range(1, n_harmonics + 1):
                 names += [f"{kind}_{fault}_h{k}", f"{kind}_{fault}_h{k}_snr"]
     names += [f"envelope_{f}_sideband_snr" for f in faults if f in SIDEBAND_SPACING]
+    names += [
+        f"spectrum_{f}_h{k}_sideband_snr"
+        for f in faults
+        if f in SIDEBAND_SPACING
+        for k in range(1, n_harmonics + 1)
+    ]
+    names += [f"spectrum_{f}_max_snr" for f in faults]
     names += ["kurtogram_kurtosis", "kurtogram_center_rel", "kurtogram_bandwidth_rel"]
     return names
 
@@ -230,6 +245,31 @@ def extract_features(
             )
             snrs.append(_db(peak, floor))
         out[f"envelope_{fault}_sideband_snr"] = float(np.mean(snrs))
+    for fault in faults:
+        if fault not in SIDEBAND_SPACING:
+            continue
+        spacing = context.get(SIDEBAND_SPACING[fault])
+        f0 = float(context[fault])
+        for k in range(1, n_harmonics + 1):
+            best = 0.0
+            if spacing is not None and spacing > 0:
+                hw = half_width if half_width is not None else max(1.5 * df, 0.003 * k * f0)
+                for m in range(1, SPECTRUM_SIDEBANDS + 1):
+                    for sign in (-1, 1):
+                        line = k * f0 + sign * m * spacing
+                        if line <= 0:
+                            continue
+                        peak, floor = _line(spectra.frequencies, spectra.amplitude, line, hw)
+                        best = max(best, _db(peak, floor))
+            out[f"spectrum_{fault}_h{k}_sideband_snr"] = best
+    for fault in faults:
+        keys = [f"spectrum_{fault}_h{k}_snr" for k in range(1, n_harmonics + 1)]
+        keys += [
+            f"spectrum_{fault}_h{k}_sideband_snr"
+            for k in range(1, n_harmonics + 1)
+            if fault in SIDEBAND_SPACING
+        ]
+        out[f"spectrum_{fault}_max_snr"] = max(out[k] for k in keys)
     low, high = spectra.band
     kg = spectra.kurtogram
     out["kurtogram_kurtosis"] = kg.kurtosis if kg is not None else 0.0

@@ -182,10 +182,3 @@ def test_frequencies_json(capsys):
     assert main(["frequencies", "--bearing", "6205", "--rpm", "1797", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["frequencies_hz"]["bpfo"] == pytest.approx(107.36, abs=0.01)
-
-
-def test_demo(tmp_path, capsys):
-    assert main(["demo", "--out", str(tmp_path)]) == 0
-    out = capsys.readouterr().out
-    assert "outer_waviness_nw9" in out
-    assert (tmp_path / "outer_waviness_nw9_spectrum.png").exists()

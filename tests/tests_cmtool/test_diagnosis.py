@@ -1,0 +1,175 @@
+"""Training, evaluation, model files and diagnosis (simulated and measured signals)."""
+
+import json
+import pickle
+from pathlib import Path
+
+import joblib
+import numpy as np
+import pandas as pd
+import pytest
+
+from cmtool.classifier import ModelVersionError, evaluate, load_model, save_model, train
+from cmtool.cli import main
+from cmtool.datasets import read_dataset
+from cmtool.diagnose import DETECTION_DB, diagnose_signal
+from cmtool.io import read_recording
+
+REPO = Path(__file__).resolve().parents[2]
+SMALL = REPO / "datasets" / "small"
+
+
+@pytest.fixture(scope="module")
+def small():
+    return read_dataset(SMALL)
+
+
+@pytest.fixture(scope="module")
+def bundle(small):
+    return train(small, recipe=(SMALL / "recipe.toml").read_text())
+
+
+def test_committed_small_dataset_matches_its_recipe(small):
+    assert len(small) == 48
+    assert small["label"].value_counts().to_dict() == {
+        "healthy": 12,
+        "inner": 12,
+        "outer": 12,
+        "ball": 12,
+    }
+
+
+def test_training_reports_grouped_scores_and_keeps_the_best(bundle):
+    assert set(bundle["scores"]) >= {"random_forest", "extra_trees", "logistic_regression"}
+    assert bundle["best"] == max(bundle["scores"], key=bundle["scores"].get)
+    # far above chance (0.25) on operating points never seen in training
+    assert bundle["scores"][bundle["best"]] > 0.8
+    assert set(bundle["extrapolation"]) >= {"rpm_above_training", "radial_load_n_above_training"}
+    assert bundle["classes"] == ["ball", "healthy", "inner", "outer"]
+
+
+def test_model_round_trip_and_version_check(bundle, small, tmp_path):
+    path = save_model(bundle, tmp_path / "m.joblib")
+    loaded = load_model(path)
+    np.testing.assert_array_equal(
+        loaded["pipeline"].predict(small.head(8)), bundle["pipeline"].predict(small.head(8))
+    )
+    assert json.loads(path.with_suffix(".joblib.json").read_text())["best"] == bundle["best"]
+    old = dict(bundle, versions={**bundle["versions"], "sklearn": "0.1"})
+    joblib.dump(old, tmp_path / "old.joblib")
+    with pytest.raises(ModelVersionError, match="sklearn 0.1"):
+        load_model(tmp_path / "old.joblib")
+    joblib.dump({"not": "a model"}, tmp_path / "junk.joblib")
+    with pytest.raises(ModelVersionError, match="not a cmtool model"):
+        load_model(tmp_path / "junk.joblib")
+
+
+def test_evaluate_metrics(bundle, small):
+    result = evaluate(bundle, small)
+    assert set(result["per_class"]) == {"ball", "healthy", "inner", "outer"}
+    cm = np.array(result["confusion"])
+    assert cm.sum() == len(small)
+    assert result["accuracy"] == pytest.approx(np.trace(cm) / cm.sum())
+    pickle.dumps(result)
+
+
+def test_cli_train_evaluate(tmp_path, capsys):
+    model = tmp_path / "model.joblib"
+    assert main(["train", str(SMALL), "--out", str(model)]) == 0
+    out = capsys.readouterr().out
+    assert "grouped" in out and "<- kept" in out
+    assert main(["evaluate", str(model), str(SMALL), "--out", str(tmp_path / "ev")]) == 0
+    out = capsys.readouterr().out
+    assert "confusion matrix" in out and "precision" in out
+    assert (tmp_path / "ev" / "confusion.png").stat().st_size > 5000
+
+
+def test_diagnose_synthetic_impulses_and_noise(rng):
+    fs, n = 12000.0, 24000
+    t = np.arange(n) / fs
+    from generators import bearing, characteristic_frequencies
+
+    f = characteristic_frequencies(bearing("6205"), 1800 / 60)
+    x = np.zeros(n)
+    x[(np.arange(0, n / fs, 1 / f.bpfi) * fs).astype(int)] = 1.0
+    ring = np.exp(-t[:120] * 1500) * np.sin(2 * np.pi * 3000 * t[:120])
+    x = np.convolve(x, ring)[:n] * (1 + 0.5 * np.cos(2 * np.pi * f.shaft * t))
+    d = diagnose_signal(x / x.std() + rng.standard_normal(n), fs, 1800.0, "6205")
+    assert d.verdict == "inner race"
+    assert d.candidates[0]["envelope_snr_db"][0] >= DETECTION_DB
+    noise = diagnose_signal(rng.standard_normal(n), fs, 1800.0, "6205")
+    assert noise.verdict == "healthy"
+
+
+def test_diagnose_bad_input(rng):
+    with pytest.raises(ValueError, match="constant"):
+        diagnose_signal(np.ones(5000), 12000.0, 1800.0)
+    with pytest.raises(ValueError, match="rpm = 99999"):
+        diagnose_signal(rng.standard_normal(5000), 12000.0, 99999.0)
+    clipped = np.clip(rng.standard_normal(24000), -1.5, 1.5)
+    assert any("clipped" in w for w in diagnose_signal(clipped, 12000.0, 1800.0).warnings)
+
+
+def test_cli_diagnose_csv_json_and_model(tmp_path, capsys, rng, bundle):
+    x = rng.standard_normal(12000)
+    csv = tmp_path / "rec.csv"
+    pd.DataFrame({"time": np.arange(x.size) / 12000.0, "accel": x}).to_csv(csv, index=False)
+    model = save_model(bundle, tmp_path / "m.joblib")
+    assert (
+        main(
+            [
+                "diagnose",
+                str(csv),
+                "--rpm",
+                "1800",
+                "--json",
+                "--model",
+                str(model),
+                "--report",
+                str(tmp_path / "rep"),
+            ]
+        )
+        == 0
+    )
+    data = json.loads(capsys.readouterr().out)
+    assert data["verdict"] == "healthy"
+    assert {
+        "verdict",
+        "confidence",
+        "candidates",
+        "frequencies",
+        "warnings",
+        "model_verdict",
+    } <= set(data)
+    assert data["frequencies"]["bpfo"] == pytest.approx(107.54, abs=0.01)
+    assert (tmp_path / "rep" / "report.md").read_text().startswith("# Diagnosis")
+    assert main(["diagnose", str(csv)]) == 2  # no rpm in a CSV
+    assert "give --rpm" in capsys.readouterr().err
+
+
+@pytest.mark.realdata
+def test_measured_recordings_get_their_labelled_fault(shared_data, capsys):
+    manifest = pd.read_csv(shared_data / "MANIFEST.csv")
+    expected = {"inner": "inner race", "outer": "outer race", "ball": "ball", "normal": "healthy"}
+    for _, row in manifest.iterrows():
+        x, meta = read_recording(shared_data / row.file)
+        d = diagnose_signal(
+            x,
+            float(row.sampling_rate_hz),
+            float(row.shaft_rpm),
+            "6205" if row.dataset == "CWRU" else "mfpt",
+        )
+        assert d.verdict == expected[row.fault_location], (row.file, d.candidates)
+    rc = main(
+        ["diagnose", str(shared_data / "cwru" / "normal_0_97.mat"), "--fs", "48000", "--json"]
+    )
+    assert rc == 0
+    assert json.loads(capsys.readouterr().out)["verdict"] == "healthy"
+
+
+def test_demo_runs_end_to_end(tmp_path, capsys):
+    assert main(["demo", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "grouped-CV accuracy" in out
+    assert (tmp_path / "confusion.png").exists()
+    assert (tmp_path / "diagnosis_simulated" / "report.md").exists()
