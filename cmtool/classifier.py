@@ -1,10 +1,11 @@
 """Train and check a classifier on a synthetic dataset; save and load models safely.
 
 The pipeline is ``features.FeatureExtractor`` (the feature table, computed once per signal)
-followed by a scaler and a classifier. Candidates (random forest, extra trees, histogram gradient
-boosting, logistic regression) are compared by cross-validation grouped by ``operating_point_id`` (no
-speed/load point in both train and test) and the best is refitted on all data. Extrapolation is
-reported too: trained without the highest speed (load), tested on it.
+followed by a scaler and a classifier. Candidates (random forest, extra trees, histogram
+gradient boosting, logistic regression) are compared by cross-validation grouped by
+``operating_point_id`` (no speed/load point in both train and test) and the best is refitted
+on all data. Extrapolation is reported too: trained without the highest (lowest) speed or
+load, tested on it.
 
 Models are saved with joblib together with the feature names, the classes, the training
 recipe and the versions of cmtool, scikit-learn and numpy; loading a model made by another
