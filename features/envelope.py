@@ -63,11 +63,10 @@ class KurtogramResult:
 
     @property
     def band(self) -> tuple[float, float]:
-        """The selected band (low, high) [Hz]."""
-        return (
-            self.center_frequency - self.bandwidth / 2,
-            self.center_frequency + self.bandwidth / 2,
-        )
+        """The selected band (low, high) [Hz], within [0, fs/2]."""
+        low = max(self.center_frequency - self.bandwidth / 2, 0.0)
+        high = min(self.center_frequency + self.bandwidth / 2, self.fs / 2)
+        return (low, high)
 
 
 def prewhiten(x: np.ndarray, *, axis: int = -1) -> np.ndarray:

@@ -26,6 +26,16 @@ CONTEXT_COLUMNS = {
 }
 
 
+def _feature_rows(items, faults, n_harmonics, names):
+    out = []
+    for signal, ctx in items:
+        feats = extract_features(
+            signal, ctx["fs"], fault_frequencies=ctx, faults=faults, n_harmonics=n_harmonics
+        )
+        out.append([feats[name] for name in names])
+    return out
+
+
 class FeatureExtractor(TransformerMixin, BaseEstimator):
     """Signals in, feature table out (``features.extract_features`` per signal).
 
@@ -48,6 +58,9 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
         Harmonics per fault.
     signal_column : str
         Column of the signals in DataFrame input.
+    n_jobs : int or None
+        Worker processes for the transform (joblib; ``None`` or 1: in this process,
+        -1: all cores). Signals are independent, so the table is the same for any value.
     """
 
     def __init__(
@@ -57,7 +70,9 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
         faults: tuple[str, ...] = DEFAULT_FAULTS,
         n_harmonics: int = 3,
         signal_column: str = "signal",
+        n_jobs: int | None = None,
     ):
+        self.n_jobs = n_jobs
         self.fs = fs
         self.fault_frequencies = fault_frequencies
         self.faults = faults
@@ -102,17 +117,22 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
         check_is_fitted(self, "feature_names_out_")
         if not isinstance(X, pd.DataFrame):
             X = validate_data(self, X, dtype=np.float64, reset=False, ensure_min_features=2)
-        rows = []
-        for signal, ctx in self._rows(X):
-            feats = extract_features(
-                signal,
-                ctx["fs"],
-                fault_frequencies=ctx,
-                faults=self.faults,
-                n_harmonics=self.n_harmonics,
+        names = list(self.feature_names_out_)
+        items = list(self._rows(X))
+        if self.n_jobs in (None, 1) or len(items) < 2:
+            rows = _feature_rows(items, self.faults, self.n_harmonics, names)
+        else:
+            from joblib import Parallel, delayed, effective_n_jobs
+
+            jobs = effective_n_jobs(self.n_jobs)
+            chunks = [items[i::jobs] for i in range(jobs)]
+            parts = Parallel(n_jobs=jobs)(
+                delayed(_feature_rows)(c, self.faults, self.n_harmonics, names) for c in chunks
             )
-            rows.append([feats[name] for name in self.feature_names_out_])
-        return np.asarray(rows, dtype=float).reshape(len(rows), len(self.feature_names_out_))
+            rows = [None] * len(items)
+            for i, part in enumerate(parts):
+                rows[i::jobs] = part
+        return np.asarray(rows, dtype=float).reshape(len(items), len(names))
 
     def get_feature_names_out(self, input_features=None) -> np.ndarray:
         """Names of the output features."""

@@ -134,3 +134,18 @@ def test_order_and_subset_invariance_on_real_lengths(rng):
     np.testing.assert_allclose(ext.transform(signals[::-1]), full[::-1])
     np.testing.assert_allclose(ext.transform(signals[1:3]), full[1:3])
     np.testing.assert_allclose(ext.fit(signals).transform(signals), full)
+
+
+def test_parallel_transform_equals_serial(rng):
+    signals = np.stack([impulses(rng, CTX[f]) for f in ("bpfo", "bpfi", "two_bsf", "bpfo")])
+    serial = F.FeatureExtractor(fs=FS, fault_frequencies=CTX).fit(signals).transform(signals)
+    parallel = F.FeatureExtractor(fs=FS, fault_frequencies=CTX, n_jobs=2).fit(signals)
+    np.testing.assert_array_equal(parallel.transform(signals), serial)
+
+
+def test_kurtogram_band_stays_below_nyquist(rng):
+    # white noise often selects the top band; its edge must not round above fs/2
+    for seed in range(5):
+        kg = F.kurtogram(np.random.default_rng(seed).standard_normal(25600), 25600.0)
+        low, high = kg.band
+        assert 0.0 <= low < high <= 12800.0
