@@ -217,3 +217,12 @@ def test_dask_cluster_with_a_worker_killed_mid_run(tiny, tmp_path):
     frame = read_dataset(out)
     assert sorted(frame["id"]) == [f"tiny-{i:06d}" for i in range(16)]
     assert result["summary"]["written"] + result["summary"]["skipped_existing"] == 16
+
+
+def test_committed_dataset_reads_with_pyarrow_and_dask():
+    data = REPO / "datasets" / "small" / "data"
+    table = pq.read_table(data, columns=["id", "label", "signal"])
+    assert table.num_rows == 48
+    dd = pytest.importorskip("dask.dataframe")
+    frame = dd.read_parquet(str(data), columns=["id", "label", "rpm"]).compute()
+    assert sorted(frame["id"]) == [f"small-{i:06d}" for i in range(48)]
