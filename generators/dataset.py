@@ -476,6 +476,8 @@ def generate_case(recipe: dict, case: Case) -> dict:
         )
     except SimulationDivergedError as err:
         return {**meta, "error": str(err)}
+    except ParameterError as err:  # e.g. no static equilibrium for this case's geometry
+        return {**meta, "error": f"not simulated: {err}"}
     x = result[channel]
     x = x - x.mean() if sensor["quantity"] == "displacement" else x.copy()
     if "resonance_hz" in sensor:

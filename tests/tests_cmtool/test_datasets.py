@@ -226,3 +226,18 @@ def test_committed_dataset_reads_with_pyarrow_and_dask():
     dd = pytest.importorskip("dask.dataframe")
     frame = dd.read_parquet(str(data), columns=["id", "label", "rpm"]).compute()
     assert sorted(frame["id"]) == [f"small-{i:06d}" for i in range(48)]
+
+
+def test_a_case_without_static_equilibrium_is_a_recorded_failure(monkeypatch, tiny):
+    import generators.dataset as gd
+    from cmtool.datasets import load_recipe
+
+    recipe, _ = load_recipe(tiny)
+    case = expand_cases(recipe)[0]
+
+    def no_equilibrium(*args, **kwargs):
+        raise ParameterError("radial_load = 1 N: static equilibrium not found")
+
+    monkeypatch.setattr(gd, "simulate", no_equilibrium)
+    row = gd.generate_case(recipe, case)
+    assert "signal" not in row and row["error"].startswith("not simulated: radial_load")
