@@ -508,6 +508,46 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_bench(args: argparse.Namespace) -> int:
+    """Run detectors over a labelled dataset; print, write and plot the rates."""
+    from .bench import load_callable, plot_bench, run_bench, summarise
+
+    model = None
+    if args.model:
+        from .classifier import load_model
+
+        model = load_model(args.model)
+    detectors = {spec: load_callable(spec) for spec in args.detector}
+    bar = None
+
+    def progress(done: int, total: int) -> None:
+        nonlocal bar
+        if bar is None:
+            from tqdm import tqdm
+
+            bar = tqdm(total=total, desc="bench", unit="signal", disable=None, file=sys.stderr)
+        bar.update(done - bar.n)
+
+    results = run_bench(
+        args.dataset, model=model, detectors=detectors, bearing=args.bearing, progress=progress
+    )
+    if bar is not None:
+        bar.close()
+    summary = summarise(results)
+    for name, table in summary.items():
+        print(f"== {name}")
+        print(table.to_string(float_format=lambda v: f"{v:.3f}"))
+    if args.out:
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        results.to_csv(out / "bench_results.csv", index=False)
+        for name, table in summary.items():
+            table.to_csv(out / f"bench_{name}.csv")
+        for path in plot_bench(summary, out):
+            print(f"wrote {path}")
+    return 0
+
+
 def cmd_demo(args: argparse.Namespace) -> int:
     """The main job on the embedded default."""
     from .demo import run_demo
@@ -600,6 +640,25 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--report", default=None, help="folder for report.md and plots")
     p.add_argument("--json", action="store_true", help="print the verdict as JSON")
     p.set_defaults(func=cmd_diagnose)
+
+    p = sub.add_parser("bench", help="benchmark detectors on a labelled dataset")
+    p.add_argument("dataset", help="cmtool dataset folder, or a folder with MANIFEST.csv")
+    p.add_argument("--model", default=None, help="trained model (adds the 'model' detector)")
+    p.add_argument(
+        "--detector",
+        action="append",
+        default=[],
+        metavar="MODULE:FUNCTION",
+        help="user detector f(x, fs, rpm, bearing) -> label; repeatable",
+    )
+    p.add_argument(
+        "--bearing",
+        default="6205",
+        choices=sorted(BEARINGS),
+        help="bearing when the manifest does not say",
+    )
+    p.add_argument("--out", default=None, help="folder for CSV tables and plots")
+    p.set_defaults(func=cmd_bench)
 
     p = sub.add_parser("demo", help="the main job on the embedded default")
     p.add_argument("--out", default="out/demo", help="output folder")
