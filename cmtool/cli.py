@@ -19,6 +19,7 @@ from pathlib import Path
 from generators import (
     BEARINGS,
     LUBRICANTS,
+    LocalizedDefect,
     OperatingCondition,
     ParameterError,
     Rig,
@@ -35,7 +36,7 @@ from . import __version__
 
 logger = logging.getLogger("cmtool")
 
-__all__ = ["main", "parse_waviness", "build_parser"]
+__all__ = ["main", "parse_waviness", "parse_defect", "build_parser"]
 
 
 class CliError(Exception):
@@ -78,6 +79,49 @@ def parse_waviness(spec: str) -> Waviness:
     return Waviness(surface=surface, **fields)  # type: ignore[arg-type]
 
 
+def parse_defect(spec: str) -> LocalizedDefect:
+    """Parse ``surface:length=L:depth=H[:position=P|random][:ball=J]`` into a LocalizedDefect.
+
+    Lengths in m, position in rad (outer race default -pi/2: 6 o'clock, the load-zone centre;
+    inner race and ball default random).
+
+    Examples
+    --------
+    >>> parse_defect("outer:length=0.18e-3:depth=20e-6").depth
+    2e-05
+    """
+    parts = spec.split(":")
+    surface = parts[0].strip()
+    fields: dict[str, object] = {}
+    for item in parts[1:]:
+        if "=" not in item:
+            raise CliError(
+                f"--defect {spec!r}: {item!r} is not key=value "
+                "(expected surface:length=L:depth=H[:position=P|random][:ball=J])"
+            )
+        key, value = (s.strip() for s in item.split("=", 1))
+        try:
+            if key == "ball":
+                fields[key] = int(value)
+            elif key in ("length", "depth"):
+                fields[key] = float(value)
+            elif key == "position":
+                fields[key] = None if value == "random" else float(value)
+            else:
+                raise CliError(
+                    f"--defect {spec!r}: unknown key {key!r} "
+                    "(allowed: length, depth, position, ball)"
+                )
+        except ValueError as err:
+            raise CliError(f"--defect {spec!r}: {key}={value!r} is not a number") from err
+    for required in ("length", "depth"):
+        if required not in fields:
+            raise CliError(f"--defect {spec!r}: {required}= is missing")
+    if surface in ("inner", "ball") and "position" not in fields:
+        fields["position"] = None
+    return LocalizedDefect(surface=surface, **fields)  # type: ignore[arg-type]
+
+
 def _add_model_arguments(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("bearing and operating point")
     g.add_argument(
@@ -105,6 +149,14 @@ def _add_model_arguments(p: argparse.ArgumentParser) -> None:
         metavar="SPEC",
         help="surface:order=N:amplitude=A[:phase=P|random][:ball=J], repeatable; "
         "surface outer|inner|ball, amplitude [m]",
+    )
+    g.add_argument(
+        "--defect",
+        action="append",
+        default=[],
+        metavar="SPEC",
+        help="local defect (pit, spall) surface:length=L:depth=H[:position=P|random][:ball=J], "
+        "repeatable; length and depth [m], position [rad] (outer default -pi/2, the load zone)",
     )
     s = p.add_argument_group("model")
     s.add_argument(
@@ -175,6 +227,7 @@ def _model_inputs(args: argparse.Namespace):
         args.rpm, args.load, load_angle=args.load_angle, cage_slip=args.cage_slip
     )
     defects = [parse_waviness(s) for s in args.waviness]
+    defects += [parse_defect(s) for s in args.defect]
     scene = Scene(level=args.scene, ehl=args.ehl, auto_error_bound=args.auto_error_bound)
     rig = Rig(
         shaft_mass=args.shaft_mass,
@@ -212,7 +265,7 @@ def waviness_markers(result, defects) -> dict[str, float]:
     markers = {"shaft": f.shaft, "bpfo": f.bpfo, "bpfi": f.bpfi, "two_bsf": f.two_bsf}
     geometry = bearing(result.parameters["bearing"]["name"])
     for w in defects:
-        if w.order < 1:
+        if not isinstance(w, Waviness) or w.order < 1:
             continue
         lines = waviness_passage_frequencies(geometry, f.shaft, w.surface, w.order, max_harmonic=1)
         for line in lines[:1]:

@@ -45,13 +45,14 @@ __all__ = [
     "DatasetError",
 ]
 
-DATASET_SCHEMA_VERSION = 1
+DATASET_SCHEMA_VERSION = 2
 
 _TYPES = {
     "id": pa.string(),
     "label": pa.string(),
     "bearing": pa.string(),
     "surface": pa.string(),
+    "defect_kind": pa.string(),
     "scene": pa.string(),
     "integrator": pa.string(),
     "quantity": pa.string(),
@@ -272,8 +273,11 @@ def dataset_info(path: str | os.PathLike) -> str:
         "radial_load_n",
         "waviness_order",
         "waviness_amplitude_m",
+        "defect_length_m",
+        "defect_depth_m",
         "snr_db",
         "fs_hz",
+        "resonance_hz",
         "duration_s",
         "operating_point_id",
     ]
@@ -296,12 +300,15 @@ def dataset_info(path: str | os.PathLike) -> str:
         "radial_load_n",
         "waviness_order",
         "waviness_amplitude_m",
+        "defect_length_m",
+        "defect_depth_m",
         "snr_db",
         "fs_hz",
+        "resonance_hz",
         "duration_s",
     ):
         values = frame[col].dropna()
-        if col.startswith("waviness"):
+        if col.startswith(("waviness", "defect")):
             values = values[frame["label"] != "healthy"]
         if len(values):
             lines.append(f"  {col:<22s} {values.min():.6g} .. {values.max():.6g}")

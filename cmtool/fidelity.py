@@ -22,6 +22,7 @@ import pandas as pd
 import features
 from generators import (
     BearingGeometry,
+    LocalizedDefect,
     OperatingCondition,
     Rig,
     Scene,
@@ -57,10 +58,16 @@ DEFAULT_DOPRI5_RTOLS = (1e-4, 1e-6, 1e-8)
 CHANNEL = "housing_velocity_y"
 
 
-def _band_frequency(result, defects: Sequence[Waviness]) -> float:
-    """The first strong waviness line of the first waviness, or BPFO for a healthy bearing."""
+def _band_frequency(result, defects: Sequence[Waviness | LocalizedDefect]) -> float:
+    """The line a fidelity run measures [Hz].
+
+    The first strong waviness line of the first waviness, the fault frequency of the first
+    local defect (BPFO, BPFI, 2xBSF), or BPFO for a healthy bearing.
+    """
     f = result.frequencies
     for w in defects:
+        if isinstance(w, LocalizedDefect):
+            return {"outer": f.bpfo, "inner": f.bpfi, "ball": f.two_bsf}[w.surface]
         if w.order >= 1:
             from generators import bearing
 

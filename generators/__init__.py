@@ -18,6 +18,7 @@ from .contact import (
     series_constant,
     squeeze_film_damping,
 )
+from .defects import DefectPath, defect_path, sagitta
 from .kinematics import (
     BearingFrequencies,
     WavinessLine,
@@ -29,6 +30,7 @@ from .params import (
     LUBRICANTS,
     STEEL_52100,
     BearingGeometry,
+    LocalizedDefect,
     Lubricant,
     Material,
     OperatingCondition,
@@ -47,7 +49,9 @@ __all__ = [
     "BearingFrequencies",
     "BearingGeometry",
     "ContactGeometry",
+    "DefectPath",
     "HertzContact",
+    "LocalizedDefect",
     "Lubricant",
     "Material",
     "OperatingCondition",
@@ -64,6 +68,7 @@ __all__ = [
     "characteristic_frequencies",
     "contact_geometry",
     "contact_static_capacity",
+    "defect_path",
     "entrainment_speed",
     "film_stiffness",
     "film_thickness",
@@ -71,6 +76,7 @@ __all__ = [
     "load_deflection_constants",
     "natural_frequencies",
     "resolve_scene",
+    "sagitta",
     "series_constant",
     "simulate",
     "squeeze_film_damping",

@@ -91,6 +91,15 @@ SCENE_FULL = 2
 SURF_OUTER = 0
 SURF_INNER = 1
 SURF_BALL = 2
+# Localized defects (rows of the same table): W_ORDER holds the half width [rad], W_AMPLITUDE
+# the depth [m], W_PHASE the centre position [rad] on the defective surface, W_STEP_COS the radius
+# of that surface [m] (arc length per radian), W_STEP_SIN the bridging radius [m] (the reduced
+# radius of the contact in the rolling direction), W_BALL the ball (ball defects). A ball defect
+# is two rows: the contact with the outer race and, diametrically opposite, with the inner race.
+SURF_OUTER_DEFECT = 3
+SURF_INNER_DEFECT = 4
+SURF_BALL_DEFECT_OUTER = 5
+SURF_BALL_DEFECT_INNER = 6
 W_SURFACE, W_BALL, W_ORDER, W_AMPLITUDE, W_PHASE, W_STEP_COS, W_STEP_SIN, W_SIZE = range(8)
 # W_STEP_COS/SIN: cos and sin of k times the ball pitch 2 pi / Z (race rows).
 
@@ -211,6 +220,66 @@ def _hertz_ehl_table(
 
 
 @numba.njit(**_JIT)
+def _wrap(angle):
+    """Angle wrapped to [-pi, pi)."""
+    return (angle + math.pi) % (2.0 * math.pi) - math.pi
+
+
+@numba.njit(**_JIT)
+def _pit(delta, half_width, depth, radius, bridge, rate, out, row, j):
+    """Subtract the path of a ball over a pit from ``out[row, j]`` (and its rate from row + 1).
+
+    ``delta`` is the angle of the contact point from the pit centre [rad] and ``rate`` its time
+    derivative [rad/s]; the pit spans |delta| < half_width on a surface of radius ``radius``
+    [m]. The ball (reduced radius ``bridge`` [m] in the rolling direction) pivots over the
+    nearer edge, at a distance e = (half_width - |delta|) radius from it, and sinks by the
+    sagitta bridge - sqrt(bridge^2 - e^2) until it reaches the floor at ``depth`` [m]: a narrow
+    pit is bridged, a wide one is followed to its floor (the kinks are the impacts).
+    """
+    u = abs(delta)
+    if u >= half_width:
+        return
+    e = (half_width - u) * radius
+    root2 = bridge * bridge - e * e
+    if root2 <= 0.0:
+        out[row, j] -= depth
+        return
+    root = math.sqrt(root2)
+    sag = bridge - root
+    if sag >= depth:
+        out[row, j] -= depth
+        return
+    out[row, j] -= sag
+    # d(sag)/dt = e / root * de/dt, de/dt = -sign(delta) * rate * radius
+    sign = 1.0 if delta >= 0.0 else -1.0
+    out[row + 1, j] += e / root * sign * rate * radius
+
+
+@numba.njit(**_JIT)
+def _defect(wav, r, surface, z, theta0, shaft_angle, t, wc, ws, wb, out):
+    """Localized defect rows of the waviness table (outer, inner race, or one ball)."""
+    half = wav[r, W_ORDER]
+    depth = wav[r, W_AMPLITUDE]
+    pos = wav[r, W_PHASE]
+    radius = wav[r, W_STEP_COS]
+    bridge = wav[r, W_STEP_SIN]
+    if surface == SURF_BALL_DEFECT_OUTER or surface == SURF_BALL_DEFECT_INNER:
+        j = int(wav[r, W_BALL])
+        # spin angle of the outer contact point on the ball; the inner one is opposite
+        chi = wb * t if surface == SURF_BALL_DEFECT_OUTER else wb * t + math.pi
+        row = 4 if surface == SURF_BALL_DEFECT_OUTER else 6
+        _pit(_wrap(chi - pos), half, depth, radius, bridge, wb, out, row, j)
+        return
+    pitch = 2.0 * math.pi / z
+    for j in range(z):
+        theta = theta0 + j * pitch
+        if surface == SURF_OUTER_DEFECT:
+            _pit(_wrap(theta - pos), half, depth, radius, bridge, wc, out, 0, j)
+        else:
+            _pit(_wrap(theta - shaft_angle - pos), half, depth, radius, bridge, wc - ws, out, 2, j)
+
+
+@numba.njit(**_JIT)
 def _waviness(wav, z, theta0, shaft_angle, t, p, out):
     """Waviness seen by ball j: ``out[:, j] = [w_o, dw_o, w_i, dw_i, wb_o, dwb_o, wb_i, dwb_i]``.
 
@@ -228,6 +297,9 @@ def _waviness(wav, z, theta0, shaft_angle, t, p, out):
         k = wav[r, W_ORDER]
         a = wav[r, W_AMPLITUDE]
         ph = wav[r, W_PHASE]
+        if surface >= SURF_OUTER_DEFECT:
+            _defect(wav, r, surface, z, theta0, shaft_angle, t, wc, ws, wb, out)
+            continue
         if surface == SURF_BALL:
             j = int(wav[r, W_BALL])
             arg = k * wb * t + ph

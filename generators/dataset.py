@@ -27,6 +27,7 @@ from .model import simulate
 from .params import (
     INTEGRATORS,
     SCENE_LEVELS,
+    LocalizedDefect,
     OperatingCondition,
     Scene,
     SimulationSettings,
@@ -45,6 +46,7 @@ __all__ = [
 
 QUANTITIES = ("displacement", "velocity", "acceleration")
 DIRECTIONS = ("x", "y")
+DEFECT_KINDS = ("waviness", "localized")
 CONDITION_SURFACES = {"healthy": None, "inner": "inner", "outer": "outer", "ball": "ball"}
 
 #: Metadata columns of a generated signal, in order (units in the names).
@@ -62,6 +64,10 @@ CASE_COLUMNS = (
     "surface",
     "waviness_order",
     "waviness_amplitude_m",
+    "defect_kind",
+    "defect_length_m",
+    "defect_depth_m",
+    "defect_position_rad",
     "seed",
     "scene",
     "ehl",
@@ -221,8 +227,12 @@ def validate_recipe(recipe: dict) -> dict:
         raise _fail("sensor.direction", sensor["direction"], f"allowed: {DIRECTIONS}")
     if sensor["body"] not in ("housing", "shaft"):
         raise _fail("sensor.body", sensor["body"], "allowed: housing, shaft")
+    fs = sensor.get("fs_hz")
+    sensor["fs_hz"] = _range_or_grid("sensor.fs_hz", fs, low=100.0, high=1e7, unit="Hz")
+    if "grid" not in sensor["fs_hz"]:
+        raise _fail("sensor.fs_hz", fs, "a sample rate or a list of them is required")
+    fs_min = min(sensor["fs_hz"]["grid"])
     for key, lo, hi in (
-        ("fs_hz", 100.0, 1e7),
         ("duration_s", 1e-3, 3600.0),
         ("settle_s", 0.0, 3600.0),
     ):
@@ -240,18 +250,16 @@ def validate_recipe(recipe: dict) -> dict:
         if isinstance(v, bool) or not isinstance(v, (int, float)) or v < 0:
             raise _fail("sensor.noise_rms", v, "a non-negative number (signal unit) is required")
     if "resonance_hz" in sensor:
-        v = sensor["resonance_hz"]
-        if (
-            isinstance(v, bool)
-            or not isinstance(v, (int, float))
-            or not 0 < v < sensor["fs_hz"] / 2
-        ):
-            raise _fail(
-                "sensor.resonance_hz",
-                v,
-                f"a number in (0, fs/2 = {sensor['fs_hz'] / 2:g}) Hz is required",
-            )
-        sensor.setdefault("resonance_damping", 0.05)
+        sensor["resonance_hz"] = _range_or_grid(
+            "sensor.resonance_hz",
+            sensor["resonance_hz"],
+            low=1.0,
+            high=0.45 * fs_min,
+            unit="Hz (below 0.45 x the lowest sample rate)",
+        )
+        zeta = sensor.setdefault("resonance_damping", 0.05)
+        if isinstance(zeta, bool) or not isinstance(zeta, (int, float)) or not 0 < zeta < 1:
+            raise _fail("sensor.resonance_damping", zeta, "a number in (0, 1) is required")
     conditions = r.get("conditions")
     if not isinstance(conditions, list) or not conditions:
         raise _fail("conditions", conditions, "a non-empty list of [[conditions]] is required")
@@ -260,7 +268,17 @@ def validate_recipe(recipe: dict) -> dict:
         key = f"conditions[{i}]"
         if not isinstance(c, dict):
             raise _fail(key, c, "a table is required")
-        extra = set(c) - {"label", "count", "surface", "order", "amplitude_m"}
+        extra = set(c) - {
+            "label",
+            "count",
+            "surface",
+            "defect",
+            "order",
+            "amplitude_m",
+            "length_m",
+            "depth_m",
+            "position_rad",
+        }
         if extra:
             raise _fail(f"{key}.{sorted(extra)[0]}", c[sorted(extra)[0]], "unknown key")
         label = c.get("label")
@@ -273,18 +291,42 @@ def validate_recipe(recipe: dict) -> dict:
         if isinstance(count, bool) or not isinstance(count, int) or count < 1:
             raise _fail(f"{key}.count", count, "a positive integer is required")
         surface = c.get("surface", CONDITION_SURFACES.get(label))
+        defect_keys = {"defect", "order", "amplitude_m", "length_m", "depth_m", "position_rad"}
         if surface is None:
-            if "order" in c or "amplitude_m" in c:
+            if defect_keys & set(c):
                 raise _fail(
                     f"{key}.surface",
                     None,
-                    "a waviness condition needs a surface (inner, outer or ball)",
+                    "a defect condition needs a surface (inner, outer or ball)",
                 )
             c["surface"] = None
+            c["defect"] = None
             continue
         if surface not in ("inner", "outer", "ball"):
             raise _fail(f"{key}.surface", surface, "allowed: inner, outer, ball")
         c["surface"] = surface
+        kind = c.setdefault("defect", "waviness")
+        if kind not in DEFECT_KINDS:
+            raise _fail(f"{key}.defect", kind, f"allowed: {DEFECT_KINDS}")
+        wrong = {
+            "waviness": {"length_m", "depth_m", "position_rad"},
+            "localized": {"order", "amplitude_m"},
+        }[kind] & set(c)
+        if wrong:
+            name = sorted(wrong)[0]
+            raise _fail(f"{key}.{name}", c[name], f"not a key of a {kind} defect")
+        if kind == "localized":
+            c["length_m"] = _range_or_grid(
+                f"{key}.length_m", c.get("length_m"), low=1e-6, high=0.05, unit="m"
+            )
+            c["depth_m"] = _range_or_grid(
+                f"{key}.depth_m", c.get("depth_m"), low=0.0, high=1e-3, unit="m"
+            )
+            if "position_rad" in c:
+                c["position_rad"] = _range_or_grid(
+                    f"{key}.position_rad", c["position_rad"], low=-100.0, high=100.0, unit="rad"
+                )
+            continue
         order = c.get("order")
         grid = _range_or_grid(f"{key}.order", order, low=1, high=500, unit="")
         if "range" in grid and any(v != int(v) for v in grid["range"]):
@@ -313,6 +355,12 @@ class Case:
     waviness_amplitude_m: float
     snr_db: float | None
     seed: int
+    defect_kind: str = "none"
+    defect_length_m: float = math.nan
+    defect_depth_m: float = math.nan
+    defect_position_rad: float = math.nan
+    fs_hz: float = math.nan
+    resonance_hz: float = math.nan
 
 
 def _draw(spec: dict, rng: np.random.Generator, cycle: int, *, integer: bool = False):
@@ -357,12 +405,28 @@ def expand_cases(recipe: dict) -> list[Case]:
             key = (b, round(rpm, 6), round(load, 6), None if cl is None else round(cl, 12))
             pid = point_ids.setdefault(key, len(point_ids))
             order, amp = 0, 0.0
-            if cond["surface"] is not None:
+            kind, length, depth, position = "none", math.nan, math.nan, math.nan
+            if cond["defect"] == "waviness":
+                kind = "waviness"
                 order = _draw(cond["order"], rng, k, integer=True)
                 amp = _draw(cond["amplitude_m"], rng, k)
+            elif cond["defect"] == "localized":
+                kind = "localized"
+                length = _draw(cond["length_m"], rng, k)
+                depth = _draw(cond["depth_m"], rng, k)
+                if "position_rad" in cond:
+                    position = _draw(cond["position_rad"], rng, k)
+                elif cond["surface"] == "outer":
+                    position = -math.pi / 2  # centre of the load zone (downward load)
             snr = None
             if "snr_db" in r["sensor"]:
                 snr = _draw(r["sensor"]["snr_db"], rng, k)
+            # sample rates alternate per full pass through the operating grid (every
+            # operating point sees every rate)
+            fs = _draw(r["sensor"]["fs_hz"], rng, k // len(grids))
+            resonance = math.nan
+            if "resonance_hz" in r["sensor"]:
+                resonance = _draw(r["sensor"]["resonance_hz"], rng, k)
             cases.append(
                 Case(
                     index=index,
@@ -378,6 +442,12 @@ def expand_cases(recipe: dict) -> list[Case]:
                     waviness_amplitude_m=amp,
                     snr_db=snr,
                     seed=int(ss.generate_state(1)[0]),
+                    defect_kind=kind,
+                    defect_length_m=length,
+                    defect_depth_m=depth,
+                    defect_position_rad=position,
+                    fs_hz=fs,
+                    resonance_hz=resonance,
                 )
             )
             index += 1
@@ -402,8 +472,17 @@ def generate_case(recipe: dict, case: Case) -> dict:
     overrides = {} if case.clearance_m is None else {"radial_internal_clearance": case.clearance_m}
     geometry = bearing(case.bearing, **overrides)
     operating = OperatingCondition.from_rpm(case.rpm, case.radial_load_n)
-    defects = []
-    if case.surface is not None:
+    defects: list = []
+    if case.defect_kind == "localized":
+        defects.append(
+            LocalizedDefect(
+                surface=case.surface,
+                length=case.defect_length_m,
+                depth=case.defect_depth_m,
+                position=None if math.isnan(case.defect_position_rad) else case.defect_position_rad,
+            )
+        )
+    elif case.surface is not None:
         defects.append(
             Waviness(
                 surface=case.surface,
@@ -414,7 +493,7 @@ def generate_case(recipe: dict, case: Case) -> dict:
         )
     channel = f"{sensor['body']}_{sensor['quantity']}_{sensor['direction']}"
     settings = SimulationSettings(
-        fs=float(sensor["fs_hz"]),
+        fs=case.fs_hz,
         duration=float(sensor["duration_s"]),
         settle_time=float(sensor["settle_s"]),
         integrator=model["integrator"],
@@ -424,7 +503,7 @@ def generate_case(recipe: dict, case: Case) -> dict:
     )
     freqs = characteristic_frequencies(geometry, operating.shaft_frequency)
     wpf = math.nan
-    if case.surface is not None:
+    if case.defect_kind == "waviness":
         lines = waviness_passage_frequencies(
             geometry, operating.shaft_frequency, case.surface, case.waviness_order, max_harmonic=2
         )
@@ -444,6 +523,10 @@ def generate_case(recipe: dict, case: Case) -> dict:
         "surface": case.surface or "none",
         "waviness_order": case.waviness_order,
         "waviness_amplitude_m": case.waviness_amplitude_m,
+        "defect_kind": case.defect_kind,
+        "defect_length_m": case.defect_length_m,
+        "defect_depth_m": case.defect_depth_m,
+        "defect_position_rad": case.defect_position_rad,
         "seed": case.seed,
         "scene": model["scene"],
         "ehl": model["ehl"],
@@ -452,11 +535,11 @@ def generate_case(recipe: dict, case: Case) -> dict:
         "quantity": sensor["quantity"],
         "body": sensor["body"],
         "direction": sensor["direction"],
-        "fs_hz": float(sensor["fs_hz"]),
+        "fs_hz": case.fs_hz,
         "duration_s": float(sensor["duration_s"]),
         "snr_db": math.nan if case.snr_db is None else case.snr_db,
         "noise_rms": 0.0,
-        "resonance_hz": float(sensor.get("resonance_hz", math.nan)),
+        "resonance_hz": case.resonance_hz,
         "ftf_hz": freqs.ftf,
         "bpfo_hz": freqs.bpfo,
         "bpfi_hz": freqs.bpfi,
@@ -480,10 +563,8 @@ def generate_case(recipe: dict, case: Case) -> dict:
         return {**meta, "error": f"not simulated: {err}"}
     x = result[channel]
     x = x - x.mean() if sensor["quantity"] == "displacement" else x.copy()
-    if "resonance_hz" in sensor:
-        x = _resonance(
-            x, settings.fs, float(sensor["resonance_hz"]), float(sensor["resonance_damping"])
-        )
+    if not math.isnan(case.resonance_hz):
+        x = _resonance(x, settings.fs, case.resonance_hz, float(sensor["resonance_damping"]))
     noise_rms = 0.0
     if case.snr_db is not None:
         noise_rms = float(np.sqrt(np.mean(x * x))) * 10.0 ** (-case.snr_db / 20.0)

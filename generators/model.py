@@ -34,10 +34,12 @@ from .contact import (
     load_deflection_constants,
     squeeze_film_damping,
 )
+from .defects import defect_path
 from .kinematics import BearingFrequencies, characteristic_frequencies
 from .params import (
     CHANNELS,
     BearingGeometry,
+    LocalizedDefect,
     OperatingCondition,
     Rig,
     Scene,
@@ -130,25 +132,58 @@ def _contacts(geometry: BearingGeometry):
     return ci, co, load_deflection_constants(geometry)
 
 
-def _as_defects(defects) -> tuple[Waviness, ...]:
+Defect = Waviness | LocalizedDefect
+
+
+def _as_defects(defects) -> tuple[Defect, ...]:
     if defects is None:
         return ()
-    if isinstance(defects, Waviness):
+    if isinstance(defects, (Waviness, LocalizedDefect)):
         return (defects,)
     out = tuple(defects)
     for i, d in enumerate(out):
-        if not isinstance(d, Waviness):
-            raise ParameterError(f"defects[{i}] = {d!r} is not a Waviness")
+        if not isinstance(d, (Waviness, LocalizedDefect)):
+            raise ParameterError(f"defects[{i}] = {d!r} is not a Waviness or LocalizedDefect")
     return out
 
 
+def _localized_rows(
+    geometry: BearingGeometry, defect: LocalizedDefect, rng: np.random.Generator
+) -> list[tuple]:
+    """Kernel table rows of a local defect (columns: see ``_kernels`` SURF_*_DEFECT)."""
+    if defect.surface == "ball" and defect.ball >= geometry.ball_count:
+        raise ParameterError(
+            f"ball = {defect.ball} is outside the allowed range [0, {geometry.ball_count - 1}]"
+        )
+    path = defect_path(geometry, defect)
+    position = rng.uniform(-np.pi, np.pi) if defect.position is None else defect.position
+    common = (path.half_width, defect.depth, position, path.surface_radius)
+    if defect.surface == "outer":
+        return [(K.SURF_OUTER_DEFECT, -1, *common, path.bridge_radius_outer)]
+    if defect.surface == "inner":
+        return [(K.SURF_INNER_DEFECT, -1, *common, path.bridge_radius_inner)]
+    return [
+        (K.SURF_BALL_DEFECT_OUTER, defect.ball, *common, path.bridge_radius_outer),
+        (K.SURF_BALL_DEFECT_INNER, defect.ball, *common, path.bridge_radius_inner),
+    ]
+
+
 def _waviness_table(
-    defects: Sequence[Waviness], ball_count: int, rng: np.random.Generator
+    defects: Sequence[Defect],
+    ball_count: int,
+    rng: np.random.Generator,
+    geometry: BearingGeometry | None = None,
 ) -> np.ndarray:
-    """Expand waviness objects into the kernel table (ball rows per ball, phases drawn)."""
+    """Expand defects into the kernel table (ball rows per ball, phases drawn)."""
     rows = []
     code = {"outer": K.SURF_OUTER, "inner": K.SURF_INNER}
     for w in defects:
+        if isinstance(w, LocalizedDefect):
+            if geometry is None:
+                raise ValueError("local defects need the bearing geometry")
+            if w.depth > 0.0:
+                rows.extend(_localized_rows(geometry, w, rng))
+            continue
         if w.amplitude == 0.0:
             continue
         if w.surface in code:
@@ -515,6 +550,10 @@ def _jacobian(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarr
     return jac
 
 
+#: RK4 steps per passage of a contact over a local defect (measured: see tests_validation).
+DEFECT_STEPS = 10
+
+
 def default_step(
     level: str, code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray
 ) -> float:
@@ -529,7 +568,29 @@ def default_step(
     and 2.83 on the imaginary axis; 2.6 covers the arc between.
     """
     lam = float(np.max(np.abs(np.linalg.eigvals(_jacobian(code, ehl, p, wav, y0)))))
-    return min(DEFAULT_STEP_MASSLESS, STABILITY_SAFETY * 2.6 / max(lam, 1e-300))
+    step = min(DEFAULT_STEP_MASSLESS, STABILITY_SAFETY * 2.6 / max(lam, 1e-300))
+    return min(step, defect_step(p, wav))
+
+
+def defect_step(p: np.ndarray, wav: np.ndarray) -> float:
+    """Step limit [s] from local defects: ``DEFECT_STEPS`` steps per passage of a contact.
+
+    A contact crosses a pit of half width w [rad] in 2 w / |rate|, rate the angular speed of
+    the contact point on the defective surface (cage for the outer race, cage minus shaft for
+    the inner race, ball spin for a ball). ``inf`` without local defects.
+    """
+    rates = {
+        K.SURF_OUTER_DEFECT: p[K.P_CAGE_SPEED],
+        K.SURF_INNER_DEFECT: p[K.P_CAGE_SPEED] - p[K.P_SHAFT_SPEED],
+        K.SURF_BALL_DEFECT_OUTER: p[K.P_BALL_SPIN_SPEED],
+        K.SURF_BALL_DEFECT_INNER: p[K.P_BALL_SPIN_SPEED],
+    }
+    step = math.inf
+    for row in wav:
+        rate = abs(rates.get(int(row[K.W_SURFACE]), 0.0))
+        if rate > 0.0:
+            step = min(step, 2.0 * row[K.W_ORDER] / rate / DEFECT_STEPS)
+    return step
 
 
 def default_oversample(step: float | None, fs: float) -> int:
@@ -565,6 +626,14 @@ def rk4_schedule(
     return dt, n_steps, t_first
 
 
+def _defect_record(geometry: BearingGeometry, defect: Defect) -> dict:
+    record = {"kind": type(defect).__name__, **dataclasses.asdict(defect)}
+    if isinstance(defect, LocalizedDefect):
+        path = defect_path(geometry, defect)
+        record.update(half_width_rad=path.half_width, max_sink_m=path.max_sink)
+    return record
+
+
 def _params_record(geometry, operating, rig, scene, level, reason, settings, defects, extra):
     def clean(obj):
         d = dataclasses.asdict(obj)
@@ -576,7 +645,7 @@ def _params_record(geometry, operating, rig, scene, level, reason, settings, def
         "rig": clean(rig),
         "scene": {**clean(scene), "resolved_level": level, "reason": reason},
         "settings": clean(settings),
-        "defects": [clean(d) for d in defects],
+        "defects": [_defect_record(geometry, d) for d in defects],
         **extra,
     }
 
@@ -608,7 +677,7 @@ class Prepared:
 def prepare(
     bearing: BearingGeometry,
     operating: OperatingCondition,
-    defects: Waviness | Sequence[Waviness] | None = None,
+    defects: Defect | Sequence[Defect] | None = None,
     *,
     scene: Scene | None = None,
     rig: Rig | None = None,
@@ -652,7 +721,7 @@ def prepare(
     if ehl:
         p = _film_tables(p)
     p[K.P_CAGE_ANGLE0] = settings.cage_angle
-    wav = _waviness_table(defect_list, z, rng)
+    wav = _waviness_table(defect_list, z, rng, geometry)
     y0, qmax = _static_state(level, ehl, geometry, operating, rig, p, wav)
     scale = float(np.max(np.abs(y0[: K.n_dof(code, z)]))) if y0.size else 0.0
     p[K.P_MAX_DISPLACEMENT] = (
@@ -683,7 +752,7 @@ def prepare(
 def simulate(
     bearing: BearingGeometry,
     operating: OperatingCondition,
-    defects: Waviness | Sequence[Waviness] | None = None,
+    defects: Defect | Sequence[Defect] | None = None,
     *,
     scene: Scene | None = None,
     rig: Rig | None = None,
@@ -702,8 +771,9 @@ def simulate(
         Bearing geometry (e.g. ``generators.bearing("6205")``).
     operating : OperatingCondition
         Shaft speed [Hz] and radial load [N].
-    defects : Waviness or sequence of Waviness, optional
-        Surface waviness harmonics (outer race, inner race, balls).
+    defects : Waviness, LocalizedDefect or a sequence of them, optional
+        Surface waviness harmonics and local defects (pits, spalls) on the outer race, inner
+        race and balls.
     scene : Scene, optional
         Model level and EHL switch; default ``Scene()`` (``shaft+housing`` with EHL).
     rig : Rig, optional
@@ -802,7 +872,8 @@ def simulate(
         atol[nd:] = settings.atol_displacement * 1e3
         stats = np.zeros(4)
         t_first = settings.settle_time
-        h_max = record_dt * 4
+        # never step over a local defect: at most half a passage per step
+        h_max = min(record_dt * 4, 0.5 * DEFECT_STEPS * defect_step(p, wav))
         max_steps = int(settings.max_steps_per_second * (t_first + settings.duration)) + 1000
         status, t_fail = K._dopri5(
             code,

@@ -397,6 +397,50 @@ class Waviness:
             check_int("ball", self.ball, low=0, high=59)
 
 
+@dataclass(frozen=True, slots=True, kw_only=True)
+class LocalizedDefect:
+    """A local defect (spall, pit) on a race or a ball: a pit of given size and depth.
+
+    A ball passing the pit pivots over its edges: it sinks by the sagitta
+    R_x - sqrt(R_x^2 - e^2) of its reduced radius R_x in the rolling direction (e the distance
+    to the nearer edge) and reaches the floor only when the pit is wider than
+    2 sqrt(2 R_x depth). A narrow, deep pit is bridged; see :func:`generators.defect_path_depth`.
+
+    Attributes
+    ----------
+    surface : {"outer", "inner", "ball"}
+        The surface that carries the pit.
+    length : float
+        Size of the pit in the rolling direction [m] (arc length on the surface, e.g. the
+        diameter of an EDM pit: 0.1778e-3 m for the CWRU 0.007 inch faults).
+    depth : float
+        Depth of the pit [m] (the ball never sinks more than this).
+    position : float or None
+        Angle of the pit centre [rad]: for the outer race in the fixed frame (measured CCW
+        from +x; -pi/2 is 6 o'clock, the centre of the load zone under the default downward
+        load); for the inner race on the ring at t = 0; for a ball on the ball, from its outer
+        contact point at t = 0. ``None`` draws it from the simulation's random state.
+    ball : int
+        For ``surface="ball"``: index of the ball that carries it (0-based).
+    """
+
+    surface: str
+    length: float
+    depth: float
+    position: float | None = -math.pi / 2
+    ball: int = 0
+
+    def __post_init__(self) -> None:
+        check_choice("surface", self.surface, SURFACES)
+        check_real("length", self.length, low=0.0, high=0.05, low_inclusive=False, unit="m")
+        check_real("depth", self.depth, low=0.0, high=1e-3, unit="m")
+        if self.position is not None:
+            check_real("position", self.position, low=-100.0, high=100.0, unit="rad")
+        if self.ball != 0 and self.surface != "ball":
+            raise ParameterError(f"ball = {self.ball} is only valid with surface='ball'")
+        check_int("ball", self.ball, low=0, high=59)
+
+
 SCENE_LEVELS = ("shaft", "shaft+housing", "full", "auto")
 
 
