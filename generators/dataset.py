@@ -108,15 +108,16 @@ def _fail(key: str, value: Any, why: str) -> ParameterError:
 
 def _range_or_grid(key: str, value: Any, *, low: float, high: float, unit: str) -> dict:
     """A list of numbers (grid) or a table {min, max} (random uniform per case)."""
+    given = value
     if isinstance(value, (int, float)) and not isinstance(value, bool):
         value = [value]
     if isinstance(value, list):
         if not value:
-            raise _fail(key, value, "the list is empty")
+            raise _fail(key, given, "the list is empty")
         for v in value:
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not low <= v <= high:
                 raise _fail(
-                    key, value, f"every value must be a number in [{low:g}, {high:g}] {unit}"
+                    key, given, f"every value must be a number in [{low:g}, {high:g}] {unit}"
                 )
         return {"grid": [float(v) for v in value]}
     if isinstance(value, dict):
