@@ -79,8 +79,8 @@ def make_classifier(name: str = "random_forest", *, random_state: int = 0, **ext
     )
 
 
-def _features(frame: pd.DataFrame) -> tuple[np.ndarray, list[str]]:
-    ext = features.FeatureExtractor().fit(frame)
+def _features(frame: pd.DataFrame, feature_set: str = "all") -> tuple[np.ndarray, list[str]]:
+    ext = features.FeatureExtractor(feature_set=feature_set).fit(frame)
     return ext.transform(frame), list(ext.get_feature_names_out())
 
 
@@ -111,7 +111,12 @@ def _extrapolation(X, y, frame, estimator) -> dict[str, float]:
 
 
 def train(
-    frame: pd.DataFrame, *, recipe: str = "", random_state: int = 0, n_splits: int | None = None
+    frame: pd.DataFrame,
+    *,
+    recipe: str = "",
+    random_state: int = 0,
+    n_splits: int | None = None,
+    feature_set: str = "all",
 ) -> dict[str, Any]:
     """Fit the candidates with grouped cross-validation and keep the best.
 
@@ -126,6 +131,9 @@ def train(
         Seed of the classifiers.
     n_splits : int, optional
         Grouped folds (default: min(5, number of operating points)).
+    feature_set : {"all", "scale-free"}
+        Features used (``features.FEATURE_SETS``); ``scale-free`` for a model that will meet
+        measured signals (any sensor gain or unit).
 
     Returns
     -------
@@ -134,7 +142,7 @@ def train(
         all data), ``classes``, ``feature_names``, ``scores`` (grouped-CV accuracy of every
         candidate), ``best``, ``extrapolation``, ``recipe``, ``versions``.
     """
-    X, names = _features(frame)
+    X, names = _features(frame, feature_set)
     y = frame["label"].astype(str).to_numpy()
     groups = frame["operating_point_id"].to_numpy()
     n_groups = len(np.unique(groups))
@@ -148,7 +156,7 @@ def train(
     best = max(scores, key=scores.get)
     head = make_pipeline(StandardScaler(), candidate_classifiers(random_state)[best])
     extrapolation = _extrapolation(X, y, frame, head)
-    pipeline = make_classifier(best, random_state=random_state)
+    pipeline = make_classifier(best, random_state=random_state, feature_set=feature_set)
     # the feature step is stateless: fit it, then fit the rest on the precomputed table
     pipeline.steps[0][1].fit(frame)
     pipeline.steps[1][1].fit(X)
@@ -163,6 +171,10 @@ def train(
         "n_splits": n_splits,
         "extrapolation": extrapolation,
         "recipe": recipe,
+        "feature_set": feature_set,
+        "signal_duration_s": float(np.median(frame["duration_s"]))
+        if "duration_s" in frame.columns
+        else None,
         "cv_labels": y.tolist(),
         "cv_predictions": cv_predictions[best].tolist(),
         "versions": {

@@ -83,7 +83,8 @@ def parse_defect(spec: str) -> LocalizedDefect:
     """Parse ``surface:length=L:depth=H[:position=P|random][:ball=J]`` into a LocalizedDefect.
 
     Lengths in m, position in rad (outer race default -pi/2: 6 o'clock, the load-zone centre;
-    inner race and ball default random).
+    inner race and ball default random); ball pits also take ``latitude=A|random`` [rad] and
+    ``drift=W`` (spin-axis drift [rad/s]).
 
     Examples
     --------
@@ -105,12 +106,16 @@ def parse_defect(spec: str) -> LocalizedDefect:
                 fields[key] = int(value)
             elif key in ("length", "depth"):
                 fields[key] = float(value)
+            elif key == "drift":
+                fields["axis_drift"] = float(value)
+            elif key == "latitude":
+                fields[key] = None if value == "random" else float(value)
             elif key == "position":
                 fields[key] = None if value == "random" else float(value)
             else:
                 raise CliError(
                     f"--defect {spec!r}: unknown key {key!r} "
-                    "(allowed: length, depth, position, ball)"
+                    "(allowed: length, depth, position, ball, latitude, drift)"
                 )
         except ValueError as err:
             raise CliError(f"--defect {spec!r}: {key}={value!r} is not a number") from err
@@ -155,8 +160,10 @@ def _add_model_arguments(p: argparse.ArgumentParser) -> None:
         action="append",
         default=[],
         metavar="SPEC",
-        help="local defect (pit, spall) surface:length=L:depth=H[:position=P|random][:ball=J], "
-        "repeatable; length and depth [m], position [rad] (outer default -pi/2, the load zone)",
+        help="local defect (pit, spall) surface:length=L:depth=H[:position=P|random][:ball=J]"
+        "[:latitude=A|random][:drift=W], repeatable; length and depth [m], position [rad] "
+        "(outer default -pi/2, the load zone); ball pits: latitude from the rolling circle "
+        "[rad], spin-axis drift [rad/s]",
     )
     s = p.add_argument_group("model")
     s.add_argument(
@@ -464,7 +471,10 @@ def cmd_train(args: argparse.Namespace) -> int:
     frame = read_dataset(args.dataset)
     recipe = Path(args.dataset, "recipe.toml")
     bundle = train(
-        frame, recipe=recipe.read_text() if recipe.is_file() else "", random_state=args.seed
+        frame,
+        recipe=recipe.read_text() if recipe.is_file() else "",
+        random_state=args.seed,
+        feature_set=args.feature_set,
     )
     print(
         f"trained on {len(frame)} signals, {frame['operating_point_id'].nunique()} operating "
@@ -674,6 +684,14 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("dataset", help="dataset folder (cmtool generate)")
     p.add_argument("--out", required=True, help="model file (.joblib)")
     p.add_argument("--seed", type=int, default=0)
+    p.add_argument(
+        "--feature-set",
+        default="all",
+        choices=["all", "scale-free", "envelope"],
+        help="features: all; scale-free (none in the signal's unit); envelope (only the "
+        "envelope line-to-floor ratios: the set that carries over from simulated to measured "
+        "signals, see README)",
+    )
     p.set_defaults(func=cmd_train)
 
     p = sub.add_parser("evaluate", help="accuracy and confusion matrix of a model")

@@ -233,12 +233,25 @@ def diagnose_signal(
 
 
 def model_verdict(model, x, fs, freqs: BearingFrequencies, extra: dict) -> dict:
-    """Class and probabilities from a trained pipeline (``cmtool train``)."""
+    """Class and probabilities from a trained pipeline (``cmtool train``).
+
+    A model trained on signals of T seconds (``signal_duration_s`` in the bundle) sees the
+    recording as consecutive segments of T seconds (the line-to-floor ratios it learnt depend
+    on the record length) and the segment probabilities are averaged; a recording shorter than
+    two segments is used whole. ``segments`` in the result says how many were used.
+    """
     import pandas as pd
 
     pipeline = model["pipeline"] if isinstance(model, dict) else model
-    row = {
-        "signal": [np.asarray(x, dtype=float)],
+    duration = model.get("signal_duration_s") if isinstance(model, dict) else None
+    x = np.asarray(x, dtype=float)
+    segments = [x]
+    if duration:
+        n = int(round(duration * fs))
+        count = x.size // n if n > 0 else 0
+        if count >= 2:
+            segments = [x[i * n : (i + 1) * n] for i in range(count)]
+    context = {
         "fs_hz": fs,
         "shaft_frequency_hz": freqs.shaft,
         "ftf_hz": freqs.ftf,
@@ -248,14 +261,18 @@ def model_verdict(model, x, fs, freqs: BearingFrequencies, extra: dict) -> dict:
         "two_bsf_hz": freqs.two_bsf,
         **extra,
     }
-    frame = pd.DataFrame(row)
-    label = str(pipeline.predict(frame)[0])
-    out = {"label": label}
+    frame = pd.DataFrame(
+        {"signal": segments, **{k: [v] * len(segments) for k, v in context.items()}}
+    )
+    out: dict = {"segments": len(segments)}
     if hasattr(pipeline, "predict_proba"):
-        proba = pipeline.predict_proba(frame)[0]
-        out["probabilities"] = {
-            str(c): round(float(p), 4) for c, p in zip(pipeline.classes_, proba, strict=True)
-        }
+        proba = pipeline.predict_proba(frame).mean(axis=0)
+        classes = [str(c) for c in pipeline.classes_]
+        out["label"] = classes[int(np.argmax(proba))]
+        out["probabilities"] = {c: round(float(p), 4) for c, p in zip(classes, proba, strict=True)}
+    else:
+        labels, counts = np.unique(pipeline.predict(frame).astype(str), return_counts=True)
+        out["label"] = str(labels[int(np.argmax(counts))])
     return out
 
 

@@ -28,7 +28,7 @@ from .spectra import (
     power_spectral_density,
 )
 from .stats import TIME_STATISTICS, time_statistics
-from .transformer import CONTEXT_COLUMNS, FeatureExtractor
+from .transformer import CONTEXT_COLUMNS, FEATURE_SETS, FeatureExtractor
 
 __all__ = [
     "BAND_METRIC_COLUMNS",
@@ -36,6 +36,7 @@ __all__ = [
     "DEFAULT_FAULTS",
     "FeatureError",
     "FeatureExtractor",
+    "FEATURE_SETS",
     "KurtogramResult",
     "Spectra",
     "TIME_STATISTICS",

@@ -10,9 +10,18 @@ from sklearn.base import BaseEstimator, TransformerMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ._validate import FeatureError
-from .catalog import DEFAULT_FAULTS, extract_features, feature_names
+from .catalog import DEFAULT_FAULTS, extract_features, feature_names, feature_units
 
-__all__ = ["FeatureExtractor", "CONTEXT_COLUMNS"]
+__all__ = ["FeatureExtractor", "CONTEXT_COLUMNS", "FEATURE_SETS"]
+
+#: ``all``: every feature; ``scale-free``: only those without the signal's unit (ratios in dB,
+#: shape factors, kurtosis, relative kurtogram band): invariant to the sensor's gain and unit,
+#: the set to use when a model trained on simulated signals meets measured ones.
+#: ``envelope``: only the envelope-spectrum line-to-floor ratios at the fault rates and their
+#: sidebands [dB], the evidence of envelope analysis: independent of the transfer path's
+#: gain, of the background level (above the floor) and of how impulsive the impacts look,
+#: which a model of one machine cannot know for another.
+FEATURE_SETS = ("all", "scale-free", "envelope")
 
 #: DataFrame columns that carry each signal's context (dataset schema, Hz).
 CONTEXT_COLUMNS = {
@@ -61,6 +70,8 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
     n_jobs : int or None
         Worker processes for the transform (joblib; ``None`` or 1: in this process,
         -1: all cores). Signals are independent, so the table is the same for any value.
+    feature_set : {"all", "scale-free", "envelope"}
+        Which features (``FEATURE_SETS``).
     """
 
     def __init__(
@@ -71,8 +82,10 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
         n_harmonics: int = 3,
         signal_column: str = "signal",
         n_jobs: int | None = None,
+        feature_set: str = "all",
     ):
         self.n_jobs = n_jobs
+        self.feature_set = feature_set
         self.fs = fs
         self.fault_frequencies = fault_frequencies
         self.faults = faults
@@ -107,9 +120,15 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
         """Check the input and record the feature names (the transform has no state)."""
         if not isinstance(X, pd.DataFrame):
             validate_data(self, X, dtype=np.float64, ensure_min_features=2)
-        self.feature_names_out_ = np.array(
-            feature_names(self.faults, self.n_harmonics), dtype=object
-        )
+        if self.feature_set not in FEATURE_SETS:
+            raise FeatureError(f"feature_set = {self.feature_set!r} is not one of {FEATURE_SETS}")
+        names = feature_names(self.faults, self.n_harmonics)
+        if self.feature_set == "scale-free":
+            units = feature_units(self.faults, self.n_harmonics)
+            names = [n for n in names if units[n] != "U"]
+        elif self.feature_set == "envelope":
+            names = [n for n in names if n.startswith("envelope_") and n.endswith("_snr")]
+        self.feature_names_out_ = np.array(names, dtype=object)
         return self
 
     def transform(self, X) -> np.ndarray:

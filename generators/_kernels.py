@@ -100,7 +100,22 @@ SURF_OUTER_DEFECT = 3
 SURF_INNER_DEFECT = 4
 SURF_BALL_DEFECT_OUTER = 5
 SURF_BALL_DEFECT_INNER = 6
-W_SURFACE, W_BALL, W_ORDER, W_AMPLITUDE, W_PHASE, W_STEP_COS, W_STEP_SIN, W_SIZE = range(8)
+(
+    W_SURFACE,
+    W_BALL,
+    W_ORDER,
+    W_AMPLITUDE,
+    W_PHASE,
+    W_STEP_COS,
+    W_STEP_SIN,
+    W_LATITUDE,
+    W_DRIFT,
+    W_TRACK,
+    W_SIZE,
+) = range(11)
+# Ball defects only: W_LATITUDE the pit's angle from the ball's rolling circle at t = 0 [rad],
+# W_DRIFT the rate at which the spin axis turns that angle [rad/s], W_TRACK the half width of
+# the band around the rolling circle in which the pit meets the races, over the ball radius [-].
 # W_STEP_COS/SIN: cos and sin of k times the ball pitch 2 pi / Z (race rows).
 
 # integration status codes
@@ -226,7 +241,7 @@ def _wrap(angle):
 
 
 @numba.njit(**_JIT)
-def _pit(delta, half_width, depth, radius, bridge, rate, out, row, j):
+def _pit(delta, half_width, depth, radius, bridge, rate, scale, scale_rate, out, row, j):
     """Subtract the path of a ball over a pit from ``out[row, j]`` (and its rate from row + 1).
 
     ``delta`` is the angle of the contact point from the pit centre [rad] and ``rate`` its time
@@ -234,25 +249,45 @@ def _pit(delta, half_width, depth, radius, bridge, rate, out, row, j):
     [m]. The ball (reduced radius ``bridge`` [m] in the rolling direction) pivots over the
     nearer edge, at a distance e = (half_width - |delta|) radius from it, and sinks by the
     sagitta bridge - sqrt(bridge^2 - e^2) until it reaches the floor at ``depth`` [m]: a narrow
-    pit is bridged, a wide one is followed to its floor (the kinks are the impacts).
+    pit is bridged, a wide one is followed to its floor (the kinks are the impacts). The sink is
+    multiplied by ``scale`` (rate ``scale_rate`` [1/s]): 1 for race pits.
     """
     u = abs(delta)
     if u >= half_width:
         return
     e = (half_width - u) * radius
     root2 = bridge * bridge - e * e
-    if root2 <= 0.0:
-        out[row, j] -= depth
-        return
-    root = math.sqrt(root2)
-    sag = bridge - root
-    if sag >= depth:
-        out[row, j] -= depth
-        return
-    out[row, j] -= sag
-    # d(sag)/dt = e / root * de/dt, de/dt = -sign(delta) * rate * radius
-    sign = 1.0 if delta >= 0.0 else -1.0
-    out[row + 1, j] += e / root * sign * rate * radius
+    sag = depth
+    sag_rate = 0.0
+    if root2 > 0.0:
+        root = math.sqrt(root2)
+        if bridge - root < depth:
+            sag = bridge - root
+            # d(sag)/dt = e / root * de/dt, de/dt = -sign(delta) * rate * radius
+            sign = 1.0 if delta >= 0.0 else -1.0
+            sag_rate = -e / root * sign * rate * radius
+    out[row, j] -= scale * sag
+    out[row + 1, j] -= scale * sag_rate + scale_rate * sag
+
+
+@numba.njit(**_JIT)
+def _track_factor(wav, r, t):
+    """How much of a ball pit the races meet: (factor, its rate [1/s]).
+
+    The pit sits at latitude lat(t) = lat0 + drift t from the ball's rolling circle; the races
+    meet it fully on the circle and not at all outside the band |sin lat| < track, with a
+    cos^2 taper between (C1: no jump in the contact force when the axis turns).
+    """
+    lat = wav[r, W_LATITUDE] + wav[r, W_DRIFT] * t
+    track = wav[r, W_TRACK]
+    y = math.sin(lat)
+    u = abs(y) / track
+    if u >= 1.0:
+        return 0.0, 0.0
+    c = math.cos(0.5 * math.pi * u)
+    sign = 1.0 if y >= 0.0 else -1.0
+    du = sign * math.cos(lat) * wav[r, W_DRIFT] / track
+    return c * c, -0.5 * math.pi * math.sin(math.pi * u) * du
 
 
 @numba.njit(**_JIT)
@@ -265,18 +300,22 @@ def _defect(wav, r, surface, z, theta0, shaft_angle, t, wc, ws, wb, out):
     bridge = wav[r, W_STEP_SIN]
     if surface == SURF_BALL_DEFECT_OUTER or surface == SURF_BALL_DEFECT_INNER:
         j = int(wav[r, W_BALL])
+        scale, scale_rate = _track_factor(wav, r, t)
+        if scale == 0.0:
+            return
         # spin angle of the outer contact point on the ball; the inner one is opposite
         chi = wb * t if surface == SURF_BALL_DEFECT_OUTER else wb * t + math.pi
         row = 4 if surface == SURF_BALL_DEFECT_OUTER else 6
-        _pit(_wrap(chi - pos), half, depth, radius, bridge, wb, out, row, j)
+        _pit(_wrap(chi - pos), half, depth, radius, bridge, wb, scale, scale_rate, out, row, j)
         return
     pitch = 2.0 * math.pi / z
     for j in range(z):
         theta = theta0 + j * pitch
         if surface == SURF_OUTER_DEFECT:
-            _pit(_wrap(theta - pos), half, depth, radius, bridge, wc, out, 0, j)
+            _pit(_wrap(theta - pos), half, depth, radius, bridge, wc, 1.0, 0.0, out, 0, j)
         else:
-            _pit(_wrap(theta - shaft_angle - pos), half, depth, radius, bridge, wc - ws, out, 2, j)
+            delta = _wrap(theta - shaft_angle - pos)
+            _pit(delta, half, depth, radius, bridge, wc - ws, 1.0, 0.0, out, 2, j)
 
 
 @numba.njit(**_JIT)

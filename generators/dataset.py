@@ -68,6 +68,7 @@ CASE_COLUMNS = (
     "defect_length_m",
     "defect_depth_m",
     "defect_position_rad",
+    "defect_axis_drift_rad_s",
     "seed",
     "scene",
     "ehl",
@@ -79,6 +80,8 @@ CASE_COLUMNS = (
     "fs_hz",
     "duration_s",
     "snr_db",
+    "background_db",
+    "fault_snr_db",
     "noise_rms",
     "resonance_hz",
     "ftf_hz",
@@ -212,6 +215,8 @@ def validate_recipe(recipe: dict) -> dict:
         "duration_s",
         "settle_s",
         "snr_db",
+        "background_db",
+        "fault_snr_db",
         "noise_rms",
         "resonance_hz",
         "resonance_damping",
@@ -240,8 +245,27 @@ def validate_recipe(recipe: dict) -> dict:
         v = sensor.get(key)
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
             raise _fail(f"sensor.{key}", v, f"a number in [{lo:g}, {hi:g}] is required")
-    if "snr_db" in sensor and "noise_rms" in sensor:
-        raise _fail("sensor.snr_db", sensor["snr_db"], "give snr_db or noise_rms, not both")
+    given = [k for k in ("snr_db", "background_db", "noise_rms") if k in sensor]
+    if len(given) > 1:
+        raise _fail(
+            f"sensor.{given[1]}",
+            sensor[given[1]],
+            f"give one of snr_db, background_db, noise_rms (also given: {given[0]})",
+        )
+    if "fault_snr_db" in sensor:
+        if "background_db" not in sensor:
+            raise _fail(
+                "sensor.fault_snr_db",
+                sensor["fault_snr_db"],
+                "needs background_db too (the noise of the healthy cases)",
+            )
+        sensor["fault_snr_db"] = _range_or_grid(
+            "sensor.fault_snr_db", sensor["fault_snr_db"], low=-60.0, high=200.0, unit="dB"
+        )
+    if "background_db" in sensor:
+        sensor["background_db"] = _range_or_grid(
+            "sensor.background_db", sensor["background_db"], low=-40.0, high=60.0, unit="dB"
+        )
     if "snr_db" in sensor:
         sensor["snr_db"] = _range_or_grid(
             "sensor.snr_db", sensor["snr_db"], low=-40.0, high=200.0, unit="dB"
@@ -279,6 +303,7 @@ def validate_recipe(recipe: dict) -> dict:
             "length_m",
             "depth_m",
             "position_rad",
+            "axis_drift_rad_s",
         }
         if extra:
             raise _fail(f"{key}.{sorted(extra)[0]}", c[sorted(extra)[0]], "unknown key")
@@ -292,7 +317,15 @@ def validate_recipe(recipe: dict) -> dict:
         if isinstance(count, bool) or not isinstance(count, int) or count < 1:
             raise _fail(f"{key}.count", count, "a positive integer is required")
         surface = c.get("surface", CONDITION_SURFACES.get(label))
-        defect_keys = {"defect", "order", "amplitude_m", "length_m", "depth_m", "position_rad"}
+        defect_keys = {
+            "defect",
+            "order",
+            "amplitude_m",
+            "length_m",
+            "depth_m",
+            "position_rad",
+            "axis_drift_rad_s",
+        }
         if surface is None:
             if defect_keys & set(c):
                 raise _fail(
@@ -310,7 +343,7 @@ def validate_recipe(recipe: dict) -> dict:
         if kind not in DEFECT_KINDS:
             raise _fail(f"{key}.defect", kind, f"allowed: {DEFECT_KINDS}")
         wrong = {
-            "waviness": {"length_m", "depth_m", "position_rad"},
+            "waviness": {"length_m", "depth_m", "position_rad", "axis_drift_rad_s"},
             "localized": {"order", "amplitude_m"},
         }[kind] & set(c)
         if wrong:
@@ -326,6 +359,18 @@ def validate_recipe(recipe: dict) -> dict:
             if "position_rad" in c:
                 c["position_rad"] = _range_or_grid(
                     f"{key}.position_rad", c["position_rad"], low=-100.0, high=100.0, unit="rad"
+                )
+            if "axis_drift_rad_s" in c:
+                if surface != "ball":
+                    raise _fail(
+                        f"{key}.axis_drift_rad_s", c["axis_drift_rad_s"], "only for ball defects"
+                    )
+                c["axis_drift_rad_s"] = _range_or_grid(
+                    f"{key}.axis_drift_rad_s",
+                    c["axis_drift_rad_s"],
+                    low=0.0,
+                    high=1e4,
+                    unit="rad/s",
                 )
             continue
         order = c.get("order")
@@ -356,10 +401,13 @@ class Case:
     waviness_amplitude_m: float
     snr_db: float | None
     seed: int
+    background_db: float = math.nan
+    fault_snr_db: float = math.nan
     defect_kind: str = "none"
     defect_length_m: float = math.nan
     defect_depth_m: float = math.nan
     defect_position_rad: float = math.nan
+    defect_axis_drift_rad_s: float = math.nan
     fs_hz: float = math.nan
     resonance_hz: float = math.nan
 
@@ -407,6 +455,7 @@ def expand_cases(recipe: dict) -> list[Case]:
             pid = point_ids.setdefault(key, len(point_ids))
             order, amp = 0, 0.0
             kind, length, depth, position = "none", math.nan, math.nan, math.nan
+            drift = math.nan
             if cond["defect"] == "waviness":
                 kind = "waviness"
                 order = _draw(cond["order"], rng, k, integer=True)
@@ -419,11 +468,21 @@ def expand_cases(recipe: dict) -> list[Case]:
                     position = _draw(cond["position_rad"], rng, k)
                 elif cond["surface"] == "outer":
                     position = -math.pi / 2  # centre of the load zone (downward load)
+                if cond["surface"] == "ball":
+                    drift = 0.0
+                    if "axis_drift_rad_s" in cond:
+                        drift = _draw(cond["axis_drift_rad_s"], rng, k)
             snr = None
             if "snr_db" in r["sensor"]:
                 snr = _draw(r["sensor"]["snr_db"], rng, k)
             # sample rates alternate per full pass through the operating grid (every
             # operating point sees every rate)
+            background = math.nan
+            if "background_db" in r["sensor"]:
+                background = _draw(r["sensor"]["background_db"], rng, k)
+            fault_snr = math.nan
+            if "fault_snr_db" in r["sensor"] and cond["surface"] is not None:
+                fault_snr = _draw(r["sensor"]["fault_snr_db"], rng, k)
             fs = _draw(r["sensor"]["fs_hz"], rng, k // len(grids))
             resonance = math.nan
             if "resonance_hz" in r["sensor"]:
@@ -447,8 +506,11 @@ def expand_cases(recipe: dict) -> list[Case]:
                     defect_length_m=length,
                     defect_depth_m=depth,
                     defect_position_rad=position,
+                    defect_axis_drift_rad_s=drift,
                     fs_hz=fs,
                     resonance_hz=resonance,
+                    background_db=background,
+                    fault_snr_db=fault_snr,
                 )
             )
             index += 1
@@ -481,6 +543,12 @@ def generate_case(recipe: dict, case: Case) -> dict:
                 length=case.defect_length_m,
                 depth=case.defect_depth_m,
                 position=None if math.isnan(case.defect_position_rad) else case.defect_position_rad,
+                # a ball pit lies anywhere on the ball: its latitude is drawn per case
+                **(
+                    {"latitude": None, "axis_drift": case.defect_axis_drift_rad_s}
+                    if case.surface == "ball"
+                    else {}
+                ),
             )
         )
     elif case.surface is not None:
@@ -528,6 +596,7 @@ def generate_case(recipe: dict, case: Case) -> dict:
         "defect_length_m": case.defect_length_m,
         "defect_depth_m": case.defect_depth_m,
         "defect_position_rad": case.defect_position_rad,
+        "defect_axis_drift_rad_s": case.defect_axis_drift_rad_s,
         "seed": case.seed,
         "scene": model["scene"],
         "ehl": model["ehl"],
@@ -539,6 +608,8 @@ def generate_case(recipe: dict, case: Case) -> dict:
         "fs_hz": case.fs_hz,
         "duration_s": float(sensor["duration_s"]),
         "snr_db": math.nan if case.snr_db is None else case.snr_db,
+        "background_db": case.background_db,
+        "fault_snr_db": case.fault_snr_db,
         "noise_rms": 0.0,
         "resonance_hz": case.resonance_hz,
         "ftf_hz": freqs.ftf,
@@ -549,26 +620,48 @@ def generate_case(recipe: dict, case: Case) -> dict:
         "wpf_hz": wpf,
     }
     rng = np.random.default_rng(case.seed)
-    try:
+    scene = Scene(level=model["scene"], ehl=model["ehl"])
+
+    def measured(defect_list, random_state) -> np.ndarray:
         result = simulate(
             geometry,
             operating,
-            defects,
-            scene=Scene(level=model["scene"], ehl=model["ehl"]),
+            defect_list,
+            scene=scene,
             settings=settings,
-            random_state=rng,
+            random_state=random_state,
         )
+        x = result[channel]
+        x = x - x.mean() if sensor["quantity"] == "displacement" else x.copy()
+        if not math.isnan(case.resonance_hz):
+            x = _resonance(x, settings.fs, case.resonance_hz, float(sensor["resonance_damping"]))
+        return x
+
+    try:
+        x = measured(defects, rng)
+        healthy = x
+        if not math.isnan(case.background_db) and defects:
+            healthy = measured([], np.random.default_rng(case.seed))
     except SimulationDivergedError as err:
         return {**meta, "error": str(err)}
     except ParameterError as err:  # e.g. no static equilibrium for this case's geometry
         return {**meta, "error": f"not simulated: {err}"}
-    x = result[channel]
-    x = x - x.mean() if sensor["quantity"] == "displacement" else x.copy()
-    if not math.isnan(case.resonance_hz):
-        x = _resonance(x, settings.fs, case.resonance_hz, float(sensor["resonance_damping"]))
     noise_rms = 0.0
     if case.snr_db is not None:
         noise_rms = float(np.sqrt(np.mean(x * x))) * 10.0 ** (-case.snr_db / 20.0)
+    elif not math.isnan(case.background_db):
+        # machine background: relative to the healthy bearing at this operating point, the
+        # same for a healthy and a faulty bearing (a fault adds to it, it does not scale it)
+        noise_rms = float(np.sqrt(np.mean(healthy * healthy))) * 10.0 ** (case.background_db / 20.0)
+        if not math.isnan(case.fault_snr_db):
+            # at least the level that puts the fault's own signature (faulty minus healthy
+            # bearing) fault_snr_db above it
+            signature = x - healthy
+            noise_rms = max(
+                noise_rms,
+                float(np.sqrt(np.mean(signature * signature)))
+                * 10.0 ** (-case.fault_snr_db / 20.0),
+            )
     elif "noise_rms" in sensor:
         noise_rms = float(sensor["noise_rms"])
     if noise_rms > 0:

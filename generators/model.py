@@ -148,7 +148,10 @@ def _as_defects(defects) -> tuple[Defect, ...]:
 
 
 def _localized_rows(
-    geometry: BearingGeometry, defect: LocalizedDefect, rng: np.random.Generator
+    geometry: BearingGeometry,
+    defect: LocalizedDefect,
+    rng: np.random.Generator,
+    radial_load: float,
 ) -> list[tuple]:
     """Kernel table rows of a local defect (columns: see ``_kernels`` SURF_*_DEFECT)."""
     if defect.surface == "ball" and defect.ball >= geometry.ball_count:
@@ -162,10 +165,20 @@ def _localized_rows(
         return [(K.SURF_OUTER_DEFECT, -1, *common, path.bridge_radius_outer)]
     if defect.surface == "inner":
         return [(K.SURF_INNER_DEFECT, -1, *common, path.bridge_radius_inner)]
-    return [
-        (K.SURF_BALL_DEFECT_OUTER, defect.ball, *common, path.bridge_radius_outer),
-        (K.SURF_BALL_DEFECT_INNER, defect.ball, *common, path.bridge_radius_inner),
-    ]
+    # the band the races sweep on the ball: the contact ellipse's half width across the
+    # rolling direction at the Stribeck ball load 4.37 F_r / Z, plus half the pit
+    ball_load = max(4.37 * radial_load / geometry.ball_count, 1.0)
+    radius = 0.5 * geometry.ball_diameter
+    latitude = rng.uniform(-np.pi, np.pi) if defect.latitude is None else defect.latitude
+    rows = []
+    for code, race, bridge in (
+        (K.SURF_BALL_DEFECT_OUTER, "outer", path.bridge_radius_outer),
+        (K.SURF_BALL_DEFECT_INNER, "inner", path.bridge_radius_inner),
+    ):
+        half_track = hertz_contact(geometry, race).semi_axes(ball_load)[0] + 0.5 * defect.length
+        track = min(half_track / radius, 1.0)
+        rows.append((code, defect.ball, *common, bridge, latitude, defect.axis_drift, track))
+    return rows
 
 
 def _waviness_table(
@@ -173,6 +186,7 @@ def _waviness_table(
     ball_count: int,
     rng: np.random.Generator,
     geometry: BearingGeometry | None = None,
+    radial_load: float = 0.0,
 ) -> np.ndarray:
     """Expand defects into the kernel table (ball rows per ball, phases drawn)."""
     rows = []
@@ -182,7 +196,7 @@ def _waviness_table(
             if geometry is None:
                 raise ValueError("local defects need the bearing geometry")
             if w.depth > 0.0:
-                rows.extend(_localized_rows(geometry, w, rng))
+                rows.extend(_localized_rows(geometry, w, rng, radial_load))
             continue
         if w.amplitude == 0.0:
             continue
@@ -205,6 +219,7 @@ def _waviness_table(
                 rows.append(
                     (K.SURF_BALL, j, w.order, w.amplitude, phase + w.order * spin0, 1.0, 0.0)
                 )
+    rows = [tuple(row) + (0.0,) * (K.W_SIZE - len(row)) for row in rows]
     table = np.array(rows, dtype=np.float64).reshape(-1, K.W_SIZE)
     return np.ascontiguousarray(table)
 
@@ -721,7 +736,7 @@ def prepare(
     if ehl:
         p = _film_tables(p)
     p[K.P_CAGE_ANGLE0] = settings.cage_angle
-    wav = _waviness_table(defect_list, z, rng, geometry)
+    wav = _waviness_table(defect_list, z, rng, geometry, operating.radial_load)
     y0, qmax = _static_state(level, ehl, geometry, operating, rig, p, wav)
     scale = float(np.max(np.abs(y0[: K.n_dof(code, z)]))) if y0.size else 0.0
     p[K.P_MAX_DISPLACEMENT] = (

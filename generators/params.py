@@ -395,6 +395,14 @@ class Waviness:
             if self.surface != "ball":
                 raise ParameterError(f"ball = {self.ball} is only valid with surface='ball'")
             check_int("ball", self.ball, low=0, high=59)
+        if self.surface != "ball" and (self.latitude not in (0.0, None) or self.axis_drift):
+            raise ParameterError(
+                f"latitude = {self.latitude}, axis_drift = {self.axis_drift} are only valid "
+                "with surface='ball'"
+            )
+        if self.latitude is not None:
+            check_real("latitude", self.latitude, low=-100.0, high=100.0, unit="rad")
+        check_real("axis_drift", self.axis_drift, low=-1e4, high=1e4, unit="rad/s")
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -422,6 +430,15 @@ class LocalizedDefect:
         contact point at t = 0. ``None`` draws it from the simulation's random state.
     ball : int
         For ``surface="ball"``: index of the ball that carries it (0-based).
+    latitude : float or None
+        Ball pits: angle of the pit from the ball's rolling circle at t = 0 [rad] (0: on it,
+        every spin meets both races; ``None`` draws it from the random state). The races meet
+        the pit only while it lies within the contact track (the contact ellipse's half width
+        plus half the pit), so a pit off the rolling circle strikes intermittently.
+    axis_drift : float
+        Ball pits: rate at which the ball's spin axis turns the pit across the rolling circle
+        [rad/s] (0: a fixed axis). Real balls' axes wander (cage and ball-ball contacts), one
+        reason ball faults are the hardest to see (Smith and Randall 2015).
     """
 
     surface: str
@@ -429,6 +446,8 @@ class LocalizedDefect:
     depth: float
     position: float | None = -math.pi / 2
     ball: int = 0
+    latitude: float | None = 0.0
+    axis_drift: float = 0.0
 
     def __post_init__(self) -> None:
         check_choice("surface", self.surface, SURFACES)
