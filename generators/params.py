@@ -395,14 +395,6 @@ class Waviness:
             if self.surface != "ball":
                 raise ParameterError(f"ball = {self.ball} is only valid with surface='ball'")
             check_int("ball", self.ball, low=0, high=59)
-        if self.surface != "ball" and (self.latitude not in (0.0, None) or self.axis_drift):
-            raise ParameterError(
-                f"latitude = {self.latitude}, axis_drift = {self.axis_drift} are only valid "
-                "with surface='ball'"
-            )
-        if self.latitude is not None:
-            check_real("latitude", self.latitude, low=-100.0, high=100.0, unit="rad")
-        check_real("axis_drift", self.axis_drift, low=-1e4, high=1e4, unit="rad/s")
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -458,6 +450,14 @@ class LocalizedDefect:
         if self.ball != 0 and self.surface != "ball":
             raise ParameterError(f"ball = {self.ball} is only valid with surface='ball'")
         check_int("ball", self.ball, low=0, high=59)
+        if self.surface != "ball" and (self.latitude not in (0.0, None) or self.axis_drift):
+            raise ParameterError(
+                f"latitude = {self.latitude}, axis_drift = {self.axis_drift} are only valid "
+                "with surface='ball'"
+            )
+        if self.latitude is not None:
+            check_real("latitude", self.latitude, low=-100.0, high=100.0, unit="rad")
+        check_real("axis_drift", self.axis_drift, low=-1e4, high=1e4, unit="rad/s")
 
 
 SCENE_LEVELS = ("shaft", "shaft+housing", "full", "auto")

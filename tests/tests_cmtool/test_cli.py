@@ -5,7 +5,7 @@ import json
 import numpy as np
 import pytest
 
-from cmtool.cli import CliError, main, parse_waviness
+from cmtool.cli import CliError, main, parse_defect, parse_waviness
 from cmtool.io import read_signal
 from generators import CHANNELS
 
@@ -19,6 +19,31 @@ def test_parse_waviness():
         parse_waviness("outer:order=9")
     with pytest.raises(CliError, match="unknown key 'depth'"):
         parse_waviness("outer:order=9:amplitude=1e-6:depth=3")
+
+
+def test_parse_defect():
+    d = parse_defect("outer:length=0.18e-3:depth=2e-5")
+    assert (d.surface, d.length, d.depth, d.position) == ("outer", 0.18e-3, 2e-5, -np.pi / 2)
+    assert parse_defect("inner:length=1e-4:depth=1e-5").position is None  # random
+    b = parse_defect("ball:length=1e-4:depth=1e-5:ball=2:latitude=random:drift=30")
+    assert (b.ball, b.latitude, b.axis_drift) == (2, None, 30.0)
+    with pytest.raises(CliError, match="depth= is missing"):
+        parse_defect("outer:length=1e-4")
+    with pytest.raises(CliError, match="unknown key 'order'"):
+        parse_defect("outer:length=1e-4:depth=1e-5:order=3")
+    with pytest.raises(CliError, match="'x' is not a number"):
+        parse_defect("outer:length=x:depth=1e-5")
+
+
+def test_simulate_local_defect(tmp_path, capsys):
+    out = tmp_path / "pit.parquet"
+    args = ["simulate", "--defect", "inner:length=0.18e-3:depth=2e-5", "--duration", "0.1"]
+    assert main([*args, "--settle", "0.02", "--fs", "12000", "--out", str(out)]) == 0
+    signal, meta = read_signal(out)
+    assert meta["parameters"]["defects"][0]["kind"] == "LocalizedDefect"
+    assert np.all(np.isfinite(signal["housing_acceleration_y"]))
+    rc = main(["simulate", "--defect", "inner:length=0.18e-3:depth=-1", "--duration", "0.1"])
+    assert rc == 2 and "depth = -1" in capsys.readouterr().err
 
 
 def test_simulate_writes_parquet_with_metadata_and_plot(tmp_path, capsys):

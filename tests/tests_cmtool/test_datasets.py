@@ -52,7 +52,7 @@ def tiny(tmp_path):
 
 
 def test_shipped_recipes_validate():
-    for name in ("small.toml", "waviness.toml"):
+    for name in ("small.toml", "waviness.toml", "cwru-rig.toml"):
         recipe = validate_recipe(tomllib.loads((REPO / "datasets" / name).read_text()))
         cases = expand_cases(recipe)
         assert len(cases) == sum(c["count"] for c in recipe["conditions"])
@@ -73,6 +73,14 @@ def test_shipped_recipes_validate():
         (("fs_hz = 5120", "fs_hz = 5"), "sensor.fs_hz = 5"),
         (("count = 3\n[[conditions]]", "count = 0\n[[conditions]]"), "conditions\\[0\\].count = 0"),
         (("snr_db = 10", "snr_db = 10\ncolour = 3"), "sensor.colour"),
+        (("snr_db = 10", "snr_db = 10\nbackground_db = 20"), "sensor.background_db = 20"),
+        (("snr_db = 10", "fault_snr_db = 0"), "needs background_db"),
+        (("snr_db = 10", "snr_db = 10\nresonance_hz = 3000"), "sensor.resonance_hz = 3000"),
+        (('surface = "outer"', 'surface = "outer"\ndefect = "spall"'), "defect = 'spall'"),
+        (
+            ('surface = "outer"', 'surface = "outer"\ndefect = "localized"'),
+            "conditions\\[1\\].amplitude_m = .* not a key of a localized defect",
+        ),
     ],
 )
 def test_recipe_errors_name_key_and_value(patch, match):
@@ -241,3 +249,62 @@ def test_a_case_without_static_equilibrium_is_a_recorded_failure(monkeypatch, ti
     monkeypatch.setattr(gd, "simulate", no_equilibrium)
     row = gd.generate_case(recipe, case)
     assert "signal" not in row and row["error"].startswith("not simulated: radial_load")
+
+
+LOCAL = """
+name = "local"
+seed = 5
+[operating]
+rpm = [1797]
+load_n = { min = 100, max = 400 }
+[sensor]
+fs_hz = [12000, 24000]
+duration_s = 0.1
+settle_s = 0.05
+resonance_hz = { min = 2500, max = 4000 }
+background_db = 20
+fault_snr_db = { min = 0, max = 10 }
+[[conditions]]
+label = "healthy"
+count = 2
+[[conditions]]
+label = "outer"
+surface = "outer"
+defect = "localized"
+length_m = 0.18e-3
+depth_m = { min = 5e-6, max = 50e-6 }
+count = 2
+[[conditions]]
+label = "ball"
+surface = "ball"
+defect = "localized"
+length_m = 0.18e-3
+depth_m = 0.1e-3
+axis_drift_rad_s = { min = 0, max = 50 }
+count = 2
+"""
+
+
+def test_localized_defect_recipe(tmp_path):
+    """Local-defect conditions, alternating sample rates, resonance range, background noise."""
+    recipe = validate_recipe(tomllib.loads(LOCAL))
+    cases = expand_cases(recipe)
+    assert [c.defect_kind for c in cases] == ["none"] * 2 + ["localized"] * 4
+    assert [c.fs_hz for c in cases] == [12000, 24000] * 3
+    outer = [c for c in cases if c.label == "outer"]
+    assert all(c.defect_position_rad == pytest.approx(-np.pi / 2) for c in outer)
+    assert all(5e-6 <= c.defect_depth_m <= 50e-6 for c in outer)
+    ball = [c for c in cases if c.label == "ball"]
+    assert all(0 <= c.defect_axis_drift_rad_s <= 50 for c in ball)
+    assert all(np.isnan(c.fault_snr_db) for c in cases if c.label == "healthy")
+    path = tmp_path / "local.toml"
+    path.write_text(LOCAL)
+    generate_dataset(path, tmp_path / "ds", workers=1)
+    frame = read_dataset(tmp_path / "ds")
+    assert list(frame["signal"].map(len)) == [1200, 2400] * 3
+    assert set(frame["defect_kind"]) == {"none", "localized"}
+    assert frame["resonance_hz"].between(2500, 4000).all()
+    # background: the same level relative to the healthy bearing for every case; a fault's
+    # noise is at least that, and at least its signature over 10^(fault_snr/20)
+    assert (frame["noise_rms"] > 0).all()
+    assert "defect_depth_m" in dataset_info(tmp_path / "ds")

@@ -82,6 +82,26 @@ def test_transformer_on_dataframe_and_array(rng):
         ext.transform(frame.drop(columns=["bpfi_hz"]))
 
 
+def test_feature_sets_select_columns_and_scale_free_is_gain_invariant(rng):
+    signals = np.stack([impulses(rng, CTX[f]) for f in ("bpfo", "bpfi", "two_bsf")])
+    full = F.FeatureExtractor(fs=FS, fault_frequencies=CTX).fit(signals)
+    names = list(full.get_feature_names_out())
+    table = full.transform(signals)
+    units = F.feature_units()
+    for feature_set in ("scale-free", "envelope"):
+        ext = F.FeatureExtractor(fs=FS, fault_frequencies=CTX, feature_set=feature_set)
+        sub = list(ext.fit(signals).get_feature_names_out())
+        assert sub and set(sub) < set(names) and all(units[n] != "U" for n in sub)
+        picked = table[:, [names.index(n) for n in sub]]
+        np.testing.assert_allclose(ext.transform(signals), picked)
+        # a sensor gain (here 9.81: g -> m/s^2) changes nothing in these sets
+        np.testing.assert_allclose(ext.transform(9.81 * signals), picked, rtol=1e-6, atol=1e-9)
+    envelope = F.FeatureExtractor(fs=FS, fault_frequencies=CTX, feature_set="envelope")
+    assert all(n.startswith("envelope_") for n in envelope.fit(signals).get_feature_names_out())
+    with pytest.raises(F.FeatureError, match="feature_set = 'raw'"):
+        F.FeatureExtractor(fs=FS, fault_frequencies=CTX, feature_set="raw").fit(signals)
+
+
 # scikit-learn's common checks feed 2-10 "features" per row: as signals they are too short for
 # any spectral feature (a kurtogram needs 64 samples), so the checks that call transform on
 # such data cannot apply; the same properties (pickling, pipelines, order and subset

@@ -41,6 +41,8 @@ def b6205():
         ({"surface": "outer", "length": 1e-4, "depth": -1e-6}, "depth"),
         ({"surface": "outer", "length": 1e-4, "depth": 1e-5, "ball": 2}, "ball"),
         ({"surface": "ball", "length": 1e-4, "depth": 1e-5, "ball": -1}, "ball"),
+        ({"surface": "outer", "length": 1e-4, "depth": 1e-5, "latitude": 0.3}, "latitude"),
+        ({"surface": "ball", "length": 1e-4, "depth": 1e-5, "axis_drift": 1e5}, "axis_drift"),
     ],
 )
 def test_bad_defect_names_parameter(kwargs, name):
