@@ -41,7 +41,15 @@ CANONICAL = {
     "ball": "ball",
 }
 MANIFEST_BEARINGS = {"CWRU": "6205", "MFPT": "mfpt"}
-GROUP_COLUMNS = ("snr_db", "waviness_amplitude_m", "rpm", "radial_load_n")
+GROUP_COLUMNS = (
+    "snr_db",
+    "fault_snr_db",
+    "waviness_amplitude_m",
+    "defect_length_m",
+    "defect_depth_m",
+    "rpm",
+    "radial_load_n",
+)
 
 
 def load_callable(spec: str) -> Callable:
