@@ -426,6 +426,8 @@ def expand_cases(recipe: dict) -> list[Case]:
 
     Grid operating points: each condition cycles through the full grid (bearing x rpm x load
     x clearance) so every label sees every operating point; ranges draw one value per case.
+    Defect grids (orders, amplitudes, sizes) cycle too, shifted by one value per pass through
+    the operating grid, so that no defect value is tied to a single operating point.
     ``operating_point_id`` numbers the distinct (bearing, rpm, load, clearance) points so
     that splits can group by it.
     """
@@ -453,25 +455,29 @@ def expand_cases(recipe: dict) -> list[Case]:
                 cl = cl if cl is not None else _draw(op["clearance_m"], rng, k)
             key = (b, round(rpm, 6), round(load, 6), None if cl is None else round(cl, 12))
             pid = point_ids.setdefault(key, len(point_ids))
+            # defect grids shift by one per pass through the operating grid, so that a defect
+            # value is not tied to one operating point (splits grouped by operating point
+            # would otherwise hold out every case of that value)
+            shifted = k + k // len(grids)
             order, amp = 0, 0.0
             kind, length, depth, position = "none", math.nan, math.nan, math.nan
             drift = math.nan
             if cond["defect"] == "waviness":
                 kind = "waviness"
-                order = _draw(cond["order"], rng, k, integer=True)
-                amp = _draw(cond["amplitude_m"], rng, k)
+                order = _draw(cond["order"], rng, shifted, integer=True)
+                amp = _draw(cond["amplitude_m"], rng, shifted)
             elif cond["defect"] == "localized":
                 kind = "localized"
-                length = _draw(cond["length_m"], rng, k)
-                depth = _draw(cond["depth_m"], rng, k)
+                length = _draw(cond["length_m"], rng, shifted)
+                depth = _draw(cond["depth_m"], rng, shifted)
                 if "position_rad" in cond:
-                    position = _draw(cond["position_rad"], rng, k)
+                    position = _draw(cond["position_rad"], rng, shifted)
                 elif cond["surface"] == "outer":
                     position = -math.pi / 2  # centre of the load zone (downward load)
                 if cond["surface"] == "ball":
                     drift = 0.0
                     if "axis_drift_rad_s" in cond:
-                        drift = _draw(cond["axis_drift_rad_s"], rng, k)
+                        drift = _draw(cond["axis_drift_rad_s"], rng, shifted)
             snr = None
             if "snr_db" in r["sensor"]:
                 snr = _draw(r["sensor"]["snr_db"], rng, k)
