@@ -321,6 +321,24 @@ def cmd_simulate(args: argparse.Namespace) -> int:
             freqs, amp * 1e3, args.plot, title=title, ylabel="velocity [mm/s]", markers=markers
         )
         print(f"wrote {path}")
+    if args.envelope_plot:
+        x = result["housing_acceleration_y"]
+        freqs, amp, band = features.envelope_spectrum(x, result.fs, return_band=True)
+        markers = {"shaft": f.shaft, "bpfo": f.bpfo, "bpfi": f.bpfi, "two_bsf": f.two_bsf}
+        title = (
+            f"{geometry.name}, {operating.rpm:g} rpm: envelope of housing acceleration (y), "
+            f"band {band[0]:.0f}-{band[1]:.0f} Hz"
+        )
+        path = plot_spectrum(
+            freqs,
+            amp,
+            args.envelope_plot,
+            title=title,
+            ylabel="envelope [m/s^2]",
+            markers=markers,
+            fmax=min(result.fs / 2, 5 * f.bpfi),
+        )
+        print(f"wrote {path}")
     return 0
 
 
@@ -631,6 +649,10 @@ def build_parser() -> argparse.ArgumentParser:
     _add_model_arguments(p)
     p.add_argument("--out", help="output file (.parquet or .csv)")
     p.add_argument("--plot", help="spectrum plot (.png)")
+    p.add_argument(
+        "--envelope-plot",
+        help="envelope spectrum plot of the housing acceleration (.png; band by the kurtogram)",
+    )
     p.set_defaults(func=cmd_simulate)
 
     p = sub.add_parser("frequencies", help="characteristic frequencies of a catalog bearing")

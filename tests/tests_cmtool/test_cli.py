@@ -38,7 +38,24 @@ def test_parse_defect():
 def test_simulate_local_defect(tmp_path, capsys):
     out = tmp_path / "pit.parquet"
     args = ["simulate", "--defect", "inner:length=0.18e-3:depth=2e-5", "--duration", "0.1"]
-    assert main([*args, "--settle", "0.02", "--fs", "12000", "--out", str(out)]) == 0
+    env = tmp_path / "envelope.png"
+    assert (
+        main(
+            [
+                *args,
+                "--settle",
+                "0.02",
+                "--fs",
+                "12000",
+                "--out",
+                str(out),
+                "--envelope-plot",
+                str(env),
+            ]
+        )
+        == 0
+    )
+    assert env.stat().st_size > 10_000
     signal, meta = read_signal(out)
     assert meta["parameters"]["defects"][0]["kind"] == "LocalizedDefect"
     assert np.all(np.isfinite(signal["housing_acceleration_y"]))
