@@ -43,6 +43,34 @@ class CliError(Exception):
     """A command-line input error (printed without a traceback, exit code 2)."""
 
 
+def _optional_float(value: str) -> float | None:
+    return None if value == "random" else float(value)
+
+
+def _parse_spec(
+    spec: str, option: str, usage: str, keys: dict[str, tuple[str, object]], required: tuple
+) -> tuple[str, dict[str, object]]:
+    """Split ``surface:key=value:...``; ``keys`` maps a key to (field name, converter)."""
+    parts = spec.split(":")
+    surface = parts[0].strip()
+    fields: dict[str, object] = {}
+    for item in parts[1:]:
+        if "=" not in item:
+            raise CliError(f"{option} {spec!r}: {item!r} is not key=value (expected {usage})")
+        key, value = (s.strip() for s in item.split("=", 1))
+        if key not in keys:
+            raise CliError(f"{option} {spec!r}: unknown key {key!r} (allowed: {', '.join(keys)})")
+        name, convert = keys[key]
+        try:
+            fields[name] = convert(value)  # type: ignore[operator]
+        except ValueError as err:
+            raise CliError(f"{option} {spec!r}: {key}={value!r} is not a number") from err
+    for key in required:
+        if keys[key][0] not in fields:
+            raise CliError(f"{option} {spec!r}: {key}= is missing")
+    return surface, fields
+
+
 def parse_waviness(spec: str) -> Waviness:
     """Parse ``surface:order=N:amplitude=A[:phase=P|random][:ball=J]`` into a Waviness.
 
@@ -51,29 +79,18 @@ def parse_waviness(spec: str) -> Waviness:
     >>> parse_waviness("outer:order=9:amplitude=1e-6").order
     9
     """
-    parts = spec.split(":")
-    surface = parts[0].strip()
-    fields: dict[str, object] = {}
-    for item in parts[1:]:
-        if "=" not in item:
-            raise CliError(
-                f"--waviness {spec!r}: {item!r} is not key=value "
-                "(expected surface:order=N:amplitude=A[:phase=P][:ball=J])"
-            )
-        key, value = (s.strip() for s in item.split("=", 1))
-        if key == "order" or key == "ball":
-            fields[key] = int(value)
-        elif key == "amplitude":
-            fields[key] = float(value)
-        elif key == "phase":
-            fields[key] = None if value == "random" else float(value)
-        else:
-            raise CliError(
-                f"--waviness {spec!r}: unknown key {key!r} (allowed: order, amplitude, phase, ball)"
-            )
-    for required in ("order", "amplitude"):
-        if required not in fields:
-            raise CliError(f"--waviness {spec!r}: {required}= is missing")
+    surface, fields = _parse_spec(
+        spec,
+        "--waviness",
+        "surface:order=N:amplitude=A[:phase=P][:ball=J]",
+        {
+            "order": ("order", int),
+            "amplitude": ("amplitude", float),
+            "phase": ("phase", _optional_float),
+            "ball": ("ball", int),
+        },
+        ("order", "amplitude"),
+    )
     if surface == "ball" and "phase" not in fields:
         fields["phase"] = None  # each ball its own phase
     return Waviness(surface=surface, **fields)  # type: ignore[arg-type]
@@ -91,37 +108,20 @@ def parse_defect(spec: str) -> LocalizedDefect:
     >>> parse_defect("outer:length=0.18e-3:depth=20e-6").depth
     2e-05
     """
-    parts = spec.split(":")
-    surface = parts[0].strip()
-    fields: dict[str, object] = {}
-    for item in parts[1:]:
-        if "=" not in item:
-            raise CliError(
-                f"--defect {spec!r}: {item!r} is not key=value "
-                "(expected surface:length=L:depth=H[:position=P|random][:ball=J])"
-            )
-        key, value = (s.strip() for s in item.split("=", 1))
-        try:
-            if key == "ball":
-                fields[key] = int(value)
-            elif key in ("length", "depth"):
-                fields[key] = float(value)
-            elif key == "drift":
-                fields["axis_drift"] = float(value)
-            elif key == "latitude":
-                fields[key] = None if value == "random" else float(value)
-            elif key == "position":
-                fields[key] = None if value == "random" else float(value)
-            else:
-                raise CliError(
-                    f"--defect {spec!r}: unknown key {key!r} "
-                    "(allowed: length, depth, position, ball, latitude, drift)"
-                )
-        except ValueError as err:
-            raise CliError(f"--defect {spec!r}: {key}={value!r} is not a number") from err
-    for required in ("length", "depth"):
-        if required not in fields:
-            raise CliError(f"--defect {spec!r}: {required}= is missing")
+    surface, fields = _parse_spec(
+        spec,
+        "--defect",
+        "surface:length=L:depth=H[:position=P|random][:ball=J][:latitude=A|random][:drift=W]",
+        {
+            "length": ("length", float),
+            "depth": ("depth", float),
+            "position": ("position", _optional_float),
+            "ball": ("ball", int),
+            "latitude": ("latitude", _optional_float),
+            "drift": ("axis_drift", float),
+        },
+        ("length", "depth"),
+    )
     if surface in ("inner", "ball") and "position" not in fields:
         fields["position"] = None
     return LocalizedDefect(surface=surface, **fields)  # type: ignore[arg-type]

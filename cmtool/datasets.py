@@ -263,25 +263,25 @@ def read_dataset(path: str | os.PathLike, *, columns: list[str] | None = None) -
     return frame
 
 
+#: Columns whose ranges ``dataset_info`` reports.
+_RANGE_COLUMNS = (
+    "rpm",
+    "radial_load_n",
+    "waviness_order",
+    "waviness_amplitude_m",
+    "defect_length_m",
+    "defect_depth_m",
+    "snr_db",
+    "fs_hz",
+    "resonance_hz",
+    "duration_s",
+)
+
+
 def dataset_info(path: str | os.PathLike) -> str:
     """Counts per label and parameter ranges of a dataset, as text."""
     path = Path(path)
-    cols = [
-        "label",
-        "bearing",
-        "rpm",
-        "radial_load_n",
-        "waviness_order",
-        "waviness_amplitude_m",
-        "defect_length_m",
-        "defect_depth_m",
-        "snr_db",
-        "fs_hz",
-        "resonance_hz",
-        "duration_s",
-        "operating_point_id",
-    ]
-    frame = read_dataset(path, columns=cols)
+    frame = read_dataset(path, columns=["label", "bearing", *_RANGE_COLUMNS, "operating_point_id"])
     lines = [f"dataset {path}: {len(frame)} signals"]
     failures = path / "failures"
     if failures.is_dir() and any(failures.glob("*.parquet")):
@@ -295,18 +295,7 @@ def dataset_info(path: str | os.PathLike) -> str:
         f"{', '.join(sorted(frame['bearing'].unique()))}"
     )
     lines.append("parameter ranges:")
-    for col in (
-        "rpm",
-        "radial_load_n",
-        "waviness_order",
-        "waviness_amplitude_m",
-        "defect_length_m",
-        "defect_depth_m",
-        "snr_db",
-        "fs_hz",
-        "resonance_hz",
-        "duration_s",
-    ):
+    for col in _RANGE_COLUMNS:
         values = frame[col].dropna()
         if col.startswith(("waviness", "defect")):
             values = values[frame["label"] != "healthy"]

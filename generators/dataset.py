@@ -47,6 +47,10 @@ __all__ = [
 QUANTITIES = ("displacement", "velocity", "acceleration")
 DIRECTIONS = ("x", "y")
 DEFECT_KINDS = ("waviness", "localized")
+#: Keys of a [[conditions]] table that describe its defect.
+_DEFECT_KEYS = frozenset(
+    {"defect", "order", "amplitude_m", "length_m", "depth_m", "position_rad", "axis_drift_rad_s"}
+)
 CONDITION_SURFACES = {"healthy": None, "inner": "inner", "outer": "outer", "ball": "ball"}
 
 #: Metadata columns of a generated signal, in order (units in the names).
@@ -293,18 +297,7 @@ def validate_recipe(recipe: dict) -> dict:
         key = f"conditions[{i}]"
         if not isinstance(c, dict):
             raise _fail(key, c, "a table is required")
-        extra = set(c) - {
-            "label",
-            "count",
-            "surface",
-            "defect",
-            "order",
-            "amplitude_m",
-            "length_m",
-            "depth_m",
-            "position_rad",
-            "axis_drift_rad_s",
-        }
+        extra = set(c) - {"label", "count", "surface", *_DEFECT_KEYS}
         if extra:
             raise _fail(f"{key}.{sorted(extra)[0]}", c[sorted(extra)[0]], "unknown key")
         label = c.get("label")
@@ -317,17 +310,8 @@ def validate_recipe(recipe: dict) -> dict:
         if isinstance(count, bool) or not isinstance(count, int) or count < 1:
             raise _fail(f"{key}.count", count, "a positive integer is required")
         surface = c.get("surface", CONDITION_SURFACES.get(label))
-        defect_keys = {
-            "defect",
-            "order",
-            "amplitude_m",
-            "length_m",
-            "depth_m",
-            "position_rad",
-            "axis_drift_rad_s",
-        }
         if surface is None:
-            if defect_keys & set(c):
+            if _DEFECT_KEYS & set(c):
                 raise _fail(
                     f"{key}.surface",
                     None,
