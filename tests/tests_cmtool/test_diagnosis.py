@@ -173,3 +173,6 @@ def test_demo_runs_end_to_end(tmp_path, capsys):
     assert "grouped-CV accuracy" in out
     assert (tmp_path / "confusion.png").exists()
     assert (tmp_path / "diagnosis_simulated" / "report.md").exists()
+    assert (tmp_path / "diagnosis_local_defect" / "report.md").exists()
+    # the simulated inner-race pit is called inner race by the rule-based envelope detector
+    assert "inner-race pit 0.18 mm: rule-based verdict inner race" in out
