@@ -324,7 +324,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     if args.envelope_plot:
         x = result["housing_acceleration_y"]
         freqs, amp, band = features.envelope_spectrum(x, result.fs, return_band=True)
-        markers = {"shaft": f.shaft, "bpfo": f.bpfo, "bpfi": f.bpfi, "two_bsf": f.two_bsf}
+        markers = waviness_markers(result, defects)
         title = (
             f"{geometry.name}, {operating.rpm:g} rpm: envelope of housing acceleration (y), "
             f"band {band[0]:.0f}-{band[1]:.0f} Hz"
