@@ -22,7 +22,11 @@ Feature names and units (U = unit of the signal, dB = 20 log10 of a ratio):
 * ``spectrum_<fault>_max_snr`` [dB]: the largest of the fault's spectrum SNRs above (its
   harmonics and, where defined, their sidebands): one number per fault family;
 * ``kurtogram_kurtosis`` [-], ``kurtogram_center_rel`` [-] (centre / (fs/2)),
-  ``kurtogram_bandwidth_rel`` [-] (bandwidth / (fs/2)).
+  ``kurtogram_bandwidth_rel`` [-] (bandwidth / (fs/2));
+* ``shaft_frequency`` [Hz]: the context's shaft frequency (0 when not given). A classifier
+  needs it to know what a healthy bearing looks like at that speed: the varying-compliance
+  lines at q x BPFO, which outer-race waviness also excites, change with speed through the
+  housing's transfer function (MODEL.md 2.1).
 """
 
 from __future__ import annotations
@@ -143,6 +147,7 @@ def feature_names(faults=DEFAULT_FAULTS, n_harmonics: int = 3) -> list[str]:
     ]
     names += [f"spectrum_{f}_max_snr" for f in faults]
     names += ["kurtogram_kurtosis", "kurtogram_center_rel", "kurtogram_bandwidth_rel"]
+    names += ["shaft_frequency"]
     return names
 
 
@@ -156,6 +161,8 @@ def feature_units(faults=DEFAULT_FAULTS, n_harmonics: int = 3) -> dict[str, str]
             units[name] = "dB"
         elif name.startswith("kurtogram"):
             units[name] = "-"
+        elif name == "shaft_frequency":
+            units[name] = "Hz"
         else:
             units[name] = "U"
     return units
@@ -275,4 +282,5 @@ def extract_features(
     out["kurtogram_kurtosis"] = kg.kurtosis if kg is not None else 0.0
     out["kurtogram_center_rel"] = (low + high) / fs
     out["kurtogram_bandwidth_rel"] = (high - low) / (fs / 2)
+    out["shaft_frequency"] = float(context.get("shaft", 0.0))
     return out

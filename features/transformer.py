@@ -113,6 +113,11 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
                 "with the context columns)"
             )
         ctx = {"fs": float(self.fs), **{k: float(v) for k, v in self.fault_frequencies.items()}}
+        if "shaft_frequency" in self.feature_names_out_ and "shaft" not in ctx:
+            raise FeatureError(
+                "fault_frequencies has no 'shaft' [Hz]; the feature set "
+                f"{self.feature_set!r} includes the shaft frequency"
+            )
         for row in arr:
             yield row, ctx
 

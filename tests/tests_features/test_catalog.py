@@ -169,3 +169,18 @@ def test_kurtogram_band_stays_below_nyquist(rng):
         kg = F.kurtogram(np.random.default_rng(seed).standard_normal(25600), 25600.0)
         low, high = kg.band
         assert 0.0 <= low < high <= 12800.0
+
+
+def test_shaft_frequency_feature_comes_from_the_context(rng):
+    signals = np.stack([impulses(rng, CTX["bpfo"]) for _ in range(2)])
+    ext = F.FeatureExtractor(fs=FS, fault_frequencies=CTX).fit(signals)
+    names = list(ext.get_feature_names_out())
+    assert F.feature_units()["shaft_frequency"] == "Hz"
+    np.testing.assert_array_equal(ext.transform(signals)[:, names.index("shaft_frequency")], 29.95)
+    no_shaft = {k: v for k, v in CTX.items() if k != "shaft"}
+    with pytest.raises(F.FeatureError, match="'shaft'"):
+        F.FeatureExtractor(fs=FS, fault_frequencies=no_shaft).fit(signals).transform(signals)
+    # the envelope set does not use it, so it needs no shaft frequency
+    F.FeatureExtractor(fs=FS, fault_frequencies=no_shaft, feature_set="envelope").fit(
+        signals
+    ).transform(signals)
