@@ -230,10 +230,10 @@ def test_dask_cluster_with_a_worker_killed_mid_run(tiny, tmp_path):
 def test_committed_dataset_reads_with_pyarrow_and_dask():
     data = REPO / "datasets" / "small" / "data"
     table = pq.read_table(data, columns=["id", "label", "signal"])
-    assert table.num_rows == 48
+    assert table.num_rows == 192
     dd = pytest.importorskip("dask.dataframe")
     frame = dd.read_parquet(str(data), columns=["id", "label", "rpm"]).compute()
-    assert sorted(frame["id"]) == [f"small-{i:06d}" for i in range(48)]
+    assert sorted(frame["id"]) == [f"small-{i:06d}" for i in range(192)]
 
 
 def test_a_case_without_static_equilibrium_is_a_recorded_failure(monkeypatch, tiny):

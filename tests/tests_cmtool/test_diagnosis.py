@@ -30,12 +30,12 @@ def bundle(small):
 
 
 def test_committed_small_dataset_matches_its_recipe(small):
-    assert len(small) == 48
+    assert len(small) == 192
     assert small["label"].value_counts().to_dict() == {
-        "healthy": 12,
-        "inner": 12,
-        "outer": 12,
-        "ball": 12,
+        "healthy": 48,
+        "inner": 48,
+        "outer": 48,
+        "ball": 48,
     }
 
 
