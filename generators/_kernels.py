@@ -76,8 +76,11 @@ import numpy as np
     P_TABLE_STEP_INNER,
     P_TABLE_STEP_OUTER,
     P_TABLE_STEP_SERIES,
+    P_TABLE_INV_STEP_INNER,
+    P_TABLE_INV_STEP_OUTER,
+    P_TABLE_INV_STEP_SERIES,
     P_SIZE,
-) = range(44)
+) = range(47)
 # Film tables (EHL scenes): from P_SIZE on, three tables (inner, outer, series contact) of
 # P_TABLE_NODES nodes each, every node [d, dd/ds]: the elastic approach d solving
 # d = delta + h(K d^1.5) on a grid uniform in s = sqrt(delta + h_max) (delta >= -h_max).
@@ -212,7 +215,7 @@ def _hertz_ehl_table(
         return 0.0
     nodes = int(p[P_TABLE_NODES])
     step = p[P_TABLE_STEP_INNER + table]
-    x = math.sqrt(x) / step
+    x = math.sqrt(x) * p[P_TABLE_INV_STEP_INNER + table]
     i = int(x)
     if i >= nodes - 1:
         return _hertz_ehl(
@@ -235,7 +238,7 @@ def _hertz_ehl_table(
         h = h_max
     root = math.sqrt(d)
     q = k_hertz * d * root
-    c = damping_time * 1.5 * k_hertz * root + q / (q + floor) * squeeze * film / h
+    c = damping_time * 1.5 * k_hertz * root + q * squeeze * film / ((q + floor) * h)
     q = q + c * delta_rate
     return q if q > 0.0 else 0.0
 

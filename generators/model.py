@@ -58,6 +58,7 @@ __all__ = [
     "CHANNELS",
     "natural_frequencies",
     "rk4_schedule",
+    "rk4_stability_radius",
 ]
 
 logger = logging.getLogger(__name__)
@@ -67,8 +68,8 @@ SCENE_CODES = {"shaft": K.SCENE_SHAFT, "shaft+housing": K.SCENE_SHAFT_HOUSING, "
 #: Default fixed RK4 step of the massless-ball scenes [s] (MODEL.md 7.2: converged to 4 digits
 #: at <= 2e-5 s; 5-10 us recommended). See ``cmtool fidelity`` for the measured trade.
 DEFAULT_STEP_MASSLESS = 2e-5
-#: Safety factor on the RK4 stability limit |lambda| dt <= 2.6 used for the ``full`` scene
-#: (dynamic overloads stiffen the contacts beyond the static linearisation).
+#: Safety factor on the RK4 stability limit of the linearised scene (dynamic overloads stiffen
+#: the contacts beyond the static linearisation).
 STABILITY_SAFETY = 0.8
 #: Default oversampling of the integration record over the output rate (anti-alias margin).
 DEFAULT_OVERSAMPLE = 4
@@ -394,6 +395,7 @@ def _film_tables(p: np.ndarray) -> np.ndarray:
         tables[c, :, 0] = d
         tables[c, :, 1] = 2.0 * s_nodes / (1.0 + slope)  # dd/ds = dd/d delta * 2 s
         out[K.P_TABLE_STEP_INNER + c] = step
+        out[K.P_TABLE_INV_STEP_INNER + c] = 1.0 / step
     out[K.P_TABLE_NODES] = n
     return np.concatenate([out, tables.ravel()])
 
@@ -578,15 +580,52 @@ def default_step(
 
     The smaller of the accuracy step ``DEFAULT_STEP_MASSLESS`` (massless-ball scenes converge
     to 0.01 % in the band amplitude there, see ``cmtool fidelity``) and the stability step
-    ``STABILITY_SAFETY * 2.6 / |lambda|_max``, lambda the eigenvalues of the right-hand side
-    linearised at the static start. The fastest mode is the ball radial mode in the ``full``
-    scene (oscillatory or, with the squeeze film, overdamped), otherwise the shaft-on-bearing
-    or a stiff pedestal's housing mode. RK4 is stable for |lambda| dt up to 2.78 on the real
-    and 2.83 on the imaginary axis; 2.6 covers the arc between.
+    ``STABILITY_SAFETY * min_i r(arg lambda_i) / |lambda_i|``, lambda the eigenvalues of the
+    right-hand side linearised at the static start and r(phi) the radius of RK4's stability
+    region along the ray at angle phi (:func:`rk4_stability_radius`: 2.83 on the imaginary
+    axis, 2.79 on the real axis, 2.62 at its narrowest, near 120 degrees). The fastest mode is
+    the ball radial mode in the ``full`` scene (lightly damped, or well damped with the squeeze
+    film), otherwise the shaft-on-bearing or a stiff pedestal's housing mode.
     """
-    lam = float(np.max(np.abs(np.linalg.eigvals(_jacobian(code, ehl, p, wav, y0)))))
-    step = min(DEFAULT_STEP_MASSLESS, STABILITY_SAFETY * 2.6 / max(lam, 1e-300))
+    lam = np.linalg.eigvals(_jacobian(code, ehl, p, wav, y0))
+    lam = lam[np.abs(lam) > 0.0]
+    stable = math.inf
+    if lam.size:
+        stable = float(np.min(rk4_stability_radius(np.angle(lam)) / np.abs(lam)))
+    step = min(DEFAULT_STEP_MASSLESS, STABILITY_SAFETY * stable)
     return min(step, defect_step(p, wav))
+
+
+def rk4_stability_radius(angle: np.ndarray | float) -> np.ndarray:
+    """Radius of the classical RK4 stability region along rays z = r exp(i angle).
+
+    The first r > 0 where |R(z)| = 1, R(z) = 1 + z + z^2/2 + z^3/6 + z^4/24 (scan on a 0.001
+    grid, then bisection to 1e-9). A ray into the right half-plane (|angle| < pi/2: an
+    eigenvalue whose real part is rounding noise of a finite-difference Jacobian, or a growing
+    mode the divergence check reports) is given the imaginary-axis value. ``angle`` in rad;
+    returns r [-] (2.7853 at pi, 2.8284 at pi/2).
+    """
+
+    def amplification(r, phi):
+        z = r * np.exp(1j * phi)
+        return np.abs(1 + z + z**2 / 2 + z**3 / 6 + z**4 / 24)
+
+    phi = np.atleast_1d(np.asarray(angle, dtype=float))
+    grid = np.arange(1, 3501) * 1e-3
+    out = np.empty(phi.shape)
+    for i, a in enumerate(phi):
+        a = max(abs(a), 0.5 * np.pi)
+        unstable = amplification(grid, a) > 1.0 + 1e-12
+        if not unstable.any():
+            out[i] = grid[-1]
+            continue
+        k = int(np.argmax(unstable))
+        lo, hi = (grid[k - 1] if k > 0 else 0.0), grid[k]
+        while hi - lo > 1e-9:
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if amplification(mid, a) <= 1.0 + 1e-12 else (lo, mid)
+        out[i] = lo
+    return out
 
 
 def defect_step(p: np.ndarray, wav: np.ndarray) -> float:

@@ -213,3 +213,37 @@ def test_cage_slip_lowers_the_ball_pass_frequency():
     r = simulate(G6205, slip, settings=SimulationSettings(duration=0.02, settle_time=0.0))
     assert r.frequencies.bpfo == pytest.approx(0.95 * 3.58478 * 30.0, rel=1e-4)
     assert math.isfinite(r["housing_velocity_y"].sum())
+
+
+def test_rk4_stability_radius_matches_the_analytic_limits():
+    from generators.model import rk4_stability_radius
+
+    # imaginary axis: |R(iy)|^2 = 1 - y^6/72 + y^8/576 -> y = sqrt(8) exactly
+    # real axis: 1 - r + r^2/2 - r^3/6 + r^4/24 = -1, root 2.785293563...
+    r = rk4_stability_radius(np.array([np.pi / 2, np.pi, -np.pi, 0.3]))
+    np.testing.assert_allclose(r, [math.sqrt(8.0), 2.7852935634, 2.7852935634, math.sqrt(8.0)])
+    # inside the region just below the radius, outside just above, at any angle
+    for phi in np.linspace(np.pi / 2, np.pi, 7):
+        rad = rk4_stability_radius(phi)[0]
+        for scale, inside in ((0.999, True), (1.001, False)):
+            z = scale * rad * np.exp(1j * phi)
+            assert bool(abs(1 + z + z**2 / 2 + z**3 / 6 + z**4 / 24) <= 1.0) == inside
+
+
+def test_default_step_is_stable_and_twice_that_is_not():
+    # full/dry: the ball radial mode sets the step; RK4 at the default step runs, at 1.6 times
+    # it (twice the stability limit's safety margin of 0.8) diverges
+    from generators.model import STABILITY_SAFETY
+
+    st = SimulationSettings(fs=25600.0, duration=0.02, settle_time=0.01)
+    r = simulate(G6205, OP, settings=st, scene=Scene(level="full", ehl=False))
+    step = r.parameters["integrator_stats"]["step_s"]
+    assert np.all(np.isfinite(r["housing_velocity_y"]))
+    too_long = step / STABILITY_SAFETY * 1.25
+    with pytest.raises(SimulationDivergedError):
+        simulate(
+            G6205,
+            OP,
+            settings=SimulationSettings(fs=25600.0, duration=0.02, settle_time=0.01, step=too_long),
+            scene=Scene(level="full", ehl=False),
+        )
