@@ -690,10 +690,24 @@ def _defect_record(geometry: BearingGeometry, defect: Defect) -> dict:
     return record
 
 
+def _plain(obj):
+    """``dataclasses.asdict`` without its deep copies (the parameter objects are frozen)."""
+    if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
+        return {name: _plain(getattr(obj, name)) for name in _field_names(type(obj))}
+    if isinstance(obj, (list, tuple)):
+        return type(obj)(_plain(v) for v in obj)
+    if isinstance(obj, dict):
+        return {k: _plain(v) for k, v in obj.items()}
+    return obj
+
+
+@functools.cache
+def _field_names(cls: type) -> tuple[str, ...]:
+    return tuple(f.name for f in dataclasses.fields(cls))
+
+
 def _params_record(geometry, operating, rig, scene, level, reason, settings, defects, extra):
-    def clean(obj):
-        d = dataclasses.asdict(obj)
-        return {k: v for k, v in d.items()}
+    clean = _plain
 
     return {
         "bearing": clean(geometry),
