@@ -408,7 +408,9 @@ def _film_sum(p: np.ndarray, loads: np.ndarray) -> np.ndarray:
 def _waviness_at_start(p: np.ndarray, wav: np.ndarray, z: int) -> np.ndarray:
     """Waviness values seen by each ball at t = 0: rows [w_o, w_i, wb_o, wb_i] [m]."""
     out = np.zeros((8, z))
-    K._waviness(wav, z, p[K.P_CAGE_ANGLE0], p[K.P_SHAFT_ANGLE0], 0.0, p, out)
+    trig = K._trig(wav)
+    K._phases(0.0, p, wav, trig)
+    K._waviness(wav, z, p[K.P_CAGE_ANGLE0], p[K.P_SHAFT_ANGLE0], 0.0, p, trig, out)
     return out[[0, 2, 4, 6]]
 
 

@@ -94,7 +94,9 @@ def _kernel_profile(b6205, defect, surface_row, times, shaft_angle_rate=0.0):
     for t in times:
         theta0 = prep.p[K.P_CAGE_ANGLE0] + prep.p[K.P_CAGE_SPEED] * t
         shaft = prep.p[K.P_SHAFT_ANGLE0] + prep.p[K.P_SHAFT_SPEED] * t
-        K._waviness(prep.wav, z, theta0, shaft, t, prep.p, out)
+        trig = K._trig(prep.wav)
+        K._phases(t, prep.p, prep.wav, trig)
+        K._waviness(prep.wav, z, theta0, shaft, t, prep.p, trig, out)
         values.append(out[surface_row].copy())
         rates.append(out[surface_row + 1].copy())
     return prep, np.array(values), np.array(rates)
