@@ -42,7 +42,7 @@ label = "outer"
 surface = "outer"
 order = { min = 8, max = 10 }
 amplitude_m = { min = 0.5e-6, max = 1e-6 }
-count = 400
+count = 1200
 """
 
 
