@@ -9,12 +9,13 @@ Conventions (the Python side, :mod:`generators.model`, packs and unpacks):
   spin angle times k.
 * State ``y``: displacements first, then velocities. Bodies: shaft (x_s, y_s), housing (x_h,
   y_h), then for the ``full`` scene one radial coordinate rho_j per ball.
-* ``scene`` and ``ehl`` are passed through :func:`numba.literally` by the integrators, so every
-  combination is compiled (and cached) on its own; the right-hand side and the small helpers
-  that take arrays are inlined into them (``inline="always"``: no call, no reference counting
-  of the array arguments per evaluation), so the branches that pick the scene are constants
-  and removed at compile time: a scene without ball masses or without a film never executes
-  their code.
+* ``scene`` and ``ehl`` are passed through :func:`numba.literally` by the integrators and by
+  :func:`_rhs`, so every combination is compiled (and cached) on its own and the branches that
+  pick the scene are constants removed at compile time: a scene without ball masses or without
+  a film never executes their code. The right-hand side (:func:`_rhs_inline`) and the small
+  helpers that take arrays are inlined (``inline="always"``: no call and no reference
+  counting of the array arguments per evaluation) at RK4's one call site; DOPRI5 and single
+  evaluations call one compiled copy per scene (:func:`_rhs`).
 * Time-only terms (cage angle, waviness per ball) are computed once per distinct stage time
   (:func:`_time_terms`), outside the right-hand side.
 
