@@ -24,7 +24,7 @@ REPO = Path(__file__).resolve().parents[1]
 SHAFT = """
 name = "shaftbench"
 seed = 1
-chunk_size = 50
+chunk_size = 64
 [operating]
 rpm = { min = 1200, max = 2400 }
 load_n = { min = 300, max = 800 }
@@ -42,7 +42,7 @@ label = "outer"
 surface = "outer"
 order = { min = 8, max = 10 }
 amplitude_m = { min = 0.5e-6, max = 1e-6 }
-count = 1200
+count = 4096
 """
 
 

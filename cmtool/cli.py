@@ -686,7 +686,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--workers",
         type=int,
         default=os.cpu_count() or 1,
-        help="local worker processes (default: all cores)",
+        help="local worker threads (default: all cores)",
     )
     p.add_argument("--resume", action="store_true", help="continue an interrupted run")
     p.add_argument(

@@ -22,7 +22,7 @@ import json
 import os
 import tomllib
 from collections.abc import Callable, Iterable
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import ThreadPoolExecutor, as_completed
 from pathlib import Path
 from typing import Any
 
@@ -31,7 +31,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from generators.dataset import CASE_COLUMNS, Case, expand_cases, generate_case, validate_recipe
+from generators.dataset import CASE_COLUMNS, Case, expand_cases, generate_cases, validate_recipe
 
 from . import __version__
 from .io import atomic_write, to_jsonable
@@ -97,8 +97,18 @@ def _chunks(cases: list[Case], size: int) -> list[tuple[int, list[Case]]]:
 
 
 def run_chunk(recipe: dict, cases: list[Case]) -> list[dict]:
-    """Generate the signals of one chunk (runs in a worker process)."""
-    return [generate_case(recipe, case) for case in cases]
+    """Generate the rows of one chunk (a Dask task: the client writes them)."""
+    return generate_cases(recipe, cases)
+
+
+def run_and_write_chunk(
+    recipe: dict, cases: list[Case], out: Path, chunk: int, recipe_text: str
+) -> tuple[int, int]:
+    """Generate one chunk and write its files (a local worker: no rows sent back).
+
+    Returns the counts of signals written and failed.
+    """
+    return _write_chunk(out, chunk, generate_cases(recipe, cases), recipe_text)
 
 
 def _table(rows: list[dict], schema: pa.Schema) -> pa.Table:
@@ -106,9 +116,11 @@ def _table(rows: list[dict], schema: pa.Schema) -> pa.Table:
     for field in schema:
         values = [row[field.name] for row in rows]
         if field.name == "signal":
-            columns["signal"] = pa.array(
-                [np.asarray(v, dtype=np.float32) for v in values], type=field.type
-            )
+            samples = [np.asarray(v, dtype=np.float32) for v in values]
+            offsets = np.zeros(len(samples) + 1, dtype=np.int32)
+            np.cumsum([s.size for s in samples], out=offsets[1:])
+            flat = np.concatenate(samples) if samples else np.zeros(0, dtype=np.float32)
+            columns["signal"] = pa.ListArray.from_arrays(pa.array(offsets), pa.array(flat))
         else:
             columns[field.name] = pa.array(values, type=field.type)
     return pa.table(columns, schema=schema)
@@ -163,7 +175,7 @@ def generate_dataset(
     out : path
         Dataset folder (created).
     workers : int
-        Local worker processes (1 runs in this process).
+        Local worker threads (1: no extra thread).
     resume : bool
         Continue an interrupted run in ``out`` (same recipe required).
     scheduler : str, optional
@@ -202,17 +214,16 @@ def generate_dataset(
     if progress:
         progress(done, len(cases))
 
-    def finish(chunk: int, rows: list[dict]) -> None:
+    def finish(counts: tuple[int, int]) -> None:
         nonlocal done, written, failed
-        g, b = _write_chunk(out, chunk, rows, text)
-        written += g
-        failed += b
-        done += len(rows)
+        written += counts[0]
+        failed += counts[1]
+        done += counts[0] + counts[1]
         if progress:
             progress(done, len(cases))
 
-    for chunk, rows in _run(recipe, todo, workers=workers, scheduler=scheduler):
-        finish(chunk, rows)
+    for counts in _run(recipe, todo, out, text, workers=workers, scheduler=scheduler):
+        finish(counts)
     summary = {
         "name": recipe["name"],
         "signals": len(cases),
@@ -229,8 +240,22 @@ def generate_dataset(
 
 
 def _run(
-    recipe: dict, todo: list[tuple[int, list[Case]]], *, workers: int, scheduler: str | None
-) -> Iterable[tuple[int, list[dict]]]:
+    recipe: dict,
+    todo: list[tuple[int, list[Case]]],
+    out: Path,
+    recipe_text: str,
+    *,
+    workers: int,
+    scheduler: str | None,
+) -> Iterable[tuple[int, int]]:
+    """Generate and write the chunks of ``todo``; yield (written, failed) per chunk as done.
+
+    Local workers are threads of this process: the simulation kernels and the parquet writer
+    release the GIL (only the per-case set-up, a fraction of a millisecond, is Python), so
+    threads use every core without starting and importing a process per worker or sending
+    signals between processes. Each writes its own chunk files. Dask workers return the rows
+    and this process writes them (the cluster's workers need not share this file system).
+    """
     if not todo:
         return
     if scheduler:
@@ -242,19 +267,22 @@ def _run(
                 client.submit(run_chunk, recipe, cs, pure=False, retries=3): c for c, cs in todo
             }
             for fut in dask_completed(futures):
-                yield futures[fut], fut.result()
+                yield _write_chunk(out, futures[fut], fut.result(), recipe_text)
         return
     if workers <= 1:
         for c, cs in todo:
-            yield c, run_chunk(recipe, cs)
+            yield run_and_write_chunk(recipe, cs, out, c, recipe_text)
         return
-    import multiprocessing
-
-    ctx = multiprocessing.get_context("spawn")
-    with ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
-        futures = {pool.submit(run_chunk, recipe, cs): c for c, cs in todo}
+    pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="cmtool-generate")
+    try:
+        futures = [
+            pool.submit(run_and_write_chunk, recipe, cs, out, c, recipe_text) for c, cs in todo
+        ]
         for fut in as_completed(futures):
-            yield futures[fut], fut.result()
+            yield fut.result()
+    finally:
+        # Ctrl-C or an error: finish the chunks being written, start no new one
+        pool.shutdown(wait=True, cancel_futures=True)
 
 
 def read_dataset(path: str | os.PathLike, *, columns: list[str] | None = None) -> pd.DataFrame:

@@ -159,6 +159,80 @@ def n_dof(scene: int, ball_count: int) -> int:
     return 4 + ball_count if scene == SCENE_FULL else 4
 
 
+# ------------------------------------------------------------------------- static equilibrium
+
+
+@numba.njit(**_JIT)
+def _static_sums(x, y, cos_t, sin_t, gap, k, fx, fy, need_potential):
+    """Residual (gx, gy), Hessian (hxx, hxy, hyy) and potential of the static problem at (x, y).
+
+    Ball j: approach d = x cos + y sin - gap_j, load K d^1.5 for d > 0; residual = sum of the
+    ball loads along (cos, sin) minus the applied force; potential sum (2/5) K d^2.5 - F.xy.
+    """
+    gx = -fx
+    gy = -fy
+    hxx = 0.0
+    hxy = 0.0
+    hyy = 0.0
+    energy = 0.0
+    for j in range(cos_t.shape[0]):
+        c = cos_t[j]
+        s = sin_t[j]
+        d = x * c + y * s - gap[j]
+        if d > 0.0:
+            root = math.sqrt(d)
+            q = k * d * root
+            gx += q * c
+            gy += q * s
+            kl = 1.5 * k * root
+            hxx += kl * c * c
+            hxy += kl * c * s
+            hyy += kl * s * s
+            if need_potential:
+                energy += 0.4 * k * d * d * root
+    return gx, gy, hxx, hxy, hyy, energy - fx * x - fy * y
+
+
+@numba.njit(**_JIT)
+def _static_newton(cos_t, sin_t, gap, k, fx, fy, x, y, length_scale, force_scale):
+    """Damped, regularised Newton on the static potential (``generators.static``): (x, y) [m].
+
+    Levenberg regularisation of the 2x2 Hessian (singular while fewer than two balls touch),
+    Armijo backtracking on the potential, steps capped at ``length_scale`` [m].
+    """
+    mu = 1e-6 * force_scale / length_scale
+    for _ in range(500):
+        gx, gy, hxx, hxy, hyy, p0 = _static_sums(x, y, cos_t, sin_t, gap, k, fx, fy, True)
+        if math.hypot(gx, gy) <= 1e-11 * force_scale:
+            break
+        a = hxx + mu
+        d = hyy + mu
+        det = a * d - hxy * hxy
+        sx = (d * gx - hxy * gy) / det
+        sy = (a * gy - hxy * gx) / det
+        norm = math.hypot(sx, sy)
+        if not (math.isfinite(sx) and math.isfinite(sy)) or norm > length_scale:
+            if not (math.isfinite(sx) and math.isfinite(sy)):
+                sx, sy, norm = gx, gy, math.hypot(gx, gy)
+            scale = length_scale / max(norm, 1e-300)
+            sx *= scale
+            sy *= scale
+        slope = gx * sx + gy * sy
+        t = 1.0
+        while t > 1e-12:
+            trial = _static_sums(x - t * sx, y - t * sy, cos_t, sin_t, gap, k, fx, fy, True)[5]
+            if trial <= p0 - 1e-4 * t * slope:
+                break
+            t *= 0.5
+        if t <= 1e-12:
+            mu *= 10.0  # no descent along the regularised step: regularise more
+            continue
+        x -= t * sx
+        y -= t * sy
+        mu = max(mu * 0.1, 1e-12 * force_scale / length_scale)
+    return x, y
+
+
 # ------------------------------------------------------------------------------ contact laws
 
 

@@ -54,22 +54,25 @@ def check_real(
     float
         The checked value.
     """
-    lo = "-inf" if low is None else f"{low:g}"
-    hi = "inf" if high is None else f"{high:g}"
-    lb = "[" if (low is not None and low_inclusive) else "("
-    hb = "]" if (high is not None and high_inclusive) else ")"
-    rng = f"{lb}{lo}, {hi}{hb}" + (f" {unit}" if unit else "")
-    if isinstance(value, bool) or not isinstance(value, Real):
-        raise ParameterError(f"{name} = {value!r} is not a real number; allowed range {rng}")
+
+    def allowed() -> str:  # the message's range, built only for an error
+        lo = "-inf" if low is None else f"{low:g}"
+        hi = "inf" if high is None else f"{high:g}"
+        lb = "[" if (low is not None and low_inclusive) else "("
+        hb = "]" if (high is not None and high_inclusive) else ")"
+        return f"{lb}{lo}, {hi}{hb}" + (f" {unit}" if unit else "")
+
+    if type(value) is not float and (isinstance(value, bool) or not isinstance(value, Real)):
+        raise ParameterError(f"{name} = {value!r} is not a real number; allowed range {allowed()}")
     v = float(value)
     if not math.isfinite(v):
-        raise ParameterError(f"{name} = {v!r} is not finite; allowed range {rng}")
+        raise ParameterError(f"{name} = {v!r} is not finite; allowed range {allowed()}")
     bad = (low is not None and (v < low or (v == low and not low_inclusive))) or (
         high is not None and (v > high or (v == high and not high_inclusive))
     )
     if bad:
         raise ParameterError(
-            f"{name} = {v:g}{(' ' + unit) if unit else ''} is outside the allowed range {rng}"
+            f"{name} = {v:g}{(' ' + unit) if unit else ''} is outside the allowed range {allowed()}"
         )
     return v
 

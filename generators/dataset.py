@@ -23,7 +23,7 @@ from scipy import signal as sp_signal
 from ._validate import ParameterError, SimulationDivergedError
 from .catalog import BEARINGS, bearing
 from .kinematics import characteristic_frequencies, waviness_passage_frequencies
-from .model import simulate
+from .model import Prepared, integrate, lanes_supported, prepare, simulate_lanes
 from .params import (
     INTEGRATORS,
     SCENE_LEVELS,
@@ -38,6 +38,7 @@ __all__ = [
     "validate_recipe",
     "expand_cases",
     "generate_case",
+    "generate_cases",
     "Case",
     "QUANTITIES",
     "DIRECTIONS",
@@ -515,11 +516,20 @@ def _resonance(x: np.ndarray, fs: float, f0: float, zeta: float) -> np.ndarray:
     return sp_signal.lfilter(b, a, x)
 
 
-def generate_case(recipe: dict, case: Case) -> dict:
-    """Simulate one case: metadata (``CASE_COLUMNS``) plus ``signal`` (float32) or ``error``.
+@dataclass
+class _Job:
+    """One case on its way through :func:`generate_cases`."""
 
-    A diverged simulation returns the metadata with ``error`` set and no signal.
-    """
+    case: Case
+    meta: dict
+    rng: np.random.Generator
+    run: Prepared | None = None  # the case's simulation
+    healthy: Prepared | None = None  # its healthy twin (background noise), if needed
+    error: str | None = None
+
+
+def _setup(recipe: dict, case: Case, channel: str) -> _Job:
+    """Metadata of a case and its prepared simulation(s) (phases drawn from the case seed)."""
     r = recipe
     sensor, model = r["sensor"], r["model"]
     overrides = {} if case.clearance_m is None else {"radial_internal_clearance": case.clearance_m}
@@ -550,7 +560,6 @@ def generate_case(recipe: dict, case: Case) -> dict:
                 phase=None,
             )
         )
-    channel = f"{sensor['body']}_{sensor['quantity']}_{sensor['direction']}"
     settings = SimulationSettings(
         fs=case.fs_hz,
         duration=float(sensor["duration_s"]),
@@ -609,33 +618,38 @@ def generate_case(recipe: dict, case: Case) -> dict:
         "two_bsf_hz": freqs.two_bsf,
         "wpf_hz": wpf,
     }
-    rng = np.random.default_rng(case.seed)
+    job = _Job(case=case, meta=meta, rng=np.random.default_rng(case.seed))
     scene = Scene(level=model["scene"], ehl=model["ehl"])
-
-    def measured(defect_list, random_state) -> np.ndarray:
-        result = simulate(
-            geometry,
-            operating,
-            defect_list,
-            scene=scene,
-            settings=settings,
-            random_state=random_state,
-        )
-        x = result[channel]
-        x = x - x.mean() if sensor["quantity"] == "displacement" else x.copy()
-        if not math.isnan(case.resonance_hz):
-            x = _resonance(x, settings.fs, case.resonance_hz, float(sensor["resonance_damping"]))
-        return x
-
     try:
-        x = measured(defects, rng)
-        healthy = x
+        job.run = prepare(
+            geometry, operating, defects, scene=scene, settings=settings, random_state=job.rng
+        )
         if not math.isnan(case.background_db) and defects:
-            healthy = measured([], np.random.default_rng(case.seed))
-    except SimulationDivergedError as err:
-        return {**meta, "error": str(err)}
+            job.healthy = prepare(
+                geometry,
+                operating,
+                [],
+                scene=scene,
+                settings=settings,
+                random_state=np.random.default_rng(case.seed),
+            )
     except ParameterError as err:  # e.g. no static equilibrium for this case's geometry
-        return {**meta, "error": f"not simulated: {err}"}
+        job.error = f"not simulated: {err}"
+    return job
+
+
+def _measured(recipe: dict, case: Case, x: np.ndarray) -> np.ndarray:
+    """The sensor's view of a simulated channel: mean removed (displacement), resonance."""
+    sensor = recipe["sensor"]
+    x = x - x.mean() if sensor["quantity"] == "displacement" else x
+    if not math.isnan(case.resonance_hz):
+        x = _resonance(x, case.fs_hz, case.resonance_hz, float(sensor["resonance_damping"]))
+    return x
+
+
+def _finish(recipe: dict, job: _Job, x: np.ndarray, healthy: np.ndarray) -> dict:
+    """Add measurement noise (SNR, background or absolute) and build the row of a case."""
+    case, meta, rng, sensor = job.case, job.meta, job.rng, recipe["sensor"]
     noise_rms = 0.0
     if case.snr_db is not None:
         noise_rms = float(np.sqrt(np.mean(x * x))) * 10.0 ** (-case.snr_db / 20.0)
@@ -660,3 +674,51 @@ def generate_case(recipe: dict, case: Case) -> dict:
         return {**meta, "error": "non-finite samples after the sensor model"}
     meta["noise_rms"] = noise_rms
     return {**meta, "signal": x.astype(np.float32), "error": None}
+
+
+def generate_cases(recipe: dict, cases: list[Case]) -> list[dict]:
+    """Simulate cases: per case its metadata (``CASE_COLUMNS``) plus ``signal`` or ``error``.
+
+    Runs that :func:`generators.model.simulate_lanes` supports (RK4, massless-ball scenes,
+    waviness) are integrated together, several per SIMD lane block; the others one by one
+    (:func:`generators.model.integrate`). A case's row depends only on the recipe and the
+    case, never on the other cases in the call. A diverged simulation returns the metadata
+    with ``error`` set and no signal.
+    """
+    sensor = recipe["sensor"]
+    channel = f"{sensor['body']}_{sensor['quantity']}_{sensor['direction']}"
+    jobs = [_setup(recipe, case, channel) for case in cases]
+    preps = [prep for job in jobs for prep in (job.run, job.healthy) if prep is not None]
+    lanes = [prep for prep in preps if lanes_supported(prep)]
+    simulated: dict[int, np.ndarray | Exception] = {}
+    for prep, result in zip(lanes, simulate_lanes(lanes, channel), strict=True):
+        simulated[id(prep)] = result
+    for prep in preps:
+        if id(prep) not in simulated:
+            try:
+                simulated[id(prep)] = integrate(prep)[channel]
+            except (SimulationDivergedError, ParameterError) as err:
+                simulated[id(prep)] = err
+    rows = []
+    for job in jobs:
+        if job.error is not None:
+            rows.append({**job.meta, "error": job.error})
+            continue
+        x = simulated[id(job.run)]
+        healthy = x if job.healthy is None else simulated[id(job.healthy)]
+        failed = next((r for r in (x, healthy) if isinstance(r, Exception)), None)
+        if failed is not None:
+            why = str(failed)
+            if isinstance(failed, ParameterError):
+                why = f"not simulated: {why}"
+            rows.append({**job.meta, "error": why})
+            continue
+        x = _measured(recipe, job.case, x)
+        healthy = x if job.healthy is None else _measured(recipe, job.case, healthy)
+        rows.append(_finish(recipe, job, x, healthy))
+    return rows
+
+
+def generate_case(recipe: dict, case: Case) -> dict:
+    """Simulate one case: :func:`generate_cases` of that case alone (the same row)."""
+    return generate_cases(recipe, [case])[0]

@@ -26,6 +26,7 @@ import numpy as np
 from scipy import signal as sp_signal
 
 from . import _kernels as K
+from . import _lanes
 from ._validate import ParameterError, SimulationDivergedError
 from .contact import (
     entrainment_speed,
@@ -53,11 +54,14 @@ __all__ = [
     "prepare",
     "SimulationResult",
     "simulate",
+    "integrate",
     "resolve_scene",
     "default_step",
     "CHANNELS",
     "natural_frequencies",
+    "lanes_supported",
     "rk4_schedule",
+    "simulate_lanes",
     "rk4_stability_radius",
 ]
 
@@ -821,6 +825,147 @@ def prepare(
     )
 
 
+@dataclass(frozen=True)
+class _Plan:
+    """Integration schedule of a prepared run (see :func:`rk4_schedule`)."""
+
+    oversample: int
+    record_dt: float
+    n_out: int
+    n_record: int
+    dt: float  # RK4 step [s] (NaN for DOPRI5)
+    n_steps: int
+    t_first: float
+
+
+def _plan(prep: Prepared) -> _Plan:
+    """Step, record rate and record count of a prepared run (as :func:`simulate` does)."""
+    settings = prep.settings
+    step = None
+    if settings.integrator == "rk4":
+        step = settings.step or default_step(
+            prep.level, prep.code, prep.ehl, prep.p, prep.wav, prep.y0
+        )
+    oversample = settings.oversample or default_oversample(step, settings.fs)
+    record_dt = 1.0 / (settings.fs * oversample)
+    n_out = int(round(settings.duration * settings.fs))
+    n_record = n_out * oversample
+    if step is None:
+        return _Plan(oversample, record_dt, n_out, n_record, math.nan, 0, settings.settle_time)
+    dt, n_steps, t_first = rk4_schedule(step, record_dt, settings.settle_time, n_record)
+    return _Plan(oversample, record_dt, n_out, n_record, dt, n_steps, t_first)
+
+
+def _diverged(prep: Prepared, status: int, t_fail: float) -> SimulationDivergedError:
+    why = STATUS_REASONS.get(status, f"status {status}")
+    return SimulationDivergedError(
+        f"simulation diverged in scene {prep.level}/{'ehl' if prep.ehl else 'dry'} at t = "
+        f"{t_fail:.6g} s: {why} (integrator {prep.settings.integrator}; try a smaller step or "
+        "tolerance, or check the inputs)",
+        scene=prep.level,
+        time=t_fail,
+        reason=why,
+    )
+
+
+def lanes_supported(prep: Prepared) -> bool:
+    """Whether :func:`simulate_lanes` can integrate this prepared run.
+
+    RK4 in the ``shaft`` or ``shaft+housing`` scene with waviness only (no local defects, fewer
+    than ``MAX_ROWS`` table rows, at most ``MAX_BALLS`` balls) and no contact-load record.
+    """
+    return (
+        prep.settings.integrator == "rk4"
+        and prep.level in ("shaft", "shaft+housing")
+        and not prep.settings.record_contact_loads
+        and bool(np.all(prep.wav[:, K.W_SURFACE] <= K.SURF_BALL))
+        and prep.wav.shape[0] < _lanes.MAX_ROWS
+        and prep.geometry.ball_count <= _lanes.MAX_BALLS
+    )
+
+
+def simulate_lanes(
+    preps: Sequence[Prepared], channel: str
+) -> list[np.ndarray | SimulationDivergedError]:
+    """One output channel of many prepared runs, integrated ``LANES`` at a time.
+
+    The dataset generator's path: runs that share the scene, film switch, bearing (ball
+    count), schedule and waviness layout are integrated together, one per SIMD lane
+    (:mod:`generators._lanes`), by the same RK4 and dense output as :func:`simulate`, then
+    decimated the same way. The result of a run does not depend on which runs share its
+    block; it equals :func:`simulate`'s to rounding (the operations are grouped differently).
+
+    Parameters
+    ----------
+    preps : sequence of Prepared
+        Prepared runs (:func:`prepare`), each :func:`lanes_supported`.
+    channel : str
+        Output channel (``CHANNELS``), e.g. ``"housing_acceleration_y"``.
+
+    Returns
+    -------
+    list
+        Per run, the channel at ``settings.fs`` [m, m/s or m/s^2], or the
+        :class:`SimulationDivergedError` that says why the run diverged.
+    """
+    if channel not in _CHANNEL_COLUMNS:
+        raise ParameterError(f"channel = {channel!r} is not one of {sorted(_CHANNEL_COLUMNS)}")
+    which, column = _CHANNEL_COLUMNS[channel]
+    groups: dict[tuple, list[tuple[int, Prepared, _Plan]]] = {}
+    for i, prep in enumerate(preps):
+        if not lanes_supported(prep):
+            raise ParameterError(
+                f"preps[{i}] (scene {prep.level}, integrator {prep.settings.integrator}) "
+                "cannot run in lanes: RK4, shaft or shaft+housing scene, waviness only"
+            )
+        plan = _plan(prep)
+        layout = tuple(map(tuple, prep.wav[:, [K.W_SURFACE, K.W_BALL]].tolist()))
+        key = (prep.code, prep.ehl, prep.geometry.ball_count, prep.p.size, layout, plan)
+        groups.setdefault(key, []).append((i, prep, plan))
+    results: list = [None] * len(preps)
+    lanes = _lanes.LANES
+    for (code, ehl, *_), members in groups.items():
+        kernel = _lanes.RK4[(code, int(ehl))]
+        plan = members[0][2]
+        for start in range(0, len(members), lanes):
+            block = members[start : start + lanes]
+            # pad with copies of the last run to a multiple of LANE_MULTIPLE lanes (whole
+            # vector iterations; a lane never changes its neighbours' bytes)
+            width = -(-len(block) // _lanes.LANE_MULTIPLE) * _lanes.LANE_MULTIPLE
+            padded = [m[1] for m in block] + [block[-1][1]] * (width - len(block))
+            y0 = np.stack([m.y0 for m in padded], axis=1)
+            p = np.stack([m.p for m in padded], axis=1)
+            wav = np.ascontiguousarray(np.stack([m.wav for m in padded], axis=2))
+            out = np.empty((width, plan.n_record))
+            status = np.empty(width, dtype=np.int64)
+            t_status = np.empty(width)
+            kernel(
+                y0,
+                p,
+                wav,
+                0.0,
+                plan.dt,
+                plan.n_steps,
+                plan.t_first,
+                plan.record_dt,
+                plan.n_record,
+                which,
+                column,
+                out,
+                status,
+                t_status,
+            )
+            records = out
+            if plan.oversample > 1:
+                records = sp_signal.resample_poly(out, 1, plan.oversample, axis=1, padtype="line")
+            for b, (i, prep, _) in enumerate(block):
+                if status[b] != K.STATUS_OK:
+                    results[i] = _diverged(prep, int(status[b]), float(t_status[b]))
+                else:
+                    results[i] = records[b]  # a row of the block's array
+    return results
+
+
 def simulate(
     bearing: BearingGeometry,
     operating: OperatingCondition,
@@ -888,6 +1033,17 @@ def simulate(
         settings=settings,
         random_state=random_state,
     )
+    return integrate(prep)
+
+
+def integrate(prep: Prepared) -> SimulationResult:
+    """Integrate a prepared run (:func:`prepare`): the second half of :func:`simulate`.
+
+    Raises
+    ------
+    SimulationDivergedError
+        As :func:`simulate`.
+    """
     geometry, settings, level, code, ehl = (
         prep.geometry,
         prep.settings,
@@ -905,20 +1061,20 @@ def simulate(
         prep.freqs,
     )
 
-    step = None
-    if settings.integrator == "rk4":
-        step = settings.step or default_step(level, code, ehl, p, wav, y0)
-    oversample = settings.oversample or default_oversample(step, settings.fs)
-    record_dt = 1.0 / (settings.fs * oversample)
-    n_out = int(round(settings.duration * settings.fs))
-    n_record = n_out * oversample
+    plan = _plan(prep)
+    oversample, record_dt, n_out, n_record = (
+        plan.oversample,
+        plan.record_dt,
+        plan.n_out,
+        plan.n_record,
+    )
     out_state = np.zeros((n_record, K.N_OUT_STATE))
     out_accel = np.zeros((n_record, K.N_OUT_ACCEL))
     record_loads = bool(settings.record_contact_loads)
     out_loads = np.zeros((n_record if record_loads else 1, 2, z))
     extra: dict = {}
     if settings.integrator == "rk4":
-        dt, n_steps, t_first = rk4_schedule(step, record_dt, settings.settle_time, n_record)
+        dt, n_steps, t_first = plan.dt, plan.n_steps, plan.t_first
         status, t_fail = K._rk4(
             code,
             int(ehl),
@@ -943,7 +1099,7 @@ def simulate(
         atol[:nd] = settings.atol_displacement
         atol[nd:] = settings.atol_displacement * 1e3
         stats = np.zeros(4)
-        t_first = settings.settle_time
+        t_first = plan.t_first
         # never step over a local defect: at most half a passage per step
         h_max = min(record_dt * 4, 0.5 * DEFECT_STEPS * defect_step(p, wav))
         max_steps = int(settings.max_steps_per_second * (t_first + settings.duration)) + 1000
@@ -975,15 +1131,7 @@ def simulate(
             "max_step_s": float(stats[3]),
         }
     if status != K.STATUS_OK:
-        why = STATUS_REASONS.get(int(status), f"status {status}")
-        raise SimulationDivergedError(
-            f"simulation diverged in scene {level}/{'ehl' if ehl else 'dry'} at t = "
-            f"{t_fail:.6g} s: {why} (integrator {settings.integrator}; try a smaller step or "
-            "tolerance, or check the inputs)",
-            scene=level,
-            time=float(t_fail),
-            reason=why,
-        )
+        raise _diverged(prep, int(status), float(t_fail))
     signals = _decimate(out_state, out_accel, oversample, settings.channels or CHANNELS)
     time = np.arange(n_out) / settings.fs
     loads = out_loads[::oversample].copy() if record_loads else None

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _kernels as K
 from ._validate import ParameterError, check_real
 from .contact import load_deflection_constants
 from .params import BearingGeometry
@@ -124,36 +125,43 @@ def static_load_distribution(
     e_load = np.array([math.cos(load_angle), math.sin(load_angle)])
     force = fr * e_load
 
-    def residual(xy: np.ndarray) -> np.ndarray:
-        q, _ = _forces(xy, cos_t, sin_t, gap, k)
-        return np.array([q @ cos_t, q @ sin_t]) - force
-
-    def jacobian(xy: np.ndarray) -> np.ndarray:
-        _, delta = _forces(xy, cos_t, sin_t, gap, k)
-        kl = 1.5 * k * np.sqrt(np.maximum(delta, 0.0))
-        return np.array(
-            [
-                [kl @ (cos_t * cos_t), kl @ (cos_t * sin_t)],
-                [kl @ (sin_t * cos_t), kl @ (sin_t * sin_t)],
-            ]
-        )
-
-    def potential(xy: np.ndarray) -> float:
-        _, delta = _forces(xy, cos_t, sin_t, gap, k)
-        dp = np.maximum(delta, 0.0)
-        return float(0.4 * k * np.sum(dp * dp * np.sqrt(dp)) - force @ xy)
-
     if fr == 0.0 and np.all(gap >= 0.0):
         xy = np.zeros(2)  # no load and no preload: centred (anywhere in the play is an equilibrium)
     else:
-        xy = _minimise_potential(potential, residual, jacobian, e_load, gap, fr, k)
-        if np.linalg.norm(residual(xy)) > 1e-7 * max(fr, 1.0):
+        # damped Newton on the convex potential sum (2/5) K [delta]_+^2.5 - F.xy (compiled:
+        # the dataset generator solves one per signal)
+        force_scale = max(fr, 1.0)
+        length_scale = max(float(np.abs(gap).max()), (force_scale / k) ** (2.0 / 3.0), 1e-9)
+        start = e_load * (max(float(gap.max()), 0.0) + (force_scale / k) ** (2.0 / 3.0))
+        gap_c = np.ascontiguousarray(gap)
+        xy = np.array(
+            K._static_newton(
+                cos_t,
+                sin_t,
+                gap_c,
+                k,
+                force[0],
+                force[1],
+                start[0],
+                start[1],
+                length_scale,
+                force_scale,
+            )
+        )
+        gx, gy = K._static_sums(xy[0], xy[1], cos_t, sin_t, gap_c, k, *force, False)[:2]
+        if math.hypot(gx, gy) > 1e-7 * max(fr, 1.0):
             raise ParameterError(
                 f"radial_load = {fr:g} N: static equilibrium not found (residual "
-                f"{np.linalg.norm(residual(xy)):.3g} N)"
+                f"{math.hypot(gx, gy):.3g} N)"
             )
     q, delta = _forces(xy, cos_t, sin_t, gap, k)
-    jac = jacobian(xy)
+    kl = 1.5 * k * np.sqrt(np.maximum(delta, 0.0))
+    jac = np.array(
+        [
+            [kl @ (cos_t * cos_t), kl @ (cos_t * sin_t)],
+            [kl @ (sin_t * cos_t), kl @ (sin_t * sin_t)],
+        ]
+    )
     try:
         # dF_r/d delta_r with the transverse force held at zero (the shaft re-centres sideways)
         kr = float(1.0 / (e_load @ np.linalg.solve(jac, e_load)))
@@ -166,32 +174,3 @@ def static_load_distribution(
         ball_loads=q,
         radial_stiffness=kr,
     )
-
-
-def _minimise_potential(potential, residual, jacobian, e_load, gap, fr, k):
-    """Damped Newton on the convex potential sum (2/5) K [delta]_+^2.5 - F.xy.
-
-    The Hessian is singular while fewer than two balls touch (and zero before contact), so each
-    step is regularised (Levenberg) and accepted only if it lowers the potential (Armijo).
-    """
-    force_scale = max(fr, 1.0)
-    length_scale = max(float(np.abs(gap).max()), (force_scale / k) ** (2.0 / 3.0), 1e-9)
-    xy = e_load * (max(float(gap.max()), 0.0) + (force_scale / k) ** (2.0 / 3.0))
-    mu = 1e-6 * force_scale / length_scale
-    for _ in range(500):
-        g = residual(xy)
-        if np.linalg.norm(g) <= 1e-11 * force_scale:
-            break
-        h = jacobian(xy)
-        step = np.linalg.solve(h + mu * np.eye(2), g)
-        if not np.all(np.isfinite(step)) or np.linalg.norm(step) > length_scale:
-            step = step * (length_scale / max(np.linalg.norm(step), 1e-300))
-        p0, t = potential(xy), 1.0
-        while t > 1e-12 and potential(xy - t * step) > p0 - 1e-4 * t * float(g @ step):
-            t *= 0.5
-        if t <= 1e-12:
-            mu *= 10.0  # no descent along the regularised step: regularise more
-            continue
-        xy = xy - t * step
-        mu = max(mu * 0.1, 1e-12 * force_scale / length_scale)
-    return xy

@@ -246,7 +246,7 @@ def test_a_case_without_static_equilibrium_is_a_recorded_failure(monkeypatch, ti
     def no_equilibrium(*args, **kwargs):
         raise ParameterError("radial_load = 1 N: static equilibrium not found")
 
-    monkeypatch.setattr(gd, "simulate", no_equilibrium)
+    monkeypatch.setattr(gd, "prepare", no_equilibrium)
     row = gd.generate_case(recipe, case)
     assert "signal" not in row and row["error"].startswith("not simulated: radial_load")
 

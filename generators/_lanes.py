@@ -1,0 +1,672 @@
+"""Numba kernels that integrate several signals at once, one per SIMD lane (dataset generation).
+
+The ``shaft`` and ``shaft+housing`` scenes with RK4 (:mod:`generators._kernels` for the
+conventions): a block of ``LANES`` simulations that share the bearing (ball count), the
+integration schedule and the layout of the waviness table, and differ in every value (speed,
+load, clearance, waviness order, amplitude and phase, film). Every array holds the lanes in
+its last, contiguous axis and every inner loop runs over the lanes, so the compiler turns the
+right-hand side into vector instructions (four float64 lanes per AVX2 instruction) instead of
+one signal's short ball loop with its serial chains. ``LANES`` is a constant: the loops have a
+fixed trip count and no remainder, so each lane's arithmetic is the same whatever its position
+in the block (a signal's bytes do not depend on its neighbours; tested).
+
+Arrays (``L`` = ``LANES``): ``y0`` (2 * 4, L) initial states; ``p`` (parameter rows, L) the
+packed parameter vectors; ``wav`` (rows, W_SIZE, L) the waviness tables (row layout shared:
+surface and ball of each row are read from lane 0). Only waviness rows (``SURF_OUTER``,
+``SURF_INNER``, ``SURF_BALL``) are allowed; local defects run on :mod:`generators._kernels`.
+One output column per call: ``which`` 0 a state column (``N_OUT_STATE`` order), 1 an
+acceleration (``N_OUT_ACCEL`` order), recorded at ``t_first + k * record_dt`` by the same cubic
+Hermite dense output as the one-signal RK4.
+Only numpy, numba, math and :mod:`generators._kernels` are imported here (import-linter).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+from numba import types
+from numba.core import cgutils
+from numba.extending import intrinsic
+
+from generators._kernels import (
+    _JIT,
+    _JIT_INLINE,
+    P_BALL_COUNT,
+    P_BALL_SPIN_SPEED,
+    P_CAGE_ANGLE0,
+    P_CAGE_SPEED,
+    P_CONTACT_DAMPING_TIME,
+    P_FILM_INNER,
+    P_FILM_INNER_MAX,
+    P_FILM_INNER_REF,
+    P_FILM_LOAD_FLOOR,
+    P_FILM_OUTER,
+    P_FILM_OUTER_MAX,
+    P_FILM_OUTER_REF,
+    P_GAP,
+    P_GRAVITY,
+    P_HOUSING_MASS,
+    P_K_SERIES,
+    P_LOAD_X,
+    P_LOAD_Y,
+    P_LOADING_STIFFNESS,
+    P_LOADING_X0,
+    P_LOADING_Y0,
+    P_MAX_DISPLACEMENT,
+    P_PEDESTAL_DAMPING,
+    P_PEDESTAL_STIFFNESS,
+    P_PITCH_COS,
+    P_PITCH_SIN,
+    P_SHAFT_ANGLE0,
+    P_SHAFT_DAMPING,
+    P_SHAFT_MASS,
+    P_SHAFT_SPEED,
+    P_SQUEEZE_SERIES,
+    P_UNBALANCE,
+    PHASE_ANCHOR,
+    SCENE_SHAFT_HOUSING,
+    STATUS_NONFINITE,
+    STATUS_OK,
+    STATUS_RUNAWAY,
+    SURF_BALL,
+    SURF_INNER,
+    SURF_OUTER,
+    TABLE_SERIES,
+    W_AMPLITUDE,
+    W_BALL,
+    W_ORDER,
+    W_PHASE,
+    W_STEP_COS,
+    W_STEP_SIN,
+    W_SURFACE,
+    _hertz_ehl_table,
+)
+
+LANES = 32  # largest number of signals per block (more lanes, less loop overhead per signal)
+LANE_MULTIPLE = 8  # blocks are padded to a multiple of this
+MAX_BALLS = 32  # largest ball count the lane kernels take (work arrays live on the stack)
+MAX_ROWS = 64  # largest number of waviness table rows
+
+N_STATE = 8  # x_s, y_s, x_h, y_h, vx_s, vy_s, vx_h, vy_h (both scenes)
+
+# per-lane constants read once per block (rows of ``c`` in the implementation)
+(
+    C_GAP,
+    C_TAU,
+    C_TAU15,
+    C_K,
+    C_WC,
+    C_WS,
+    C_WB,
+    C_FLOOR,
+    C_FILM,
+    C_SQUEEZE,
+    C_REF,
+    C_MAX,
+    C_INV_MS,
+    C_INV_MH,
+    C_CS,
+    C_KH,
+    C_CH,
+    C_G,
+    C_FX,
+    C_FY,
+    C_KL,
+    C_X0,
+    C_Y0,
+    C_UNB,
+    C_PCOS,
+    C_PSIN,
+    C_LIMIT,
+    C_SIZE,
+) = range(28)
+
+# sizes of the stack work arrays, in float64 per lane
+_SIZE_KS = 5 * N_STATE * LANES
+_SIZE_STATE = N_STATE * LANES
+_SIZE_FORCES = 6 * LANES
+_SIZE_ROTATION = 3 * LANES
+_SIZE_CONSTANTS = C_SIZE * LANES
+_SIZE_TIME_TERMS = (4 * MAX_BALLS + 2) * LANES
+_SIZE_TRIG = (MAX_ROWS + 2) * 2 * LANES
+
+
+@intrinsic
+def _stack(typingctx, size):
+    """Pointer to ``size`` (a literal int) float64 on the stack of the calling function.
+
+    The lane loops only vectorise when the compiler can prove that the arrays they read and
+    write do not overlap: distinct stack allocations never do (heap arrays from numba's
+    allocator would need a run-time overlap check per pair, too many for the vectoriser).
+    """
+    if not isinstance(size, types.IntegerLiteral):
+        return None
+    count = size.literal_value
+
+    def codegen(context, builder, signature, args):
+        return cgutils.alloca_once(builder, context.get_data_type(types.float64), size=count)
+
+    return types.CPointer(types.float64)(size), codegen
+
+
+@numba.njit(**_JIT_INLINE)
+def _constants(p, c, nl):
+    """Per-lane constants of the right-hand side (rows ``C_*`` of ``c``)."""
+    for b in range(nl):
+        c[C_GAP, b] = p[P_GAP, b]
+        c[C_TAU, b] = p[P_CONTACT_DAMPING_TIME, b]
+        c[C_TAU15, b] = 1.5 * p[P_CONTACT_DAMPING_TIME, b]  # the dry law's factor
+        c[C_K, b] = p[P_K_SERIES, b]
+        c[C_WC, b] = p[P_CAGE_SPEED, b]
+        c[C_WS, b] = p[P_SHAFT_SPEED, b]
+        c[C_WB, b] = p[P_BALL_SPIN_SPEED, b]
+        c[C_FLOOR, b] = p[P_FILM_LOAD_FLOOR, b]
+        c[C_FILM, b] = p[P_FILM_INNER, b] + p[P_FILM_OUTER, b]
+        c[C_SQUEEZE, b] = p[P_SQUEEZE_SERIES, b]
+        c[C_REF, b] = p[P_FILM_INNER_REF, b] + p[P_FILM_OUTER_REF, b]
+        c[C_MAX, b] = p[P_FILM_INNER_MAX, b] + p[P_FILM_OUTER_MAX, b]
+        c[C_INV_MS, b] = 1.0 / p[P_SHAFT_MASS, b]
+        c[C_INV_MH, b] = 1.0 / p[P_HOUSING_MASS, b]
+        c[C_CS, b] = p[P_SHAFT_DAMPING, b]
+        c[C_KH, b] = p[P_PEDESTAL_STIFFNESS, b]
+        c[C_CH, b] = p[P_PEDESTAL_DAMPING, b]
+        c[C_G, b] = p[P_GRAVITY, b]
+        c[C_FX, b] = p[P_LOAD_X, b]
+        c[C_FY, b] = p[P_LOAD_Y, b]
+        c[C_KL, b] = p[P_LOADING_STIFFNESS, b]
+        c[C_X0, b] = p[P_LOADING_X0, b]
+        c[C_Y0, b] = p[P_LOADING_Y0, b]
+        c[C_UNB, b] = p[P_UNBALANCE, b]
+        c[C_PCOS, b] = p[P_PITCH_COS, b]
+        c[C_PSIN, b] = p[P_PITCH_SIN, b]
+        c[C_LIMIT, b] = p[P_MAX_DISPLACEMENT, b]
+
+
+@numba.njit(**_JIT_INLINE)
+def _rate(p, wav, r, b):
+    """Rate [rad/s] of the argument of trig row r (as :func:`_phases`) in lane b."""
+    rows = wav.shape[0]
+    if r == 0:
+        return p[P_CAGE_SPEED, b]
+    if r == rows + 1:
+        return p[P_SHAFT_SPEED, b]
+    surface = int(wav[r - 1, W_SURFACE, 0])
+    k = wav[r - 1, W_ORDER, b]
+    if surface == SURF_OUTER:
+        return k * p[P_CAGE_SPEED, b]
+    if surface == SURF_INNER:
+        return k * (p[P_CAGE_SPEED, b] - p[P_SHAFT_SPEED, b])
+    return k * p[P_BALL_SPIN_SPEED, b]
+
+
+@numba.njit(**_JIT_INLINE)
+def _phases(t, p, wav, trig, nl):
+    """``trig[r, 0/1, b]``: cos/sin of every argument at ``t`` [s], exactly.
+
+    Row 0 the cage angle, r + 1 table row r, ``rows + 1`` the shaft angle.
+    """
+    rows = wav.shape[0]
+    for b in range(nl):
+        theta0 = p[P_CAGE_ANGLE0, b] + p[P_CAGE_SPEED, b] * t
+        shaft_angle = p[P_SHAFT_ANGLE0, b] + p[P_SHAFT_SPEED, b] * t
+        trig[0, 0, b] = math.cos(theta0)
+        trig[0, 1, b] = math.sin(theta0)
+        trig[rows + 1, 0, b] = math.cos(shaft_angle)
+        trig[rows + 1, 1, b] = math.sin(shaft_angle)
+        for r in range(rows):
+            surface = int(wav[r, W_SURFACE, 0])
+            k = wav[r, W_ORDER, b]
+            ph = wav[r, W_PHASE, b]
+            if surface == SURF_OUTER:
+                arg = k * theta0 + ph
+            elif surface == SURF_INNER:
+                arg = k * (theta0 - shaft_angle) + ph
+            else:
+                arg = k * p[P_BALL_SPIN_SPEED, b] * t + ph
+            trig[r + 1, 0, b] = math.cos(arg)
+            trig[r + 1, 1, b] = math.sin(arg)
+
+
+@numba.njit(**_JIT_INLINE)
+def _advance(trig, inc, rows, nl):
+    """Rotate the (cos, sin) pairs of ``trig`` (``rows + 2`` rows) by those of ``inc``."""
+    for r in range(rows + 2):
+        for b in range(nl):
+            c = trig[r, 0, b]
+            s = trig[r, 1, b]
+            trig[r, 0, b] = c * inc[r, 0, b] - s * inc[r, 1, b]
+            trig[r, 1, b] = s * inc[r, 0, b] + c * inc[r, 1, b]
+
+
+@numba.njit(**_JIT_INLINE)
+def _time_terms(c, wav, trig, z, tt, rot, nl):
+    """Time-only terms of the right-hand side at the time ``trig`` holds.
+
+    ``tt[j]``, ``tt[z + j]``: cos/sin of ball j's angle; ``tt[2z + j]``: the waviness seen by
+    ball j (sum over the surfaces: the series contact of the massless ball) minus the
+    diametral gap over two [m]; ``tt[3z + j]``: the waviness rate [m/s]; ``tt[4z]``,
+    ``tt[4z + 1]``: cos/sin of the shaft angle. ``rot`` is a (3, lanes) work array.
+    """
+    rows = wav.shape[0]
+    for b in range(nl):
+        tt[0, b] = trig[0, 0, b]
+        tt[z, b] = trig[0, 1, b]
+        tt[4 * z, b] = trig[rows + 1, 0, b]
+        tt[4 * z + 1, b] = trig[rows + 1, 1, b]
+    for j in range(1, z):
+        for b in range(nl):
+            cj = tt[j - 1, b]
+            sj = tt[z + j - 1, b]
+            tt[j, b] = cj * c[C_PCOS, b] - sj * c[C_PSIN, b]
+            tt[z + j, b] = sj * c[C_PCOS, b] + cj * c[C_PSIN, b]
+    for j in range(z):
+        for b in range(nl):
+            tt[2 * z + j, b] = -c[C_GAP, b]
+            tt[3 * z + j, b] = 0.0
+    for r in range(rows):
+        surface = int(wav[r, W_SURFACE, 0])
+        if surface == SURF_BALL:
+            j = int(wav[r, W_BALL, 0])
+            for b in range(nl):
+                k = wav[r, W_ORDER, b]
+                a = wav[r, W_AMPLITUDE, b]
+                ca = a * trig[r + 1, 0, b]
+                sa = a * k * c[C_WB, b] * trig[r + 1, 1, b]
+                # outer contact, and the inner one diametrically opposite: (-1)^k
+                sign = 1.0 if int(k) % 2 == 0 else -1.0
+                tt[2 * z + j, b] += ca + sign * ca
+                tt[3 * z + j, b] -= sa + sign * sa
+            continue
+        # race harmonic: ball j sees it rotated by k times the ball pitch from ball j - 1
+        outer = surface == SURF_OUTER
+        for b in range(nl):
+            rate = c[C_WC, b] if outer else c[C_WC, b] - c[C_WS, b]
+            rot[0, b] = trig[r + 1, 0, b]
+            rot[1, b] = trig[r + 1, 1, b]
+            rot[2, b] = wav[r, W_AMPLITUDE, b] * wav[r, W_ORDER, b] * rate
+        for j in range(z):
+            for b in range(nl):
+                a = wav[r, W_AMPLITUDE, b]
+                cd = wav[r, W_STEP_COS, b]
+                sd = wav[r, W_STEP_SIN, b]
+                cw = rot[0, b]
+                sw = rot[1, b]
+                tt[2 * z + j, b] += a * cw
+                tt[3 * z + j, b] -= rot[2, b] * sw
+                rot[0, b] = cw * cd - sw * sd
+                rot[1, b] = sw * cd + cw * sd
+
+
+@numba.njit(**_JIT_INLINE)
+def _rhs(scene, ehl, y, c, p, tt, z, f, dydt, nl):
+    """Right-hand side of every lane: ``dydt`` from the states ``y`` (both (8, lanes)).
+
+    ``tt`` the time terms (:func:`_time_terms`), ``f`` a (6, lanes) work array. The balls are
+    massless, so the housing carries the opposite of the shaft's contact force and each
+    contact sees the shaft-to-housing displacement u: approach d = u . e_j + waviness - gap/2,
+    its rate from the velocity relative to the rotating ball direction e_j.
+    """
+    for b in range(nl):
+        wc = c[C_WC, b]
+        rx = y[0, b]
+        ry = y[1, b]
+        vx = y[4, b]
+        vy = y[5, b]
+        if scene == SCENE_SHAFT_HOUSING:
+            rx -= y[2, b]
+            ry -= y[3, b]
+            vx -= y[6, b]
+            vy -= y[7, b]
+        f[0, b] = 0.0
+        f[1, b] = 0.0
+        f[2, b] = rx
+        f[3, b] = ry
+        # d/dt (u . e_j) = (v + wc ez x u) . e_j
+        f[4, b] = vx + wc * ry
+        f[5, b] = vy - wc * rx
+    for j in range(z):
+        for b in range(nl):
+            cj = tt[j, b]
+            sj = tt[z + j, b]
+            d = f[2, b] * cj + f[3, b] * sj + tt[2 * z + j, b]
+            dd = f[4, b] * cj + f[5, b] * sj + tt[3 * z + j, b]
+            if ehl:
+                q = _hertz_ehl_table(
+                    d,
+                    dd,
+                    c[C_K, b],
+                    c[C_TAU, b],
+                    c[C_FILM, b],
+                    c[C_SQUEEZE, b],
+                    c[C_FLOOR, b],
+                    c[C_REF, b],
+                    c[C_MAX, b],
+                    p[:, b],
+                    TABLE_SERIES,
+                )
+            else:
+                # dry Hertz contact without a branch (MODEL.md 1.2): K d^1.5 + 1.5 tau K
+                # d^0.5 d', zero when d <= 0 and clipped at zero (no tension)
+                dp = d if d > 0.0 else 0.0
+                q = c[C_K, b] * math.sqrt(dp) * (dp + c[C_TAU15, b] * dd)
+                q = q if q > 0.0 else 0.0
+            f[0, b] -= q * cj
+            f[1, b] -= q * sj
+    for b in range(nl):
+        kl = c[C_KL, b]
+        unbalance = c[C_UNB, b] * c[C_WS, b] * c[C_WS, b]
+        fxs = f[0, b] + c[C_FX, b] - kl * (y[0, b] - c[C_X0, b]) + unbalance * tt[4 * z, b]
+        fys = f[1, b] + c[C_FY, b] - kl * (y[1, b] - c[C_Y0, b]) + unbalance * tt[4 * z + 1, b]
+        g = c[C_G, b]
+        dydt[0, b] = y[4, b]
+        dydt[1, b] = y[5, b]
+        dydt[2, b] = y[6, b]
+        dydt[3, b] = y[7, b]
+        dydt[4, b] = (fxs - c[C_CS, b] * y[4, b]) * c[C_INV_MS, b]
+        dydt[5, b] = (fys - c[C_CS, b] * y[5, b]) * c[C_INV_MS, b] - g
+        kh = c[C_KH, b]
+        ch = c[C_CH, b]
+        dydt[6, b] = (-f[0, b] - ch * y[6, b] - kh * y[2, b]) * c[C_INV_MH, b]
+        dydt[7, b] = (-f[1, b] - ch * y[7, b] - kh * y[3, b]) * c[C_INV_MH, b] - g
+
+
+@numba.njit(**_JIT_INLINE)
+def _check(y, c, status, t_status, t, nl):
+    """Mark lanes whose state is non-finite or ran away (first failure and its time kept)."""
+    for b in range(nl):
+        if status[b] != STATUS_OK:
+            continue
+        bad = STATUS_OK
+        for i in range(N_STATE):
+            if not math.isfinite(y[i, b]):
+                bad = STATUS_NONFINITE
+        if bad == STATUS_OK:
+            for i in range(4):
+                if abs(y[i, b]) > c[C_LIMIT, b]:
+                    bad = STATUS_RUNAWAY
+        if bad != STATUS_OK:
+            status[b] = bad
+            t_status[b] = t
+
+
+@numba.njit(**_JIT)
+def _rk4_impl(
+    scene,
+    ehl,
+    y0,
+    p,
+    wav,
+    t0,
+    dt,
+    n_steps,
+    t_first,
+    record_dt,
+    n_record,
+    which,
+    column,
+    out,
+    status,
+    t_status,
+):
+    """Classical RK4 (fixed step) of ``y0.shape[1]`` lanes with cubic Hermite dense output.
+
+    The same schedule, stage order, phase rotation (exact every ``PHASE_ANCHOR`` steps) and
+    dense output as the one-signal ``generators._kernels._rk4_impl``. Writes ``out[b, k]``
+    (lane b, record k < n_record) and, per lane, ``status`` and the time of the first failure
+    ``t_status``.
+    The lane count is read from the arrays (at most ``LANES``), not a compile-time constant:
+    a constant eight would be unrolled before the loop vectoriser sees the loops.
+    """
+    numba.literally(scene)
+    numba.literally(ehl)
+    nl = y0.shape[1]
+    z = int(p[P_BALL_COUNT, 0])
+    rows = wav.shape[0]
+    c = numba.carray(_stack(_SIZE_CONSTANTS), (C_SIZE, nl))
+    y = numba.carray(_stack(_SIZE_STATE), (N_STATE, nl))
+    y1 = numba.carray(_stack(_SIZE_STATE), (N_STATE, nl))
+    tmp = numba.carray(_stack(_SIZE_STATE), (N_STATE, nl))
+    ks = numba.carray(_stack(_SIZE_KS), (5, N_STATE, nl))
+    f = numba.carray(_stack(_SIZE_FORCES), (6, nl))
+    rot = numba.carray(_stack(_SIZE_ROTATION), (3, nl))
+    tt = numba.carray(_stack(_SIZE_TIME_TERMS), (4 * z + 2, nl))
+    trig = numba.carray(_stack(_SIZE_TRIG), (MAX_ROWS + 2, 2, nl))
+    inc = numba.carray(_stack(_SIZE_TRIG), (MAX_ROWS + 2, 2, nl))
+    _constants(p, c, nl)
+    half = 0.5 * dt
+    for r in range(rows + 2):
+        for b in range(nl):
+            a = _rate(p, wav, r, b) * half
+            inc[r, 0, b] = math.cos(a)
+            inc[r, 1, b] = math.sin(a)
+    for i in range(N_STATE):
+        for b in range(nl):
+            y[i, b] = y0[i, b]
+    for b in range(nl):
+        status[b] = STATUS_OK
+        t_status[b] = math.nan
+    k1 = ks[0]
+    f1 = ks[4]
+    _phases(t0, p, wav, trig, nl)
+    _time_terms(c, wav, trig, z, tt, rot, nl)
+    _rhs(scene, ehl, y, c, p, tt, z, f, k1, nl)
+    col = column if which == 0 else 4 + column
+    next_rec = 0
+    t = t0
+    for step in range(n_steps):
+        t = t0 + step * dt
+        if step % PHASE_ANCHOR == 0:
+            _phases(t, p, wav, trig, nl)
+        for stage in range(4):
+            if stage == 0 or stage == 2:
+                _advance(trig, inc, rows, nl)
+                _time_terms(c, wav, trig, z, tt, rot, nl)
+            h = half if stage < 2 else dt
+            if stage < 3:
+                for i in range(N_STATE):
+                    for b in range(nl):
+                        tmp[i, b] = y[i, b] + h * ks[stage, i, b]
+            else:
+                for i in range(N_STATE):
+                    for b in range(nl):
+                        tmp[i, b] = y[i, b] + dt / 6.0 * (
+                            ks[0, i, b] + 2.0 * ks[1, i, b] + 2.0 * ks[2, i, b] + ks[3, i, b]
+                        )
+            _rhs(scene, ehl, tmp, c, p, tt, z, f, ks[stage + 1], nl)
+        for i in range(N_STATE):
+            for b in range(nl):
+                y1[i, b] = tmp[i, b]
+        while next_rec < n_record:
+            theta = (t_first + next_rec * record_dt - t) / dt
+            if theta >= 1.0 - 1e-9:
+                break
+            if theta < 0.0:
+                theta = 0.0
+            th2 = theta * theta
+            th3 = th2 * theta
+            if which == 0:
+                h00 = 2.0 * th3 - 3.0 * th2 + 1.0
+                h10 = (th3 - 2.0 * th2 + theta) * dt
+                h01 = -2.0 * th3 + 3.0 * th2
+                h11 = (th3 - th2) * dt
+            else:
+                h00 = (6.0 * th2 - 6.0 * theta) / dt
+                h10 = 3.0 * th2 - 4.0 * theta + 1.0
+                h01 = (-6.0 * th2 + 6.0 * theta) / dt
+                h11 = 3.0 * th2 - 2.0 * theta
+            for b in range(nl):
+                out[b, next_rec] = (
+                    h00 * y[col, b] + h10 * k1[col, b] + h01 * y1[col, b] + h11 * f1[col, b]
+                )
+            next_rec += 1
+        for i in range(N_STATE):
+            for b in range(nl):
+                y[i, b] = y1[i, b]
+                k1[i, b] = f1[i, b]
+        if step % 64 == 0 or next_rec >= n_record:
+            _check(y, c, status, t_status, t + dt, nl)
+        if next_rec >= n_record:
+            return t + dt
+    _check(y, c, status, t_status, t0 + n_steps * dt, nl)
+    return t0 + n_steps * dt
+
+
+# One entry point per (scene, film) pair, as in generators._kernels: the constants reach the
+# implementation as literal types (each pair compiled and cached on its own).
+
+
+@numba.njit(**_JIT)
+def _rk4_shaft_dry(
+    y0,
+    p,
+    wav,
+    t0,
+    dt,
+    n_steps,
+    t_first,
+    record_dt,
+    n_record,
+    which,
+    column,
+    out,
+    status,
+    t_status,
+):
+    return _rk4_impl(
+        0,
+        0,
+        y0,
+        p,
+        wav,
+        t0,
+        dt,
+        n_steps,
+        t_first,
+        record_dt,
+        n_record,
+        which,
+        column,
+        out,
+        status,
+        t_status,
+    )
+
+
+@numba.njit(**_JIT)
+def _rk4_shaft_ehl(
+    y0,
+    p,
+    wav,
+    t0,
+    dt,
+    n_steps,
+    t_first,
+    record_dt,
+    n_record,
+    which,
+    column,
+    out,
+    status,
+    t_status,
+):
+    return _rk4_impl(
+        0,
+        1,
+        y0,
+        p,
+        wav,
+        t0,
+        dt,
+        n_steps,
+        t_first,
+        record_dt,
+        n_record,
+        which,
+        column,
+        out,
+        status,
+        t_status,
+    )
+
+
+@numba.njit(**_JIT)
+def _rk4_shaft_housing_dry(
+    y0,
+    p,
+    wav,
+    t0,
+    dt,
+    n_steps,
+    t_first,
+    record_dt,
+    n_record,
+    which,
+    column,
+    out,
+    status,
+    t_status,
+):
+    return _rk4_impl(
+        1,
+        0,
+        y0,
+        p,
+        wav,
+        t0,
+        dt,
+        n_steps,
+        t_first,
+        record_dt,
+        n_record,
+        which,
+        column,
+        out,
+        status,
+        t_status,
+    )
+
+
+@numba.njit(**_JIT)
+def _rk4_shaft_housing_ehl(
+    y0,
+    p,
+    wav,
+    t0,
+    dt,
+    n_steps,
+    t_first,
+    record_dt,
+    n_record,
+    which,
+    column,
+    out,
+    status,
+    t_status,
+):
+    return _rk4_impl(
+        1,
+        1,
+        y0,
+        p,
+        wav,
+        t0,
+        dt,
+        n_steps,
+        t_first,
+        record_dt,
+        n_record,
+        which,
+        column,
+        out,
+        status,
+        t_status,
+    )
+
+
+RK4 = {
+    (0, 0): _rk4_shaft_dry,
+    (0, 1): _rk4_shaft_ehl,
+    (1, 0): _rk4_shaft_housing_dry,
+    (1, 1): _rk4_shaft_housing_ehl,
+}
