@@ -1,18 +1,28 @@
 """Numba kernels that integrate several signals at once, one per SIMD lane (dataset generation).
 
 The ``shaft`` and ``shaft+housing`` scenes with RK4 (:mod:`generators._kernels` for the
-conventions): a block of ``LANES`` simulations that share the bearing (ball count), the
+conventions): a block of up to ``LANES`` simulations that share the bearing (ball count), the
 integration schedule and the layout of the waviness table, and differ in every value (speed,
 load, clearance, waviness order, amplitude and phase, film). Every array holds the lanes in
 its last, contiguous axis and every inner loop runs over the lanes, so the compiler turns the
 right-hand side into vector instructions (four float64 lanes per AVX2 instruction) instead of
-one signal's short ball loop with its serial chains. ``LANES`` is a constant: the loops have a
-fixed trip count and no remainder, so each lane's arithmetic is the same whatever its position
-in the block (a signal's bytes do not depend on its neighbours; tested).
+one signal's short ball loop with its serial chains. Two things make the loops vectorise:
 
-Arrays (``L`` = ``LANES``): ``y0`` (2 * 4, L) initial states; ``p`` (parameter rows, L) the
-packed parameter vectors; ``wav`` (rows, W_SIZE, L) the waviness tables (row layout shared:
-surface and ball of each row are read from lane 0). Only waviness rows (``SURF_OUTER``,
+* the work arrays live on the stack (:func:`_stack`), each in its own allocation: the
+  compiler then knows they do not overlap (numba's heap arrays would need a run-time overlap
+  check per pair of arrays, more than the vectoriser allows; swapping two of them between
+  steps instead of copying loses that knowledge and was measured 18 % slower);
+* the lane count is a run-time value (the arrays' shape), not a constant: a constant count
+  of eight would be unrolled before the vectoriser sees the loops (numba does not run the
+  straight-line SLP vectoriser).
+
+A lane's arithmetic is the same in the vector body of a loop and in its scalar remainder, so a
+signal's bytes do not depend on its position in the block or on the block's width (checked
+by ``tests/tests_generators/test_lanes.py``).
+
+Arrays (``L`` lanes): ``y0`` (2 * 4, L) initial states; ``p`` (parameter rows, L) the packed
+parameter vectors; ``wav`` (rows, W_SIZE, L) the waviness tables (row layout shared: surface
+and ball of each row are read from lane 0). Only waviness rows (``SURF_OUTER``,
 ``SURF_INNER``, ``SURF_BALL``) are allowed; local defects run on :mod:`generators._kernels`.
 One output column per call: ``which`` 0 a state column (``N_OUT_STATE`` order), 1 an
 acceleration (``N_OUT_ACCEL`` order), recorded at ``t_first + k * record_dt`` by the same cubic
@@ -84,7 +94,6 @@ from generators._kernels import (
 )
 
 LANES = 32  # largest number of signals per block (more lanes, less loop overhead per signal)
-LANE_MULTIPLE = 8  # blocks are padded to a multiple of this
 MAX_BALLS = 32  # largest ball count the lane kernels take (work arrays live on the stack)
 MAX_ROWS = 64  # largest number of waviness table rows
 
