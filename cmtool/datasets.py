@@ -143,12 +143,22 @@ def _write_chunk(out: Path, chunk: int, rows: list[dict], recipe_text: str) -> t
         table = _table(bad, FAILURE_SCHEMA).replace_schema_metadata(meta)
         atomic_write(out / "failures" / name, lambda tmp: pq.write_table(table, tmp))
     table = _table(good, DATA_SCHEMA).replace_schema_metadata(meta)
-    # no dictionary for the samples: noise-like floats never repeat, and pyarrow's attempt
-    # (abandoned after the first page) would leave a 50 % larger file
-    dictionary = [n for n in table.column_names if n != "signal"]
+    # the samples without dictionary, compression or statistics: noise-like floats never
+    # repeat (pyarrow's abandoned dictionary attempt would leave a 50 % larger file), snappy
+    # does not shrink them (measured: same size), and min/max of the samples filter nothing
+    # (10-15 % faster writes); the metadata columns keep all three. Batches of 1 M values
+    # instead of 1024: a quarter less time in the writer's level encoding of the list.
+    metadata_columns = [n for n in table.column_names if n != "signal"]
     atomic_write(
         out / "data" / name,
-        lambda tmp: pq.write_table(table, tmp, use_dictionary=dictionary),
+        lambda tmp: pq.write_table(
+            table,
+            tmp,
+            use_dictionary=metadata_columns,
+            write_statistics=metadata_columns,
+            compression={**dict.fromkeys(metadata_columns, "snappy"), "signal": "none"},
+            write_batch_size=1 << 20,
+        ),
     )
     return len(good), len(bad)
 

@@ -194,6 +194,34 @@ def _static_sums(x, y, cos_t, sin_t, gap, k, fx, fy, need_potential):
 
 
 @numba.njit(**_JIT)
+def _static_loads(x, y, cos_t, sin_t, gap, k, fx, fy, loads):
+    """Ball loads ``loads[j]`` [N] at (x, y); returns the residual and the tangent stiffness.
+
+    (gx, gy) [N] as :func:`_static_sums`, (hxx, hxy, hyy) [N/m] the entries of d(ball forces)/d(xy).
+    """
+    gx = -fx
+    gy = -fy
+    hxx = 0.0
+    hxy = 0.0
+    hyy = 0.0
+    for j in range(cos_t.shape[0]):
+        c = cos_t[j]
+        s = sin_t[j]
+        d = x * c + y * s - gap[j]
+        loads[j] = 0.0
+        if d > 0.0:
+            root = math.sqrt(d)
+            loads[j] = k * d * root
+            gx += loads[j] * c
+            gy += loads[j] * s
+            kl = 1.5 * k * root
+            hxx += kl * c * c
+            hxy += kl * c * s
+            hyy += kl * s * s
+    return gx, gy, hxx, hxy, hyy
+
+
+@numba.njit(**_JIT)
 def _static_newton(cos_t, sin_t, gap, k, fx, fy, x, y, length_scale, force_scale):
     """Damped, regularised Newton on the static potential (``generators.static``): (x, y) [m].
 

@@ -750,6 +750,12 @@ class Prepared:
     max_ball_load: float
 
 
+@functools.cache
+def _default(cls: type):
+    """The default instance of a frozen parameter class (built and validated once)."""
+    return cls()
+
+
 def prepare(
     bearing: BearingGeometry,
     operating: OperatingCondition,
@@ -769,9 +775,9 @@ def prepare(
         raise ParameterError(f"bearing = {bearing!r} is not a BearingGeometry")
     if not isinstance(operating, OperatingCondition):
         raise ParameterError(f"operating = {operating!r} is not an OperatingCondition")
-    scene = Scene() if scene is None else scene
-    rig = Rig() if rig is None else rig
-    settings = SimulationSettings() if settings is None else settings
+    scene = _default(Scene) if scene is None else scene
+    rig = _default(Rig) if rig is None else rig
+    settings = _default(SimulationSettings) if settings is None else settings
     for name, obj, cls in (
         ("scene", scene, Scene),
         ("rig", rig, Rig),

@@ -58,13 +58,6 @@ class StaticSolution:
         return int(np.count_nonzero(self.ball_loads > 0))
 
 
-def _forces(xy: np.ndarray, cos_t: np.ndarray, sin_t: np.ndarray, gap: np.ndarray, k: float):
-    delta = xy[0] * cos_t + xy[1] * sin_t - gap
-    dp = np.maximum(delta, 0.0)
-    q = k * dp * np.sqrt(dp)
-    return q, delta
-
-
 def static_load_distribution(
     geometry: BearingGeometry,
     radial_load: float,
@@ -121,56 +114,39 @@ def static_load_distribution(
         raise ParameterError(f"extra_approach = {extra_approach!r} must be finite")
     theta = cage_angle + 2.0 * np.pi * np.arange(z) / z
     cos_t, sin_t = np.cos(theta), np.sin(theta)
-    gap = geometry.radial_gap - extra
-    e_load = np.array([math.cos(load_angle), math.sin(load_angle)])
-    force = fr * e_load
+    gap = np.ascontiguousarray(geometry.radial_gap - extra)
+    ex, ey = math.cos(load_angle), math.sin(load_angle)
+    fx, fy = fr * ex, fr * ey
 
-    if fr == 0.0 and np.all(gap >= 0.0):
-        xy = np.zeros(2)  # no load and no preload: centred (anywhere in the play is an equilibrium)
-    else:
+    x = y = 0.0  # no load and no preload: centred (anywhere in the play is an equilibrium)
+    if fr > 0.0 or np.any(gap < 0.0):
         # damped Newton on the convex potential sum (2/5) K [delta]_+^2.5 - F.xy (compiled:
         # the dataset generator solves one per signal)
         force_scale = max(fr, 1.0)
         length_scale = max(float(np.abs(gap).max()), (force_scale / k) ** (2.0 / 3.0), 1e-9)
-        start = e_load * (max(float(gap.max()), 0.0) + (force_scale / k) ** (2.0 / 3.0))
-        gap_c = np.ascontiguousarray(gap)
-        xy = np.array(
-            K._static_newton(
-                cos_t,
-                sin_t,
-                gap_c,
-                k,
-                force[0],
-                force[1],
-                start[0],
-                start[1],
-                length_scale,
-                force_scale,
-            )
+        start = max(float(gap.max()), 0.0) + (force_scale / k) ** (2.0 / 3.0)
+        x, y = K._static_newton(
+            cos_t, sin_t, gap, k, fx, fy, start * ex, start * ey, length_scale, force_scale
         )
-        gx, gy = K._static_sums(xy[0], xy[1], cos_t, sin_t, gap_c, k, *force, False)[:2]
-        if math.hypot(gx, gy) > 1e-7 * max(fr, 1.0):
-            raise ParameterError(
-                f"radial_load = {fr:g} N: static equilibrium not found (residual "
-                f"{math.hypot(gx, gy):.3g} N)"
-            )
-    q, delta = _forces(xy, cos_t, sin_t, gap, k)
-    kl = 1.5 * k * np.sqrt(np.maximum(delta, 0.0))
-    jac = np.array(
-        [
-            [kl @ (cos_t * cos_t), kl @ (cos_t * sin_t)],
-            [kl @ (sin_t * cos_t), kl @ (sin_t * sin_t)],
-        ]
-    )
-    try:
-        # dF_r/d delta_r with the transverse force held at zero (the shaft re-centres sideways)
-        kr = float(1.0 / (e_load @ np.linalg.solve(jac, e_load)))
-    except np.linalg.LinAlgError:
-        kr = float(e_load @ jac @ e_load)
+    loads = np.empty(z)
+    gx, gy, hxx, hxy, hyy = K._static_loads(x, y, cos_t, sin_t, gap, k, fx, fy, loads)
+    if math.hypot(gx, gy) > 1e-7 * max(fr, 1.0):
+        raise ParameterError(
+            f"radial_load = {fr:g} N: static equilibrium not found (residual "
+            f"{math.hypot(gx, gy):.3g} N)"
+        )
+    # dF_r/d delta_r with the transverse force held at zero (the shaft re-centres sideways):
+    # 1 / (e . H^-1 e) for the tangent stiffness matrix H, e the load direction
+    det = hxx * hyy - hxy * hxy
+    if det > 0.0:
+        kr = det / (ex * ex * hyy - 2.0 * ex * ey * hxy + ey * ey * hxx)
+    else:  # fewer than two balls touch: the stiffness along the load only
+        kr = ex * ex * hxx + 2.0 * ex * ey * hxy + ey * ey * hyy
+    xy = np.array([x, y])
     return StaticSolution(
         displacement=xy,
-        deflection=float(xy @ e_load),
+        deflection=x * ex + y * ey,
         ball_angles=theta,
-        ball_loads=q,
-        radial_stiffness=kr,
+        ball_loads=loads,
+        radial_stiffness=float(kr),
     )
