@@ -138,9 +138,10 @@ def static_load_distribution(
     # dF_r/d delta_r with the transverse force held at zero (the shaft re-centres sideways):
     # 1 / (e . H^-1 e) for the tangent stiffness matrix H, e the load direction
     det = hxx * hyy - hxy * hxy
-    if det > 0.0:
-        kr = det / (ex * ex * hyy - 2.0 * ex * ey * hxy + ey * ey * hxx)
-    else:  # fewer than two balls touch: the stiffness along the load only
+    quad = ex * ex * hyy - 2.0 * ex * ey * hxy + ey * ey * hxx
+    if det > 1e-12 * hxx * hyy and quad > 0.0:
+        kr = det / quad
+    else:  # singular (fewer than two balls touch): the stiffness along the load only
         kr = ex * ex * hxx + 2.0 * ex * ey * hxy + ey * ey * hyy
     xy = np.array([x, y])
     return StaticSolution(
