@@ -163,11 +163,13 @@ def n_dof(scene: int, ball_count: int) -> int:
 
 
 @numba.njit(**_JIT)
-def _static_sums(x, y, cos_t, sin_t, gap, k, fx, fy, need_potential):
+def _static_sums(x, y, cos_t, sin_t, gap, k, fx, fy, need_potential, loads):
     """Residual (gx, gy), Hessian (hxx, hxy, hyy) and potential of the static problem at (x, y).
 
     Ball j: approach d = x cos + y sin - gap_j, load K d^1.5 for d > 0; residual = sum of the
-    ball loads along (cos, sin) minus the applied force; potential sum (2/5) K d^2.5 - F.xy.
+    ball loads along (cos, sin) minus the applied force [N]; Hessian the tangent stiffness
+    d(ball forces)/d(xy) [N/m]; potential sum (2/5) K d^2.5 - F.xy [J]. Fills ``loads[j]``
+    [N] when ``loads`` has Z entries (an empty array: not wanted).
     """
     gx = -fx
     gy = -fy
@@ -179,6 +181,7 @@ def _static_sums(x, y, cos_t, sin_t, gap, k, fx, fy, need_potential):
         c = cos_t[j]
         s = sin_t[j]
         d = x * c + y * s - gap[j]
+        q = 0.0
         if d > 0.0:
             root = math.sqrt(d)
             q = k * d * root
@@ -190,35 +193,9 @@ def _static_sums(x, y, cos_t, sin_t, gap, k, fx, fy, need_potential):
             hyy += kl * s * s
             if need_potential:
                 energy += 0.4 * k * d * d * root
+        if loads.shape[0] > 0:
+            loads[j] = q
     return gx, gy, hxx, hxy, hyy, energy - fx * x - fy * y
-
-
-@numba.njit(**_JIT)
-def _static_loads(x, y, cos_t, sin_t, gap, k, fx, fy, loads):
-    """Ball loads ``loads[j]`` [N] at (x, y); returns the residual and the tangent stiffness.
-
-    (gx, gy) [N] as :func:`_static_sums`, (hxx, hxy, hyy) [N/m] the entries of d(ball forces)/d(xy).
-    """
-    gx = -fx
-    gy = -fy
-    hxx = 0.0
-    hxy = 0.0
-    hyy = 0.0
-    for j in range(cos_t.shape[0]):
-        c = cos_t[j]
-        s = sin_t[j]
-        d = x * c + y * s - gap[j]
-        loads[j] = 0.0
-        if d > 0.0:
-            root = math.sqrt(d)
-            loads[j] = k * d * root
-            gx += loads[j] * c
-            gy += loads[j] * s
-            kl = 1.5 * k * root
-            hxx += kl * c * c
-            hxy += kl * c * s
-            hyy += kl * s * s
-    return gx, gy, hxx, hxy, hyy
 
 
 @numba.njit(**_JIT)
@@ -229,8 +206,9 @@ def _static_newton(cos_t, sin_t, gap, k, fx, fy, x, y, length_scale, force_scale
     Armijo backtracking on the potential, steps capped at ``length_scale`` [m].
     """
     mu = 1e-6 * force_scale / length_scale
+    none = np.empty(0)
     for _ in range(500):
-        gx, gy, hxx, hxy, hyy, p0 = _static_sums(x, y, cos_t, sin_t, gap, k, fx, fy, True)
+        gx, gy, hxx, hxy, hyy, p0 = _static_sums(x, y, cos_t, sin_t, gap, k, fx, fy, True, none)
         if math.hypot(gx, gy) <= 1e-11 * force_scale:
             break
         a = hxx + mu
@@ -248,7 +226,8 @@ def _static_newton(cos_t, sin_t, gap, k, fx, fy, x, y, length_scale, force_scale
         slope = gx * sx + gy * sy
         t = 1.0
         while t > 1e-12:
-            trial = _static_sums(x - t * sx, y - t * sy, cos_t, sin_t, gap, k, fx, fy, True)[5]
+            xt, yt = x - t * sx, y - t * sy
+            trial = _static_sums(xt, yt, cos_t, sin_t, gap, k, fx, fy, True, none)[5]
             if trial <= p0 - 1e-4 * t * slope:
                 break
             t *= 0.5
@@ -783,6 +762,30 @@ def _check(y, nd, limit):
 
 
 @numba.njit(**_JIT_INLINE)
+def _hermite_weights(theta, dt, derivative):
+    """Weights of (y0, f0, y1, f1) in the cubic Hermite interpolant over a step ``dt`` [s].
+
+    At fraction ``theta`` of the step; ``derivative``: the weights of its time derivative
+    (f the right-hand side at the step's ends).
+    """
+    th2 = theta * theta
+    th3 = th2 * theta
+    if derivative:
+        return (
+            (6.0 * th2 - 6.0 * theta) / dt,
+            3.0 * th2 - 4.0 * theta + 1.0,
+            (-6.0 * th2 + 6.0 * theta) / dt,
+            3.0 * th2 - 2.0 * theta,
+        )
+    return (
+        2.0 * th3 - 3.0 * th2 + 1.0,
+        (th3 - 2.0 * th2 + theta) * dt,
+        -2.0 * th3 + 3.0 * th2,
+        (th3 - th2) * dt,
+    )
+
+
+@numba.njit(**_JIT_INLINE)
 def _hermite_record(y0, f0, y1, f1, dt, theta, nd, k, out_state, out_accel, tmp, acc):
     """Record the cubic Hermite interpolant between two RK4 steps at fraction ``theta``.
 
@@ -790,19 +793,11 @@ def _hermite_record(y0, f0, y1, f1, dt, theta, nd, k, out_state, out_accel, tmp,
     accelerations are the derivative of the velocity interpolant, O(dt^3). At theta = 0 the
     record is exactly the step-start state and its right-hand side.
     """
-    th2 = theta * theta
-    th3 = th2 * theta
-    h00 = 2.0 * th3 - 3.0 * th2 + 1.0
-    h10 = th3 - 2.0 * th2 + theta
-    h01 = -2.0 * th3 + 3.0 * th2
-    h11 = th3 - th2
-    d00 = (6.0 * th2 - 6.0 * theta) / dt
-    d10 = 3.0 * th2 - 4.0 * theta + 1.0
-    d01 = (-6.0 * th2 + 6.0 * theta) / dt
-    d11 = 3.0 * th2 - 2.0 * theta
+    h00, h10, h01, h11 = _hermite_weights(theta, dt, False)
+    d00, d10, d01, d11 = _hermite_weights(theta, dt, True)
     n = y0.shape[0]
     for i in range(n):
-        tmp[i] = h00 * y0[i] + h10 * dt * f0[i] + h01 * y1[i] + h11 * dt * f1[i]
+        tmp[i] = h00 * y0[i] + h10 * f0[i] + h01 * y1[i] + h11 * f1[i]
     for i in range(nd, n):
         acc[i] = d00 * y0[i] + d10 * f0[i] + d01 * y1[i] + d11 * f1[i]
     _record(tmp, acc, nd, k, out_state, out_accel)

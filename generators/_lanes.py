@@ -90,6 +90,7 @@ from generators._kernels import (
     W_STEP_COS,
     W_STEP_SIN,
     W_SURFACE,
+    _hermite_weights,
     _hertz_ehl_table,
 )
 
@@ -492,18 +493,7 @@ def _rk4_impl(
                 break
             if theta < 0.0:
                 theta = 0.0
-            th2 = theta * theta
-            th3 = th2 * theta
-            if which == 0:
-                h00 = 2.0 * th3 - 3.0 * th2 + 1.0
-                h10 = (th3 - 2.0 * th2 + theta) * dt
-                h01 = -2.0 * th3 + 3.0 * th2
-                h11 = (th3 - th2) * dt
-            else:
-                h00 = (6.0 * th2 - 6.0 * theta) / dt
-                h10 = 3.0 * th2 - 4.0 * theta + 1.0
-                h01 = (-6.0 * th2 + 6.0 * theta) / dt
-                h11 = 3.0 * th2 - 2.0 * theta
+            h00, h10, h01, h11 = _hermite_weights(theta, dt, which != 0)
             for b in range(nl):
                 out[b, next_rec] = (
                     h00 * y[col, b] + h10 * k1[col, b] + h01 * y1[col, b] + h11 * f1[col, b]

@@ -129,7 +129,7 @@ def static_load_distribution(
             cos_t, sin_t, gap, k, fx, fy, start * ex, start * ey, length_scale, force_scale
         )
     loads = np.empty(z)
-    gx, gy, hxx, hxy, hyy = K._static_loads(x, y, cos_t, sin_t, gap, k, fx, fy, loads)
+    gx, gy, hxx, hxy, hyy, _ = K._static_sums(x, y, cos_t, sin_t, gap, k, fx, fy, False, loads)
     if math.hypot(gx, gy) > 1e-7 * max(fr, 1.0):
         raise ParameterError(
             f"radial_load = {fr:g} N: static equilibrium not found (residual "
