@@ -19,6 +19,7 @@ from generators import (
     Scene,
     SimulationSettings,
     Waviness,
+    _lanes,
     bearing,
     simulate,
 )
@@ -137,7 +138,16 @@ def test_what_the_lanes_do_not_take():
     pit = prepare(G, OperatingCondition.from_rpm(1800, 500), defect, settings=_settings())
     full = _preps("full", False, None, 1)[0]
     dopri = _preps("shaft", False, None, 1, _settings(integrator="dopri5"))[0]
-    for prep in (pit, full, dopri):
+    # more waviness rows than the stack tables hold (8 ball harmonics x 9 balls = 72 rows)
+    many = prepare(
+        G,
+        OperatingCondition.from_rpm(1800, 500),
+        [Waviness(surface="ball", order=2 * (h + 1), amplitude=1e-7) for h in range(8)],
+        scene=Scene(level="shaft", ehl=False),
+        settings=_settings(),
+    )
+    assert many.wav.shape[0] >= _lanes.MAX_ROWS
+    for prep in (pit, full, dopri, many):
         assert not lanes_supported(prep)
     assert lanes_supported(_preps("shaft+housing", True, "ball", 1)[0])
     with pytest.raises(ParameterError, match="cannot run in lanes"):
