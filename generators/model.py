@@ -612,26 +612,24 @@ def rk4_stability_radius(angle: np.ndarray | float) -> np.ndarray:
     returns r [-] (2.7853 at pi, 2.8284 at pi/2).
     """
 
-    def amplification(r, phi):
-        z = r * np.exp(1j * phi)
-        return np.abs(1 + z + z**2 / 2 + z**3 / 6 + z**4 / 24)
+    def amplification(r, ray):  # |R(r ray)|, ray = exp(i angle); Horner's form
+        z = r * ray
+        return np.abs(1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6.0 + z / 24.0))))
 
-    phi = np.atleast_1d(np.asarray(angle, dtype=float))
+    phi = np.maximum(np.abs(np.atleast_1d(np.asarray(angle, dtype=float))), 0.5 * np.pi)
     grid = np.arange(1, 3501) * 1e-3
-    out = np.empty(phi.shape)
-    for i, a in enumerate(phi):
-        a = max(abs(a), 0.5 * np.pi)
-        unstable = amplification(grid, a) > 1.0 + 1e-12
-        if not unstable.any():
-            out[i] = grid[-1]
-            continue
-        k = int(np.argmax(unstable))
-        lo, hi = (grid[k - 1] if k > 0 else 0.0), grid[k]
-        while hi - lo > 1e-9:
-            mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if amplification(mid, a) <= 1.0 + 1e-12 else (lo, mid)
-        out[i] = lo
-    return out
+    # all rays at once: the first grid point past the boundary, then bisection on every ray
+    ray = np.exp(1j * phi)
+    unstable = amplification(grid[None, :], ray[:, None]) > 1.0 + 1e-12
+    found = unstable.any(axis=1)
+    k = np.argmax(unstable, axis=1)
+    lo = np.where(k > 0, grid[np.maximum(k - 1, 0)], 0.0)
+    hi = grid[k]
+    while np.any(hi - lo > 1e-9):
+        mid = 0.5 * (lo + hi)
+        stable = amplification(mid, ray) <= 1.0 + 1e-12
+        lo, hi = np.where(stable, mid, lo), np.where(stable, hi, mid)
+    return np.where(found, lo, grid[-1])
 
 
 def defect_step(p: np.ndarray, wav: np.ndarray) -> float:
