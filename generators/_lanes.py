@@ -264,7 +264,20 @@ def _time_terms(c, wav, trig, z, tt, rot, nl):
         tt[z, b] = trig[0, 1, b]
         tt[4 * z, b] = trig[rows + 1, 0, b]
         tt[4 * z + 1, b] = trig[rows + 1, 1, b]
-    for j in range(1, z):
+    # three balls per lane loop (as in _rhs): the rotation's (cos, sin) stay in registers
+    j0 = 1
+    while j0 + 3 <= z:
+        for b in range(nl):
+            cj = tt[j0 - 1, b]
+            sj = tt[z + j0 - 1, b]
+            for u in range(3):
+                cn = cj * c[C_PCOS, b] - sj * c[C_PSIN, b]
+                sj = sj * c[C_PCOS, b] + cj * c[C_PSIN, b]
+                cj = cn
+                tt[j0 + u, b] = cj
+                tt[z + j0 + u, b] = sj
+        j0 += 3
+    for j in range(j0, z):
         for b in range(nl):
             cj = tt[j - 1, b]
             sj = tt[z + j - 1, b]
@@ -295,7 +308,24 @@ def _time_terms(c, wav, trig, z, tt, rot, nl):
             rot[0, b] = trig[r + 1, 0, b]
             rot[1, b] = trig[r + 1, 1, b]
             rot[2, b] = wav[r, W_AMPLITUDE, b] * wav[r, W_ORDER, b] * rate
-        for j in range(z):
+        j0 = 0
+        while j0 + 3 <= z:
+            for b in range(nl):
+                a = wav[r, W_AMPLITUDE, b]
+                cd = wav[r, W_STEP_COS, b]
+                sd = wav[r, W_STEP_SIN, b]
+                cw = rot[0, b]
+                sw = rot[1, b]
+                for u in range(3):
+                    tt[2 * z + j0 + u, b] += a * cw
+                    tt[3 * z + j0 + u, b] -= rot[2, b] * sw
+                    cn = cw * cd - sw * sd
+                    sw = sw * cd + cw * sd
+                    cw = cn
+                rot[0, b] = cw
+                rot[1, b] = sw
+            j0 += 3
+        for j in range(j0, z):
             for b in range(nl):
                 a = wav[r, W_AMPLITUDE, b]
                 cd = wav[r, W_STEP_COS, b]
@@ -306,6 +336,36 @@ def _time_terms(c, wav, trig, z, tt, rot, nl):
                 tt[3 * z + j, b] -= rot[2, b] * sw
                 rot[0, b] = cw * cd - sw * sd
                 rot[1, b] = sw * cd + cw * sd
+
+
+@numba.njit(**_JIT_INLINE)
+def _contact(ehl, j, b, f, tt, c, p, z):
+    """Contact force of ball j in lane b [N] and the cos/sin of the ball's angle."""
+    cj = tt[j, b]
+    sj = tt[z + j, b]
+    d = f[2, b] * cj + f[3, b] * sj + tt[2 * z + j, b]
+    dd = f[4, b] * cj + f[5, b] * sj + tt[3 * z + j, b]
+    if ehl:
+        q = _hertz_ehl_table(
+            d,
+            dd,
+            c[C_K, b],
+            c[C_TAU, b],
+            c[C_FILM, b],
+            c[C_SQUEEZE, b],
+            c[C_FLOOR, b],
+            c[C_REF, b],
+            c[C_MAX, b],
+            p[:, b],
+            TABLE_SERIES,
+        )
+    else:
+        # dry Hertz contact without a branch (MODEL.md 1.2): K d^1.5 + 1.5 tau K
+        # d^0.5 d', zero when d <= 0 and clipped at zero (no tension)
+        dp = d if d > 0.0 else 0.0
+        q = c[C_K, b] * math.sqrt(dp) * (dp + c[C_TAU15, b] * dd)
+        q = q if q > 0.0 else 0.0
+    return q, cj, sj
 
 
 @numba.njit(**_JIT_INLINE)
@@ -335,32 +395,22 @@ def _rhs(scene, ehl, y, c, p, tt, z, f, dydt, nl):
         # d/dt (u . e_j) = (v + wc ez x u) . e_j
         f[4, b] = vx + wc * ry
         f[5, b] = vy - wc * rx
-    for j in range(z):
+    # three balls per lane loop: the force sums stay in registers across them
+    j0 = 0
+    while j0 + 3 <= z:
         for b in range(nl):
-            cj = tt[j, b]
-            sj = tt[z + j, b]
-            d = f[2, b] * cj + f[3, b] * sj + tt[2 * z + j, b]
-            dd = f[4, b] * cj + f[5, b] * sj + tt[3 * z + j, b]
-            if ehl:
-                q = _hertz_ehl_table(
-                    d,
-                    dd,
-                    c[C_K, b],
-                    c[C_TAU, b],
-                    c[C_FILM, b],
-                    c[C_SQUEEZE, b],
-                    c[C_FLOOR, b],
-                    c[C_REF, b],
-                    c[C_MAX, b],
-                    p[:, b],
-                    TABLE_SERIES,
-                )
-            else:
-                # dry Hertz contact without a branch (MODEL.md 1.2): K d^1.5 + 1.5 tau K
-                # d^0.5 d', zero when d <= 0 and clipped at zero (no tension)
-                dp = d if d > 0.0 else 0.0
-                q = c[C_K, b] * math.sqrt(dp) * (dp + c[C_TAU15, b] * dd)
-                q = q if q > 0.0 else 0.0
+            fx = f[0, b]
+            fy = f[1, b]
+            for u in range(3):
+                q, cj, sj = _contact(ehl, j0 + u, b, f, tt, c, p, z)
+                fx -= q * cj
+                fy -= q * sj
+            f[0, b] = fx
+            f[1, b] = fy
+        j0 += 3
+    for j in range(j0, z):
+        for b in range(nl):
+            q, cj, sj = _contact(ehl, j, b, f, tt, c, p, z)
             f[0, b] -= q * cj
             f[1, b] -= q * sj
     for b in range(nl):
