@@ -23,7 +23,7 @@ from generators import (
     bearing,
     simulate,
 )
-from generators.model import lanes_supported, prepare, simulate_lanes
+from generators.model import _row_padding, lanes_supported, prepare, simulate_lanes
 
 G = bearing("6205")
 CHANNEL = "housing_acceleration_y"
@@ -154,3 +154,12 @@ def test_what_the_lanes_do_not_take():
         simulate_lanes([full], CHANNEL)
     with pytest.raises(ParameterError, match="channel = 'housing_jerk_y'"):
         simulate_lanes(_preps("shaft", False, None, 1), "housing_jerk_y")
+
+
+@pytest.mark.parametrize("n_record", [1, 512, 6400, 25600, 25601, 102400])
+def test_output_rows_are_padded_off_the_4k_stride(n_record):
+    # every lane's record k is stored in the same pass: rows a multiple of 4 KiB apart would
+    # all land in one L1 set; padded rows start one cache line apart (mod 4 KiB)
+    pad = _row_padding(n_record)
+    assert 0 <= pad < 512
+    assert ((n_record + pad) * 8) % 4096 == 64
