@@ -108,7 +108,8 @@ def run_and_write_chunk(
 
     Returns the counts of signals written and failed.
     """
-    return _write_chunk(out, chunk, generate_cases(recipe, cases), recipe_text)
+    rows = generate_cases(recipe, cases, signal_dtype=np.float64)  # _table rounds to float32
+    return _write_chunk(out, chunk, rows, recipe_text)
 
 
 def _table(rows: list[dict], schema: pa.Schema) -> pa.Table:
@@ -116,10 +117,11 @@ def _table(rows: list[dict], schema: pa.Schema) -> pa.Table:
     for field in schema:
         values = [row[field.name] for row in rows]
         if field.name == "signal":
-            samples = [np.asarray(v, dtype=np.float32) for v in values]
-            offsets = np.zeros(len(samples) + 1, dtype=np.int32)
-            np.cumsum([s.size for s in samples], out=offsets[1:])
-            flat = np.concatenate(samples) if samples else np.zeros(0, dtype=np.float32)
+            offsets = np.zeros(len(values) + 1, dtype=np.int32)
+            np.cumsum([len(v) for v in values], out=offsets[1:])
+            flat = np.empty(offsets[-1], dtype=np.float32)
+            for start, stop, v in zip(offsets[:-1], offsets[1:], values, strict=True):
+                flat[start:stop] = v  # rounded to float32 in the copy
             columns["signal"] = pa.ListArray.from_arrays(pa.array(offsets), pa.array(flat))
         else:
             columns[field.name] = pa.array(values, type=field.type)

@@ -369,6 +369,32 @@ def _contact(ehl, j, b, f, tt, c, p, z):
 
 
 @numba.njit(**_JIT_INLINE)
+def _kinematics(scene, c, f, b, s0, s1, s2, s3, s4, s5, s6, s7):
+    """Contact kinematics of lane b in ``f[0:6, b]`` from its state ``s0..s7``.
+
+    Force sums zeroed, the shaft-to-housing displacement u and the rate of u . e_j without
+    the e_j terms (massless balls).
+    """
+    wc = c[C_WC, b]
+    rx = s0
+    ry = s1
+    vx = s4
+    vy = s5
+    if scene == SCENE_SHAFT_HOUSING:
+        rx -= s2
+        ry -= s3
+        vx -= s6
+        vy -= s7
+    f[0, b] = 0.0
+    f[1, b] = 0.0
+    f[2, b] = rx
+    f[3, b] = ry
+    # d/dt (u . e_j) = (v + wc ez x u) . e_j
+    f[4, b] = vx + wc * ry
+    f[5, b] = vy - wc * rx
+
+
+@numba.njit(**_JIT_INLINE)
 def _rhs(scene, ehl, y, c, p, tt, z, f, dydt, nl):
     """Right-hand side of every lane: ``dydt`` from the states ``y`` (both (8, lanes)).
 
@@ -378,23 +404,71 @@ def _rhs(scene, ehl, y, c, p, tt, z, f, dydt, nl):
     its rate from the velocity relative to the rotating ball direction e_j.
     """
     for b in range(nl):
-        wc = c[C_WC, b]
-        rx = y[0, b]
-        ry = y[1, b]
-        vx = y[4, b]
-        vy = y[5, b]
-        if scene == SCENE_SHAFT_HOUSING:
-            rx -= y[2, b]
-            ry -= y[3, b]
-            vx -= y[6, b]
-            vy -= y[7, b]
-        f[0, b] = 0.0
-        f[1, b] = 0.0
-        f[2, b] = rx
-        f[3, b] = ry
-        # d/dt (u . e_j) = (v + wc ez x u) . e_j
-        f[4, b] = vx + wc * ry
-        f[5, b] = vy - wc * rx
+        _kinematics(
+            scene, c, f, b, y[0, b], y[1, b], y[2, b], y[3, b], y[4, b], y[5, b], y[6, b], y[7, b]
+        )
+    _forces(ehl, y, c, p, tt, z, f, dydt, nl)
+
+
+@numba.njit(**_JIT_INLINE)
+def _stage_rhs(scene, ehl, stage, h, dt, y, ks, tmp, c, p, tt, z, f, nl):
+    """One RK4 stage: ``tmp`` the stage's state, ``ks[stage + 1]`` the right-hand side there.
+
+    The state update runs in the same lane loop as the contact kinematics.
+    """
+    if stage < 3:
+        for b in range(nl):
+            s0 = y[0, b] + h * ks[stage, 0, b]
+            s1 = y[1, b] + h * ks[stage, 1, b]
+            s2 = y[2, b] + h * ks[stage, 2, b]
+            s3 = y[3, b] + h * ks[stage, 3, b]
+            s4 = y[4, b] + h * ks[stage, 4, b]
+            s5 = y[5, b] + h * ks[stage, 5, b]
+            s6 = y[6, b] + h * ks[stage, 6, b]
+            s7 = y[7, b] + h * ks[stage, 7, b]
+            tmp[0, b] = s0
+            tmp[1, b] = s1
+            tmp[2, b] = s2
+            tmp[3, b] = s3
+            tmp[4, b] = s4
+            tmp[5, b] = s5
+            tmp[6, b] = s6
+            tmp[7, b] = s7
+            _kinematics(scene, c, f, b, s0, s1, s2, s3, s4, s5, s6, s7)
+    else:
+        w = dt / 6.0
+        for b in range(nl):
+            s = _rk4_sum(y, ks, w, b)
+            tmp[0, b] = s[0]
+            tmp[1, b] = s[1]
+            tmp[2, b] = s[2]
+            tmp[3, b] = s[3]
+            tmp[4, b] = s[4]
+            tmp[5, b] = s[5]
+            tmp[6, b] = s[6]
+            tmp[7, b] = s[7]
+            _kinematics(scene, c, f, b, s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7])
+    _forces(ehl, tmp, c, p, tt, z, f, ks[stage + 1], nl)
+
+
+@numba.njit(**_JIT_INLINE)
+def _rk4_sum(y, ks, w, b):
+    """The state at the step's end in lane b: y + w (k0 + 2 k1 + 2 k2 + k3), w = dt / 6."""
+    return (
+        y[0, b] + w * (ks[0, 0, b] + 2.0 * ks[1, 0, b] + 2.0 * ks[2, 0, b] + ks[3, 0, b]),
+        y[1, b] + w * (ks[0, 1, b] + 2.0 * ks[1, 1, b] + 2.0 * ks[2, 1, b] + ks[3, 1, b]),
+        y[2, b] + w * (ks[0, 2, b] + 2.0 * ks[1, 2, b] + 2.0 * ks[2, 2, b] + ks[3, 2, b]),
+        y[3, b] + w * (ks[0, 3, b] + 2.0 * ks[1, 3, b] + 2.0 * ks[2, 3, b] + ks[3, 3, b]),
+        y[4, b] + w * (ks[0, 4, b] + 2.0 * ks[1, 4, b] + 2.0 * ks[2, 4, b] + ks[3, 4, b]),
+        y[5, b] + w * (ks[0, 5, b] + 2.0 * ks[1, 5, b] + 2.0 * ks[2, 5, b] + ks[3, 5, b]),
+        y[6, b] + w * (ks[0, 6, b] + 2.0 * ks[1, 6, b] + 2.0 * ks[2, 6, b] + ks[3, 6, b]),
+        y[7, b] + w * (ks[0, 7, b] + 2.0 * ks[1, 7, b] + 2.0 * ks[2, 7, b] + ks[3, 7, b]),
+    )
+
+
+@numba.njit(**_JIT_INLINE)
+def _forces(ehl, y, c, p, tt, z, f, dydt, nl):
+    """Contact force sums from the kinematics in ``f``, then ``dydt`` from the states ``y``."""
     # three balls per lane loop: the force sums stay in registers across them
     j0 = 0
     while j0 + 3 <= z:
@@ -523,17 +597,7 @@ def _rk4_impl(
                 _advance(trig, inc, rows, nl)
                 _time_terms(c, wav, trig, z, tt, rot, nl)
             h = half if stage < 2 else dt
-            if stage < 3:
-                for i in range(N_STATE):
-                    for b in range(nl):
-                        tmp[i, b] = y[i, b] + h * ks[stage, i, b]
-            else:
-                for i in range(N_STATE):
-                    for b in range(nl):
-                        tmp[i, b] = y[i, b] + dt / 6.0 * (
-                            ks[0, i, b] + 2.0 * ks[1, i, b] + 2.0 * ks[2, i, b] + ks[3, i, b]
-                        )
-            _rhs(scene, ehl, tmp, c, p, tt, z, f, ks[stage + 1], nl)
+            _stage_rhs(scene, ehl, stage, h, dt, y, ks, tmp, c, p, tt, z, f, nl)
         for i in range(N_STATE):
             for b in range(nl):
                 y1[i, b] = tmp[i, b]
