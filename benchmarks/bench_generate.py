@@ -31,7 +31,7 @@ REPO = Path(__file__).resolve().parents[1]
 SHAFT = """
 name = "shaftbench"
 seed = 1
-chunk_size = 64
+chunk_size = 128
 [operating]
 rpm = {{ min = 1200, max = 2400 }}
 load_n = {{ min = 300, max = 800 }}

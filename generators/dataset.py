@@ -45,6 +45,10 @@ __all__ = [
     "CASE_COLUMNS",
 ]
 
+#: cases per parquet file (and per worker task) when a recipe does not say: four 32-signal SIMD
+#: blocks (measured: 64-signal chunks ran 3-14 % slower than 128 or 256 on two workers)
+DEFAULT_CHUNK_SIZE = 128
+
 QUANTITIES = ("displacement", "velocity", "acceleration")
 DIRECTIONS = ("x", "y")
 DEFECT_KINDS = ("waviness", "localized")
@@ -168,7 +172,7 @@ def validate_recipe(recipe: dict) -> dict:
     seed = r.get("seed")
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise _fail("seed", seed, "a non-negative integer is required")
-    chunk = r.setdefault("chunk_size", 16)
+    chunk = r.setdefault("chunk_size", DEFAULT_CHUNK_SIZE)
     if isinstance(chunk, bool) or not isinstance(chunk, int) or not 1 <= chunk <= 10000:
         raise _fail("chunk_size", chunk, "an integer in [1, 10000] is required")
     bearings = r.get("bearings", ["6205"])

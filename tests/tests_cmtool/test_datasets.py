@@ -16,7 +16,8 @@ import pytest
 from cmtool.cli import main
 from cmtool.datasets import DatasetError, dataset_info, generate_dataset, read_dataset
 from generators import ParameterError
-from generators.dataset import expand_cases, validate_recipe
+from generators._lanes import LANES
+from generators.dataset import DEFAULT_CHUNK_SIZE, expand_cases, validate_recipe
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -49,6 +50,12 @@ def tiny(tmp_path):
     path = tmp_path / "tiny.toml"
     path.write_text(TINY)
     return path
+
+
+def test_chunk_size_defaults_to_whole_simd_blocks():
+    raw = tomllib.loads(TINY.replace("chunk_size = 2\n", ""))
+    assert validate_recipe(raw)["chunk_size"] == DEFAULT_CHUNK_SIZE
+    assert DEFAULT_CHUNK_SIZE % LANES == 0  # every lane block of a chunk full
 
 
 def test_shipped_recipes_validate():
