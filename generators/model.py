@@ -47,7 +47,7 @@ from .params import (
     SimulationSettings,
     Waviness,
 )
-from .static import static_load_distribution
+from .static import _equilibrium, static_load_distribution
 
 __all__ = [
     "Prepared",
@@ -521,19 +521,18 @@ def _static_state(
     kt = p[K.P_K_SERIES]
     loads = np.full(z, p[K.P_FILM_REFERENCE_LOAD])
     extra = waviness_sum.copy()
+    # static_load_distribution's solver without its input checks: load, angles and
+    # waviness were validated by prepare (the dataset generator solves one per signal)
+    theta = p[K.P_CAGE_ANGLE0] + 2.0 * np.pi * np.arange(z) / z
+    cos_t, sin_t = np.cos(theta), np.sin(theta)
     for _ in range(4 if ehl else 1):
         if ehl:
             extra = waviness_sum + _film_sum(p, loads)
-        st = static_load_distribution(
-            geometry,
-            fr,
-            load_angle=angle,
-            cage_angle=p[K.P_CAGE_ANGLE0],
-            extra_approach=extra,
-            stiffness_constant=kt,
-        )
-        loads = st.ball_loads
-    rel = st.displacement
+        if not math.isfinite(float(extra.sum())):
+            raise ParameterError(f"static start: non-finite approach per ball {extra!r}")
+        gap = np.ascontiguousarray(geometry.radial_gap - extra)
+        x, y, loads, _ = _equilibrium(cos_t, sin_t, gap, kt, fr, angle)
+    rel = np.array([x, y])
     housing = (np.array([fx, fy]) - np.array([0.0, rig.housing_mass * g])) / rig.pedestal_stiffness
     nd = K.n_dof(SCENE_CODES[level], z)
     y0 = np.zeros(2 * nd)
@@ -550,7 +549,7 @@ def _static_state(
             )
     p[K.P_LOADING_X0] = y0[0]
     p[K.P_LOADING_Y0] = y0[1]
-    return y0, float(np.max(loads)) if loads.size else 0.0
+    return y0, float(loads.max()) if loads.size else 0.0
 
 
 def _jacobian(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray) -> np.ndarray:

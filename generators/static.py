@@ -115,9 +115,27 @@ def static_load_distribution(
     theta = cage_angle + 2.0 * np.pi * np.arange(z) / z
     cos_t, sin_t = np.cos(theta), np.sin(theta)
     gap = np.ascontiguousarray(geometry.radial_gap - extra)
+    x, y, loads, kr = _equilibrium(cos_t, sin_t, gap, k, fr, load_angle)
+    ex, ey = math.cos(load_angle), math.sin(load_angle)
+    return StaticSolution(
+        displacement=np.array([x, y]),
+        deflection=x * ex + y * ey,
+        ball_angles=theta,
+        ball_loads=loads,
+        radial_stiffness=float(kr),
+    )
+
+
+def _equilibrium(
+    cos_t: np.ndarray, sin_t: np.ndarray, gap: np.ndarray, k: float, fr: float, load_angle: float
+) -> tuple[float, float, np.ndarray, float]:
+    """Displacement (x, y) [m], ball loads [N] and radial stiffness [N/m] from checked inputs.
+
+    ``gap`` per ball [m] (contiguous; the extra approach already subtracted). The dynamic
+    model's static start calls this directly: its inputs are validated once, in ``prepare``.
+    """
     ex, ey = math.cos(load_angle), math.sin(load_angle)
     fx, fy = fr * ex, fr * ey
-
     x = y = 0.0  # no load and no preload: centred (anywhere in the play is an equilibrium)
     if fr > 0.0 or np.any(gap < 0.0):
         # damped Newton on the convex potential sum (2/5) K [delta]_+^2.5 - F.xy (compiled:
@@ -128,7 +146,7 @@ def static_load_distribution(
         x, y = K._static_newton(
             cos_t, sin_t, gap, k, fx, fy, start * ex, start * ey, length_scale, force_scale
         )
-    loads = np.empty(z)
+    loads = np.empty(gap.size)
     gx, gy, hxx, hxy, hyy, _ = K._static_sums(x, y, cos_t, sin_t, gap, k, fx, fy, False, loads)
     if math.hypot(gx, gy) > 1e-7 * max(fr, 1.0):
         raise ParameterError(
@@ -143,11 +161,4 @@ def static_load_distribution(
         kr = det / quad
     else:  # singular (fewer than two balls touch): the stiffness along the load only
         kr = ex * ex * hxx + 2.0 * ex * ey * hxy + ey * ey * hyy
-    xy = np.array([x, y])
-    return StaticSolution(
-        displacement=xy,
-        deflection=x * ex + y * ey,
-        ball_angles=theta,
-        ball_loads=loads,
-        radial_stiffness=float(kr),
-    )
+    return x, y, loads, float(kr)
