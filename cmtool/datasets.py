@@ -20,6 +20,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import threading
 import tomllib
 from collections.abc import Callable, Iterable
 from concurrent.futures import ThreadPoolExecutor, as_completed
@@ -92,6 +93,9 @@ def load_recipe(path: str | os.PathLike) -> tuple[dict, str]:
     return validate_recipe(raw), text
 
 
+_THREAD_STATE = threading.local()  # per worker thread: its lane blocks' output buffers
+
+
 def _chunks(cases: list[Case], size: int) -> list[tuple[int, list[Case]]]:
     return [(i // size, cases[i : i + size]) for i in range(0, len(cases), size)]
 
@@ -108,7 +112,12 @@ def run_and_write_chunk(
 
     Returns the counts of signals written and failed.
     """
-    rows = generate_cases(recipe, cases, signal_dtype=np.float64)  # _table rounds to float32
+    # float64 rows that view this thread's output buffers (reused chunk after chunk: the rows
+    # are written before the thread takes its next chunk); _table rounds them to float32
+    workspace = getattr(_THREAD_STATE, "workspace", None)
+    if workspace is None:
+        workspace = _THREAD_STATE.workspace = []
+    rows = generate_cases(recipe, cases, signal_dtype=np.float64, workspace=workspace)
     return _write_chunk(out, chunk, rows, recipe_text)
 
 
@@ -282,8 +291,11 @@ def _run(
                 yield _write_chunk(out, futures[fut], fut.result(), recipe_text)
         return
     if workers <= 1:
-        for c, cs in todo:
-            yield run_and_write_chunk(recipe, cs, out, c, recipe_text)
+        try:
+            for c, cs in todo:
+                yield run_and_write_chunk(recipe, cs, out, c, recipe_text)
+        finally:
+            _THREAD_STATE.workspace = None  # this (calling) thread lives on: free its buffers
         return
     pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="cmtool-generate")
     try:

@@ -683,7 +683,11 @@ def _finish(
 
 
 def generate_cases(
-    recipe: dict, cases: list[Case], *, signal_dtype: type = np.float32
+    recipe: dict,
+    cases: list[Case],
+    *,
+    signal_dtype: type = np.float32,
+    workspace: list[np.ndarray] | None = None,
 ) -> list[dict]:
     """Simulate cases: per case its metadata (``CASE_COLUMNS``) plus ``signal`` or ``error``.
 
@@ -693,7 +697,9 @@ def generate_cases(
     case, never on the other cases in the call. A diverged simulation returns the metadata
     with ``error`` set and no signal. ``signal_dtype``: the samples' type in the rows,
     float32 as stored; ``np.float64`` leaves the rounding to float32 to the writer (one copy
-    fewer per signal when the rows go straight into a file).
+    fewer per signal when the rows go straight into a file). ``workspace``: output buffers
+    reused from call to call (:func:`generators.model.simulate_lanes`); float64 signals are
+    then views into them, valid until the next call with the same workspace.
     """
     sensor = recipe["sensor"]
     channel = f"{sensor['body']}_{sensor['quantity']}_{sensor['direction']}"
@@ -701,7 +707,8 @@ def generate_cases(
     preps = [prep for job in jobs for prep in (job.run, job.healthy) if prep is not None]
     lanes = [prep for prep in preps if lanes_supported(prep)]
     simulated: dict[int, np.ndarray | Exception] = {}
-    for prep, result in zip(lanes, simulate_lanes(lanes, channel), strict=True):
+    results = simulate_lanes(lanes, channel, workspace=workspace)
+    for prep, result in zip(lanes, results, strict=True):
         simulated[id(prep)] = result
     for prep in preps:
         if id(prep) not in simulated:

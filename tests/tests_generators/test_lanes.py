@@ -163,3 +163,28 @@ def test_output_rows_are_padded_off_the_4k_stride(n_record):
     pad = _row_padding(n_record)
     assert 0 <= pad < 512
     assert ((n_record + pad) * 8) % 4096 == 64
+
+
+def test_a_workspace_is_reused_and_changes_nothing():
+    # records at the output rate (no decimation): the results are views of the buffers
+    settings = _settings(fs=25600.0, step=1e-4)
+    preps = _preps("shaft", False, "outer", 40, settings=settings)  # blocks of 32 and 8 lanes
+    fresh = simulate_lanes(preps, CHANNEL)
+    workspace: list = []
+    first = simulate_lanes(preps, CHANNEL, workspace=workspace)
+    assert len(workspace) == 2
+    assert all(np.array_equal(a, b) for a, b in zip(first, fresh, strict=True))
+    assert np.shares_memory(first[0], workspace[0]) and np.shares_memory(first[35], workspace[1])
+    buffers = [b.ctypes.data for b in workspace]
+    # a narrower call into the same buffers (views of the previous call are overwritten)
+    second = simulate_lanes(preps[:3], CHANNEL, workspace=workspace)
+    assert [b.ctypes.data for b in workspace] == buffers
+    assert all(np.array_equal(a, b) for a, b in zip(second, fresh[:3], strict=True))
+    # records of another length: the buffer is replaced
+    longer = _preps("shaft", False, "outer", 2, settings=_settings(duration=0.08, step=1e-4))
+    third = simulate_lanes(longer, CHANNEL, workspace=workspace)
+    assert workspace[0].ctypes.data != buffers[0]
+    assert all(
+        np.array_equal(a, simulate_lanes([p], CHANNEL)[0])
+        for a, p in zip(third, longer, strict=True)
+    )
