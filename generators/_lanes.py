@@ -559,7 +559,6 @@ def _rk4_impl(
     rows = wav.shape[0]
     c = numba.carray(_stack(_SIZE_CONSTANTS), (C_SIZE, nl))
     y = numba.carray(_stack(_SIZE_STATE), (N_STATE, nl))
-    y1 = numba.carray(_stack(_SIZE_STATE), (N_STATE, nl))
     tmp = numba.carray(_stack(_SIZE_STATE), (N_STATE, nl))
     ks = numba.carray(_stack(_SIZE_KS), (5, N_STATE, nl))
     f = numba.carray(_stack(_SIZE_FORCES), (6, nl))
@@ -598,9 +597,7 @@ def _rk4_impl(
                 _time_terms(c, wav, trig, z, tt, rot, nl)
             h = half if stage < 2 else dt
             _stage_rhs(scene, ehl, stage, h, dt, y, ks, tmp, c, p, tt, z, f, nl)
-        for i in range(N_STATE):
-            for b in range(nl):
-                y1[i, b] = tmp[i, b]
+        y1 = tmp  # the step's end state (not written again before the next step's stage 0)
         while next_rec < n_record:
             theta = (t_first + next_rec * record_dt - t) / dt
             if theta >= 1.0 - 1e-9:
