@@ -311,31 +311,33 @@ def _time_terms(c, wav, trig, z, tt, rot, nl):
         j0 = 0
         while j0 + 3 <= z:
             for b in range(nl):
-                a = wav[r, W_AMPLITUDE, b]
-                cd = wav[r, W_STEP_COS, b]
-                sd = wav[r, W_STEP_SIN, b]
-                cw = rot[0, b]
-                sw = rot[1, b]
-                for u in range(3):
-                    tt[2 * z + j0 + u, b] += a * cw
-                    tt[3 * z + j0 + u, b] -= rot[2, b] * sw
-                    cn = cw * cd - sw * sd
-                    sw = sw * cd + cw * sd
-                    cw = cn
-                rot[0, b] = cw
-                rot[1, b] = sw
+                _race_balls(tt, wav, rot, r, z, j0, 3, b)
             j0 += 3
         for j in range(j0, z):
             for b in range(nl):
-                a = wav[r, W_AMPLITUDE, b]
-                cd = wav[r, W_STEP_COS, b]
-                sd = wav[r, W_STEP_SIN, b]
-                cw = rot[0, b]
-                sw = rot[1, b]
-                tt[2 * z + j, b] += a * cw
-                tt[3 * z + j, b] -= rot[2, b] * sw
-                rot[0, b] = cw * cd - sw * sd
-                rot[1, b] = sw * cd + cw * sd
+                _race_balls(tt, wav, rot, r, z, j, 1, b)
+
+
+@numba.njit(**_JIT_INLINE)
+def _race_balls(tt, wav, rot, r, z, j0, count, b):
+    """Add race harmonic r to balls j0 .. j0 + count - 1 of lane b (``count`` a constant).
+
+    ``rot[0:2, b]`` holds cos/sin of the harmonic's phase at ball j0 and is left at the next
+    ball's; ``rot[2, b]`` the amplitude times the phase rate.
+    """
+    a = wav[r, W_AMPLITUDE, b]
+    cd = wav[r, W_STEP_COS, b]
+    sd = wav[r, W_STEP_SIN, b]
+    cw = rot[0, b]
+    sw = rot[1, b]
+    for u in range(count):
+        tt[2 * z + j0 + u, b] += a * cw
+        tt[3 * z + j0 + u, b] -= rot[2, b] * sw
+        cn = cw * cd - sw * sd
+        sw = sw * cd + cw * sd
+        cw = cn
+    rot[0, b] = cw
+    rot[1, b] = sw
 
 
 @numba.njit(**_JIT_INLINE)
