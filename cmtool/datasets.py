@@ -174,6 +174,18 @@ def _write_chunk(out: Path, chunk: int, rows: list[dict], recipe_text: str) -> t
     return len(good), len(bad)
 
 
+def _remove_stale_temporaries(out: Path) -> None:
+    """Delete the temporary files a killed run left in the middle of a write.
+
+    ``atomic_write``'s hidden ``.NAME.XXXX.tmp``: readers never see them (pyarrow and Spark
+    skip names starting with a dot), but each holds up to a part's worth of disk.
+    """
+    for folder in (out, out / "data", out / "failures"):
+        if folder.is_dir():
+            for tmp in folder.glob(".*.tmp"):
+                tmp.unlink(missing_ok=True)
+
+
 def _recipe_hash(recipe: dict) -> str:
     return hashlib.sha256(json.dumps(to_jsonable(recipe), sort_keys=True).encode()).hexdigest()
 
@@ -226,6 +238,8 @@ def generate_dataset(
                     f"out = {str(out)!r} was made from a different recipe; cannot resume"
                 )
     out.mkdir(parents=True, exist_ok=True)
+    if resume:
+        _remove_stale_temporaries(out)
     atomic_write(stamp, lambda tmp: tmp.write_text(text))
     cases = expand_cases(recipe)
     chunks = _chunks(cases, recipe["chunk_size"])

@@ -138,6 +138,17 @@ def test_refuses_to_overwrite_and_resume_checks_recipe(tiny, tmp_path):
         generate_dataset(other, out, resume=True)
 
 
+def test_resume_removes_what_a_killed_write_left(tiny, tmp_path):
+    out = tmp_path / "ds"
+    generate_dataset(tiny, out)
+    (out / "data" / "part-00001.parquet").unlink()
+    stale = out / "data" / ".part-00001.parquet.k1ll3d.tmp"
+    stale.write_bytes(b"PAR1 half a file")  # what SIGKILL leaves in the middle of a write
+    summary = generate_dataset(tiny, out, resume=True)
+    assert not stale.exists() and summary["written"] == 2
+    assert sorted(read_dataset(out)["id"]) == [f"tiny-{i:06d}" for i in range(6)]
+
+
 def test_resume_after_a_killed_run_gives_every_signal_once(tiny, tmp_path):
     out = tmp_path / "ds"
     env = {**os.environ, "PYTHONUNBUFFERED": "1"}
@@ -163,8 +174,12 @@ def test_resume_after_a_killed_run_gives_every_signal_once(tiny, tmp_path):
     proc.send_signal(signal.SIGKILL)
     proc.wait()
     assert (out / "data" / "part-00000.parquet").exists()
-    assert not list((out / "data").glob("*.tmp"))  # no half-written part visible as data
+    # a part being written when the process died is a hidden temporary file, never a
+    # truncated .parquet: every visible part reads whole
+    for part in (out / "data").glob("*.parquet"):
+        assert pq.read_table(part).num_rows == 2
     summary = generate_dataset(tiny, out, resume=True)
+    assert not list(out.rglob("*.tmp"))  # the resumed run removed what the killed one left
     frame = read_dataset(out)
     assert sorted(frame["id"]) == [f"tiny-{i:06d}" for i in range(6)]
     assert summary["skipped_existing"] >= 2
