@@ -268,21 +268,11 @@ def _time_terms(c, wav, trig, z, tt, rot, nl):
     j0 = 1
     while j0 + 3 <= z:
         for b in range(nl):
-            cj = tt[j0 - 1, b]
-            sj = tt[z + j0 - 1, b]
-            for u in range(3):
-                cn = cj * c[C_PCOS, b] - sj * c[C_PSIN, b]
-                sj = sj * c[C_PCOS, b] + cj * c[C_PSIN, b]
-                cj = cn
-                tt[j0 + u, b] = cj
-                tt[z + j0 + u, b] = sj
+            _ball_angles(tt, c, z, j0, 3, b)
         j0 += 3
     for j in range(j0, z):
         for b in range(nl):
-            cj = tt[j - 1, b]
-            sj = tt[z + j - 1, b]
-            tt[j, b] = cj * c[C_PCOS, b] - sj * c[C_PSIN, b]
-            tt[z + j, b] = sj * c[C_PCOS, b] + cj * c[C_PSIN, b]
+            _ball_angles(tt, c, z, j, 1, b)
     for j in range(z):
         for b in range(nl):
             tt[2 * z + j, b] = -c[C_GAP, b]
@@ -316,6 +306,22 @@ def _time_terms(c, wav, trig, z, tt, rot, nl):
         for j in range(j0, z):
             for b in range(nl):
                 _race_balls(tt, wav, rot, r, z, j, 1, b)
+
+
+@numba.njit(**_JIT_INLINE)
+def _ball_angles(tt, c, z, j0, count, b):
+    """cos/sin of balls j0 .. j0 + count - 1 in lane b (``count`` a constant).
+
+    Each is the previous ball's turned by the ball pitch.
+    """
+    cj = tt[j0 - 1, b]
+    sj = tt[z + j0 - 1, b]
+    for u in range(count):
+        cn = cj * c[C_PCOS, b] - sj * c[C_PSIN, b]
+        sj = sj * c[C_PCOS, b] + cj * c[C_PSIN, b]
+        cj = cn
+        tt[j0 + u, b] = cj
+        tt[z + j0 + u, b] = sj
 
 
 @numba.njit(**_JIT_INLINE)
@@ -420,37 +426,44 @@ def _stage_rhs(scene, ehl, stage, h, dt, y, ks, tmp, c, p, tt, z, f, nl):
     """
     if stage < 3:
         for b in range(nl):
-            s0 = y[0, b] + h * ks[stage, 0, b]
-            s1 = y[1, b] + h * ks[stage, 1, b]
-            s2 = y[2, b] + h * ks[stage, 2, b]
-            s3 = y[3, b] + h * ks[stage, 3, b]
-            s4 = y[4, b] + h * ks[stage, 4, b]
-            s5 = y[5, b] + h * ks[stage, 5, b]
-            s6 = y[6, b] + h * ks[stage, 6, b]
-            s7 = y[7, b] + h * ks[stage, 7, b]
-            tmp[0, b] = s0
-            tmp[1, b] = s1
-            tmp[2, b] = s2
-            tmp[3, b] = s3
-            tmp[4, b] = s4
-            tmp[5, b] = s5
-            tmp[6, b] = s6
-            tmp[7, b] = s7
-            _kinematics(scene, c, f, b, s0, s1, s2, s3, s4, s5, s6, s7)
+            s = _stage_state(y, ks, stage, h, b)
+            _store_state(tmp, b, s)
+            _kinematics(scene, c, f, b, s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7])
     else:
         w = dt / 6.0
         for b in range(nl):
             s = _rk4_sum(y, ks, w, b)
-            tmp[0, b] = s[0]
-            tmp[1, b] = s[1]
-            tmp[2, b] = s[2]
-            tmp[3, b] = s[3]
-            tmp[4, b] = s[4]
-            tmp[5, b] = s[5]
-            tmp[6, b] = s[6]
-            tmp[7, b] = s[7]
+            _store_state(tmp, b, s)
             _kinematics(scene, c, f, b, s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7])
     _forces(ehl, tmp, c, p, tt, z, f, ks[stage + 1], nl)
+
+
+@numba.njit(**_JIT_INLINE)
+def _stage_state(y, ks, stage, h, b):
+    """The state of stage ``stage`` < 3 in lane b: y + h k_stage."""
+    return (
+        y[0, b] + h * ks[stage, 0, b],
+        y[1, b] + h * ks[stage, 1, b],
+        y[2, b] + h * ks[stage, 2, b],
+        y[3, b] + h * ks[stage, 3, b],
+        y[4, b] + h * ks[stage, 4, b],
+        y[5, b] + h * ks[stage, 5, b],
+        y[6, b] + h * ks[stage, 6, b],
+        y[7, b] + h * ks[stage, 7, b],
+    )
+
+
+@numba.njit(**_JIT_INLINE)
+def _store_state(state, b, s):
+    """Write the 8-tuple ``s`` into lane b of ``state`` (8, lanes)."""
+    state[0, b] = s[0]
+    state[1, b] = s[1]
+    state[2, b] = s[2]
+    state[3, b] = s[3]
+    state[4, b] = s[4]
+    state[5, b] = s[5]
+    state[6, b] = s[6]
+    state[7, b] = s[7]
 
 
 @numba.njit(**_JIT_INLINE)
