@@ -18,12 +18,14 @@ read directly; ``operating_point_id`` groups cases for leakage-free splits.
 from __future__ import annotations
 
 import hashlib
+import itertools
 import json
 import os
+import queue
 import threading
 import tomllib
-from collections.abc import Callable, Iterable
-from concurrent.futures import ThreadPoolExecutor, as_completed
+from collections.abc import Callable, Iterable, Iterator
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Any
 
@@ -32,7 +34,14 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from generators.dataset import CASE_COLUMNS, Case, expand_cases, generate_cases, validate_recipe
+from generators.dataset import (
+    CASE_COLUMNS,
+    Case,
+    case_count,
+    generate_cases,
+    iter_cases,
+    validate_recipe,
+)
 
 from . import __version__
 from .io import atomic_write, to_jsonable
@@ -94,10 +103,6 @@ def load_recipe(path: str | os.PathLike) -> tuple[dict, str]:
 
 
 _THREAD_STATE = threading.local()  # per worker thread: its lane blocks' output buffers
-
-
-def _chunks(cases: list[Case], size: int) -> list[tuple[int, list[Case]]]:
-    return [(i // size, cases[i : i + size]) for i in range(0, len(cases), size)]
 
 
 def run_chunk(recipe: dict, cases: list[Case]) -> list[dict]:
@@ -241,59 +246,100 @@ def generate_dataset(
     if resume:
         _remove_stale_temporaries(out)
     atomic_write(stamp, lambda tmp: tmp.write_text(text))
-    cases = expand_cases(recipe)
-    chunks = _chunks(cases, recipe["chunk_size"])
-    todo = [(c, cs) for c, cs in chunks if not (out / "data" / f"part-{c:05d}.parquet").is_file()]
-    skipped = len(cases) - sum(len(cs) for _, cs in todo)
-    done, written, failed = skipped, 0, 0
+    total = case_count(recipe)
+    feed = _ChunkFeed(recipe, out)
+    done, written, failed = 0, 0, 0
     if progress:
-        progress(done, len(cases))
-
-    def finish(counts: tuple[int, int]) -> None:
-        nonlocal done, written, failed
+        progress(done, total)
+    for counts in _run(recipe, feed, out, text, workers=workers, scheduler=scheduler):
         written += counts[0]
         failed += counts[1]
-        done += counts[0] + counts[1]
+        done = feed.skipped + written + failed
         if progress:
-            progress(done, len(cases))
-
-    for counts in _run(recipe, todo, out, text, workers=workers, scheduler=scheduler):
-        finish(counts)
+            progress(done, total)
+    if progress and done < total:  # trailing chunks already present
+        progress(total, total)
     summary = {
         "name": recipe["name"],
-        "signals": len(cases),
+        "signals": total,
         "written": written,
         "failed": failed,
-        "skipped_existing": skipped,
+        "skipped_existing": feed.skipped,
         "recipe_sha256": digest,
         "cmtool_version": __version__,
         "schema_version": DATASET_SCHEMA_VERSION,
-        "chunks": len(chunks),
+        "chunks": feed.chunks,
     }
     atomic_write(out / "_dataset.json", lambda tmp: tmp.write_text(json.dumps(summary, indent=2)))
     return summary
 
 
+class _ChunkFeed:
+    """The chunks still to generate, in order, each expanded when a worker asks for it.
+
+    Cases are drawn one chunk at a time (:func:`generators.dataset.iter_cases`, under a
+    lock: the draws and ``operating_point_id`` follow the case order), so the first chunk
+    starts at once and the drawing of the rest overlaps the simulations instead of delaying
+    them. Chunks whose data file exists (an earlier, interrupted run) are counted in
+    ``skipped`` and not returned. ``stop()`` makes ``take()`` return None from then on.
+    """
+
+    def __init__(self, recipe: dict, out: Path) -> None:
+        self._cases = iter_cases(recipe)
+        self._size = recipe["chunk_size"]
+        self._data = out / "data"
+        self._lock = threading.Lock()
+        self._stopped = False
+        self.chunks = 0  # chunks expanded so far (all of them once take() returned None)
+        self.skipped = 0  # signals of chunks already present
+
+    def take(self) -> tuple[int, list[Case]] | None:
+        """The next chunk to generate, ``(chunk index, cases)``, or None when done."""
+        with self._lock:
+            while not self._stopped:
+                cases = list(itertools.islice(self._cases, self._size))
+                if not cases:
+                    return None
+                chunk = self.chunks
+                self.chunks += 1
+                if (self._data / f"part-{chunk:05d}.parquet").is_file():
+                    self.skipped += len(cases)
+                    continue
+                return chunk, cases
+            return None
+
+    def stop(self) -> None:
+        """Hand out no more chunks (Ctrl-C or a worker's error)."""
+        with self._lock:
+            self._stopped = True
+
+    def __iter__(self) -> Iterator[tuple[int, list[Case]]]:
+        while (item := self.take()) is not None:
+            yield item
+
+
 def _run(
     recipe: dict,
-    todo: list[tuple[int, list[Case]]],
+    feed: _ChunkFeed,
     out: Path,
     recipe_text: str,
     *,
     workers: int,
     scheduler: str | None,
 ) -> Iterable[tuple[int, int]]:
-    """Generate and write the chunks of ``todo``; yield (written, failed) per chunk as done.
+    """Generate and write the chunks of ``feed``; yield (written, failed) per chunk as done.
 
     Local workers are threads of this process: the simulation kernels and the parquet writer
     release the GIL (only the per-case set-up, a fraction of a millisecond, is Python), so
     threads use every core without starting and importing a process per worker or sending
-    signals between processes. Each writes its own chunk files. Dask workers return the rows
-    and this process writes them (the cluster's workers need not share this file system).
+    signals between processes. Each takes its next chunk from ``feed`` when it is free and
+    writes the chunk's files itself. Dask workers return the rows and this process writes
+    them (the cluster's workers need not share this file system).
     """
-    if not todo:
-        return
     if scheduler:
+        todo = list(feed)
+        if not todo:
+            return
         from dask.distributed import Client
         from dask.distributed import as_completed as dask_completed
 
@@ -306,21 +352,41 @@ def _run(
         return
     if workers <= 1:
         try:
-            for c, cs in todo:
+            for c, cs in feed:
                 yield run_and_write_chunk(recipe, cs, out, c, recipe_text)
         finally:
             _THREAD_STATE.workspace = None  # this (calling) thread lives on: free its buffers
         return
+    results: queue.SimpleQueue = queue.SimpleQueue()
+
+    def work() -> None:
+        try:
+            while (item := feed.take()) is not None:
+                c, cs = item
+                results.put(("done", run_and_write_chunk(recipe, cs, out, c, recipe_text)))
+        except BaseException as exc:  # reported to the caller, which stops the others
+            feed.stop()
+            results.put(("error", exc))
+        finally:
+            results.put(("exit", None))
+
     pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="cmtool-generate")
     try:
-        futures = [
-            pool.submit(run_and_write_chunk, recipe, cs, out, c, recipe_text) for c, cs in todo
-        ]
-        for fut in as_completed(futures):
-            yield fut.result()
+        for _ in range(workers):
+            pool.submit(work)
+        running = workers
+        while running:
+            kind, value = results.get()
+            if kind == "exit":
+                running -= 1
+            elif kind == "error":
+                raise value
+            else:
+                yield value
     finally:
         # Ctrl-C or an error: finish the chunks being written, start no new one
-        pool.shutdown(wait=True, cancel_futures=True)
+        feed.stop()
+        pool.shutdown(wait=True)
 
 
 def read_dataset(path: str | os.PathLike, *, columns: list[str] | None = None) -> pd.DataFrame:

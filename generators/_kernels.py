@@ -501,6 +501,14 @@ def _trig(wav):
 
 
 @numba.njit(**_JIT)
+def _start_waviness(p, wav, z, out):
+    """:func:`_waviness` at t = 0 into ``out`` (8, z): one call for the static start."""
+    trig = _trig(wav)
+    _phases(0.0, p, wav, trig)
+    _waviness(wav, z, p[P_CAGE_ANGLE0], p[P_SHAFT_ANGLE0], 0.0, p, trig, out)
+
+
+@numba.njit(**_JIT)
 def _phases(t, p, wav, trig):
     """Fill ``trig`` with cos and sin of every argument at time ``t`` [s] (exactly)."""
     theta0 = p[P_CAGE_ANGLE0] + p[P_CAGE_SPEED] * t

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import copy
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -22,13 +23,14 @@ from scipy import signal as sp_signal
 
 from ._validate import ParameterError, SimulationDivergedError
 from .catalog import BEARINGS, bearing
-from .kinematics import characteristic_frequencies, waviness_passage_frequencies
-from .model import Prepared, integrate, lanes_supported, prepare, simulate_lanes
+from .kinematics import _passage_lines, characteristic_frequencies
+from .model import Prepared, _default, _prepare, integrate, lanes_supported, simulate_lanes
 from .params import (
     INTEGRATORS,
     SCENE_LEVELS,
     LocalizedDefect,
     OperatingCondition,
+    Rig,
     Scene,
     SimulationSettings,
     Waviness,
@@ -37,6 +39,8 @@ from .params import (
 __all__ = [
     "validate_recipe",
     "expand_cases",
+    "iter_cases",
+    "case_count",
     "generate_case",
     "generate_cases",
     "Case",
@@ -410,8 +414,13 @@ def _draw(spec: dict, rng: np.random.Generator, cycle: int, *, integer: bool = F
     return int(v) if integer else float(v)
 
 
+def case_count(recipe: dict) -> int:
+    """Number of cases (signals) of a validated recipe."""
+    return sum(c["count"] for c in recipe["conditions"])
+
+
 def expand_cases(recipe: dict) -> list[Case]:
-    """All cases of a validated recipe, in index order (deterministic).
+    """All cases of a validated recipe, in index order (deterministic): ``list(iter_cases())``.
 
     Grid operating points: each condition cycles through the full grid (bearing x rpm x load
     x clearance) so every label sees every operating point; ranges draw one value per case.
@@ -420,9 +429,19 @@ def expand_cases(recipe: dict) -> list[Case]:
     ``operating_point_id`` numbers the distinct (bearing, rpm, load, clearance) points so
     that splits can group by it.
     """
+    return list(iter_cases(recipe))
+
+
+def iter_cases(recipe: dict) -> Iterator[Case]:
+    """The cases of :func:`expand_cases` one at a time, in index order.
+
+    Each case is drawn from its own child of the recipe seed's ``SeedSequence`` (children
+    spawned one by one are those of a single ``spawn(n)``), so a generator can start
+    simulating the first chunk before the last case exists (drawing costs ~50 us per case).
+    """
     r = recipe
     op = r["operating"]
-    seeds = np.random.SeedSequence(r["seed"]).spawn(sum(c["count"] for c in r["conditions"]))
+    parent = np.random.SeedSequence(r["seed"])
     grids = [
         (b, rpm, load, cl)
         for b in r["bearings"]
@@ -431,11 +450,10 @@ def expand_cases(recipe: dict) -> list[Case]:
         for cl in ((op.get("clearance_m") or {}).get("grid") or [None])
     ]
     point_ids: dict[tuple, int] = {}
-    cases = []
     index = 0
     for ci, cond in enumerate(r["conditions"]):
         for k in range(cond["count"]):
-            ss = seeds[index]
+            ss = parent.spawn(1)[0]
             rng = np.random.default_rng(ss)
             b, rpm, load, cl = grids[k % len(grids)]
             rpm = rpm if rpm is not None else _draw(op["rpm"], rng, k)
@@ -482,34 +500,31 @@ def expand_cases(recipe: dict) -> list[Case]:
             resonance = math.nan
             if "resonance_hz" in r["sensor"]:
                 resonance = _draw(r["sensor"]["resonance_hz"], rng, k)
-            cases.append(
-                Case(
-                    index=index,
-                    label=cond["label"],
-                    condition=ci,
-                    bearing=b,
-                    operating_point_id=pid,
-                    rpm=rpm,
-                    radial_load_n=load,
-                    clearance_m=cl,
-                    surface=cond["surface"],
-                    waviness_order=order,
-                    waviness_amplitude_m=amp,
-                    snr_db=snr,
-                    seed=int(ss.generate_state(1)[0]),
-                    defect_kind=kind,
-                    defect_length_m=length,
-                    defect_depth_m=depth,
-                    defect_position_rad=position,
-                    defect_axis_drift_rad_s=drift,
-                    fs_hz=fs,
-                    resonance_hz=resonance,
-                    background_db=background,
-                    fault_snr_db=fault_snr,
-                )
+            yield Case(
+                index=index,
+                label=cond["label"],
+                condition=ci,
+                bearing=b,
+                operating_point_id=pid,
+                rpm=rpm,
+                radial_load_n=load,
+                clearance_m=cl,
+                surface=cond["surface"],
+                waviness_order=order,
+                waviness_amplitude_m=amp,
+                snr_db=snr,
+                seed=int(ss.generate_state(1)[0]),
+                defect_kind=kind,
+                defect_length_m=length,
+                defect_depth_m=depth,
+                defect_position_rad=position,
+                defect_axis_drift_rad_s=drift,
+                fs_hz=fs,
+                resonance_hz=resonance,
+                background_db=background,
+                fault_snr_db=fault_snr,
             )
             index += 1
-    return cases
 
 
 def _resonance(x: np.ndarray, fs: float, f0: float, zeta: float) -> np.ndarray:
@@ -532,12 +547,21 @@ class _Job:
     error: str | None = None
 
 
-def _setup(recipe: dict, case: Case, channel: str) -> _Job:
-    """Metadata of a case and its prepared simulation(s) (phases drawn from the case seed)."""
+def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
+    """Metadata of a case and its prepared simulation(s) (phases drawn from the case seed).
+
+    ``shared``: the validated parameter objects that cases of one call have in common
+    (geometry per bearing and clearance, settings per sample rate, the scene), built once.
+    """
     r = recipe
     sensor, model = r["sensor"], r["model"]
-    overrides = {} if case.clearance_m is None else {"radial_internal_clearance": case.clearance_m}
-    geometry = bearing(case.bearing, **overrides)
+    geometry = shared.get(("bearing", case.bearing, case.clearance_m))
+    if geometry is None:
+        overrides = (
+            {} if case.clearance_m is None else {"radial_internal_clearance": case.clearance_m}
+        )
+        geometry = bearing(case.bearing, **overrides)
+        shared["bearing", case.bearing, case.clearance_m] = geometry
     operating = OperatingCondition.from_rpm(case.rpm, case.radial_load_n)
     defects: list = []
     if case.defect_kind == "localized":
@@ -564,21 +588,25 @@ def _setup(recipe: dict, case: Case, channel: str) -> _Job:
                 phase=None,
             )
         )
-    settings = SimulationSettings(
-        fs=case.fs_hz,
-        duration=float(sensor["duration_s"]),
-        settle_time=float(sensor["settle_s"]),
-        integrator=model["integrator"],
-        step=model.get("step_s"),
-        rtol=model.get("rtol", 1e-6),
-        channels=(channel,),
+    settings = shared.get(("settings", case.fs_hz))
+    if settings is None:
+        settings = SimulationSettings(
+            fs=case.fs_hz,
+            duration=float(sensor["duration_s"]),
+            settle_time=float(sensor["settle_s"]),
+            integrator=model["integrator"],
+            step=model.get("step_s"),
+            rtol=model.get("rtol", 1e-6),
+            channels=(channel,),
+        )
+        shared["settings", case.fs_hz] = settings
+    freqs = characteristic_frequencies(
+        geometry, operating.shaft_frequency, cage_slip=operating.cage_slip
     )
-    freqs = characteristic_frequencies(geometry, operating.shaft_frequency)
     wpf = math.nan
     if case.defect_kind == "waviness":
-        lines = waviness_passage_frequencies(
-            geometry, operating.shaft_frequency, case.surface, case.waviness_order, max_harmonic=2
-        )
+        # waviness_passage_frequencies from the frequencies at hand (order checked by the recipe)
+        lines = _passage_lines(freqs, geometry.ball_count, case.surface, case.waviness_order, 2)
         strong = [ln.frequency for ln in lines if ln.strength == "strong"]
         wpf = strong[0] if strong else (lines[0].frequency if lines else math.nan)
     meta = {
@@ -623,19 +651,25 @@ def _setup(recipe: dict, case: Case, channel: str) -> _Job:
         "wpf_hz": wpf,
     }
     job = _Job(case=case, meta=meta, rng=np.random.default_rng(case.seed))
-    scene = Scene(level=model["scene"], ehl=model["ehl"])
+    scene = shared.get("scene")
+    if scene is None:
+        scene = shared["scene"] = Scene(level=model["scene"], ehl=model["ehl"])
+    rig = _default(Rig)
     try:
-        job.run = prepare(
-            geometry, operating, defects, scene=scene, settings=settings, random_state=job.rng
+        # prepare() without re-checking the objects built here
+        job.run = _prepare(
+            geometry, operating, tuple(defects), scene, rig, settings, job.rng, freqs
         )
         if not math.isnan(case.background_db) and defects:
-            job.healthy = prepare(
+            job.healthy = _prepare(
                 geometry,
                 operating,
-                [],
-                scene=scene,
-                settings=settings,
-                random_state=np.random.default_rng(case.seed),
+                (),
+                scene,
+                rig,
+                settings,
+                np.random.default_rng(case.seed),
+                freqs,
             )
     except ParameterError as err:  # e.g. no static equilibrium for this case's geometry
         job.error = f"not simulated: {err}"
@@ -703,7 +737,8 @@ def generate_cases(
     """
     sensor = recipe["sensor"]
     channel = f"{sensor['body']}_{sensor['quantity']}_{sensor['direction']}"
-    jobs = [_setup(recipe, case, channel) for case in cases]
+    shared: dict = {}
+    jobs = [_setup(recipe, case, channel, shared) for case in cases]
     preps = [prep for job in jobs for prep in (job.run, job.healthy) if prep is not None]
     lanes = [prep for prep in preps if lanes_supported(prep)]
     simulated: dict[int, np.ndarray | Exception] = {}

@@ -328,8 +328,7 @@ def _pack(
     centrifugal = geometry.ball_mass * wc**2 * geometry.pitch_diameter / 2
     p[K.P_FILM_LOAD_FLOOR] = max(1.0, centrifugal)  # MODEL.md 4.1: Q_floor = max(1 N, F_c)
     p[K.P_FILM_REFERENCE_LOAD] = max(operating.radial_load / max(z / 4.37, 1.0), 1.0)
-    u = entrainment_speed(geometry, fs)
-    if ehl and u > 0.0:
+    if ehl and (u := entrainment_speed(geometry, fs)) > 0.0:
         lub = rig.lubricant
         # h_c(Q) = h_c(1 N) * Q^-0.067 (Hamrock-Dowson load exponent)
         hi = film_thickness(ci, lub, u, 1.0, load_floor=1e-30)
@@ -412,10 +411,15 @@ def _film_sum(p: np.ndarray, loads: np.ndarray) -> np.ndarray:
 def _waviness_at_start(p: np.ndarray, wav: np.ndarray, z: int) -> np.ndarray:
     """Waviness values seen by each ball at t = 0: rows [w_o, w_i, wb_o, wb_i] [m]."""
     out = np.zeros((8, z))
-    trig = K._trig(wav)
-    K._phases(0.0, p, wav, trig)
-    K._waviness(wav, z, p[K.P_CAGE_ANGLE0], p[K.P_SHAFT_ANGLE0], 0.0, p, trig, out)
+    K._start_waviness(p, wav, z, out)
     return out[[0, 2, 4, 6]]
+
+
+@functools.lru_cache(maxsize=64)
+def _ball_directions(cage_angle: float, z: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Ball angles [rad] at t = 0 and their cosines and sines (shared: never write to them)."""
+    theta = cage_angle + 2.0 * np.pi * np.arange(z) / z
+    return theta, np.cos(theta), np.sin(theta)
 
 
 def _ball_equilibrium(
@@ -517,29 +521,29 @@ def _static_state(
     fr = math.hypot(fx, fy)
     angle = math.atan2(fy, fx)
     w0 = _waviness_at_start(p, wav, z)
-    waviness_sum = w0.sum(axis=0)
+    waviness_sum = w0[0] + w0[1] + w0[2] + w0[3]  # as w0.sum(axis=0): row after row
     kt = p[K.P_K_SERIES]
-    loads = np.full(z, p[K.P_FILM_REFERENCE_LOAD])
-    extra = waviness_sum.copy()
+    loads = np.full(z, p[K.P_FILM_REFERENCE_LOAD]) if ehl else None
+    extra = waviness_sum
     # static_load_distribution's solver without its input checks: load, angles and
     # waviness were validated by prepare (the dataset generator solves one per signal)
-    theta = p[K.P_CAGE_ANGLE0] + 2.0 * np.pi * np.arange(z) / z
-    cos_t, sin_t = np.cos(theta), np.sin(theta)
+    theta, cos_t, sin_t = _ball_directions(float(p[K.P_CAGE_ANGLE0]), z)
     for _ in range(4 if ehl else 1):
         if ehl:
             extra = waviness_sum + _film_sum(p, loads)
         if not math.isfinite(float(extra.sum())):
             raise ParameterError(f"static start: non-finite approach per ball {extra!r}")
-        gap = np.ascontiguousarray(geometry.radial_gap - extra)
+        gap = geometry.radial_gap - extra
         x, y, loads, _ = _equilibrium(cos_t, sin_t, gap, kt, fr, angle)
-    rel = np.array([x, y])
-    housing = (np.array([fx, fy]) - np.array([0.0, rig.housing_mass * g])) / rig.pedestal_stiffness
-    nd = K.n_dof(SCENE_CODES[level], z)
+    housing_x = fx / rig.pedestal_stiffness
+    housing_y = (fy - rig.housing_mass * g) / rig.pedestal_stiffness
+    nd = 4 + z if level == "full" else 4  # K.n_dof
     y0 = np.zeros(2 * nd)
-    y0[2:4] = housing
-    y0[0:2] = rel if level == "shaft" else rel + housing
+    y0[2] = housing_x
+    y0[3] = housing_y
+    y0[0] = x if level == "shaft" else x + housing_x
+    y0[1] = y if level == "shaft" else y + housing_y
     if level == "full":
-        theta = p[K.P_CAGE_ANGLE0] + 2 * np.pi * np.arange(z) / z
         for j in range(z):
             c, s = math.cos(theta[j]), math.sin(theta[j])
             us = y0[0] * c + y0[1] * s
@@ -784,25 +788,42 @@ def prepare(
             raise ParameterError(f"{name} = {obj!r} is not a {cls.__name__}")
     defect_list = _as_defects(defects)
     rng = np.random.default_rng(random_state)
-    geometry = bearing
-    z = geometry.ball_count
+    freqs = None
+    if operating.shaft_frequency > 0:
+        freqs = characteristic_frequencies(
+            bearing, operating.shaft_frequency, cage_slip=operating.cage_slip
+        )
+    return _prepare(bearing, operating, defect_list, scene, rig, settings, rng, freqs)
 
+
+def _prepare(
+    geometry: BearingGeometry,
+    operating: OperatingCondition,
+    defect_list: tuple[Defect, ...],
+    scene: Scene,
+    rig: Rig,
+    settings: SimulationSettings,
+    rng: np.random.Generator,
+    freqs: BearingFrequencies | None,
+) -> Prepared:
+    """:func:`prepare` from checked inputs (the dataset generator calls this per signal).
+
+    Parameter objects of the right types, the defects as a tuple, the phase generator, and
+    the bearing's frequencies at the operating point (``characteristic_frequencies`` with its
+    cage slip; None for a standing shaft).
+    """
+    z = geometry.ball_count
     level, reason = resolve_scene(scene, geometry, operating, rig, settings)
     code = SCENE_CODES[level]
     # no entrainment, no film: a standing bearing runs the dry path (nothing to pay for)
     ehl = bool(scene.ehl) and operating.shaft_frequency > 0.0
-    freqs = None
-    if operating.shaft_frequency > 0:
-        freqs = characteristic_frequencies(
-            geometry, operating.shaft_frequency, cage_slip=operating.cage_slip
-        )
     p = _pack(geometry, operating, rig, ehl, freqs)
     if ehl:
         p = _film_tables(p)
     p[K.P_CAGE_ANGLE0] = settings.cage_angle
     wav = _waviness_table(defect_list, geometry, rng, operating.radial_load)
     y0, qmax = _static_state(level, ehl, geometry, operating, rig, p, wav)
-    scale = float(np.max(np.abs(y0[: K.n_dof(code, z)]))) if y0.size else 0.0
+    scale = max(map(abs, y0[: K.n_dof(code, z)].tolist()))
     p[K.P_MAX_DISPLACEMENT] = (
         settings.max_displacement
         if settings.max_displacement is not None

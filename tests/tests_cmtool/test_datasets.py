@@ -149,6 +149,33 @@ def test_resume_removes_what_a_killed_write_left(tiny, tmp_path):
     assert sorted(read_dataset(out)["id"]) == [f"tiny-{i:06d}" for i in range(6)]
 
 
+def test_a_failing_worker_stops_the_run_and_resume_finishes_it(monkeypatch, tiny, tmp_path):
+    import cmtool.datasets as cd
+
+    real = cd.run_and_write_chunk
+
+    def crash_on_chunk_1(recipe, cases, out, chunk, text):
+        if chunk == 1:
+            raise RuntimeError("worker crashed")
+        return real(recipe, cases, out, chunk, text)
+
+    out = tmp_path / "ds"
+    monkeypatch.setattr(cd, "run_and_write_chunk", crash_on_chunk_1)
+    with pytest.raises(RuntimeError, match="worker crashed"):
+        generate_dataset(tiny, out, workers=2)
+    assert not (out / "data" / "part-00001.parquet").exists()
+    assert not (out / "_dataset.json").exists()  # written only by a run that completed
+    monkeypatch.setattr(cd, "run_and_write_chunk", real)
+    seen = []
+    summary = generate_dataset(
+        tiny, out, workers=2, resume=True, progress=lambda d, t: seen.append((d, t))
+    )
+    assert summary["written"] + summary["skipped_existing"] == 6 and summary["written"] >= 2
+    assert seen[0] == (0, 6) and seen[-1] == (6, 6)
+    assert [d for d, _ in seen] == sorted(d for d, _ in seen)
+    assert sorted(read_dataset(out)["id"]) == [f"tiny-{i:06d}" for i in range(6)]
+
+
 def test_resume_after_a_killed_run_gives_every_signal_once(tiny, tmp_path):
     out = tmp_path / "ds"
     env = {**os.environ, "PYTHONUNBUFFERED": "1"}
@@ -268,7 +295,7 @@ def test_a_case_without_static_equilibrium_is_a_recorded_failure(monkeypatch, ti
     def no_equilibrium(*args, **kwargs):
         raise ParameterError("radial_load = 1 N: static equilibrium not found")
 
-    monkeypatch.setattr(gd, "prepare", no_equilibrium)
+    monkeypatch.setattr(gd, "_prepare", no_equilibrium)
     row = gd.generate_case(recipe, case)
     assert "signal" not in row and row["error"].startswith("not simulated: radial_load")
 
