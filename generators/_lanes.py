@@ -66,8 +66,6 @@ from generators._kernels import (
     P_MAX_DISPLACEMENT,
     P_PEDESTAL_DAMPING,
     P_PEDESTAL_STIFFNESS,
-    P_PITCH_COS,
-    P_PITCH_SIN,
     P_SHAFT_ANGLE0,
     P_SHAFT_DAMPING,
     P_SHAFT_MASS,
@@ -126,11 +124,9 @@ N_STATE = 8  # x_s, y_s, x_h, y_h, vx_s, vy_s, vx_h, vy_h (both scenes)
     C_X0,
     C_Y0,
     C_UNB,
-    C_PCOS,
-    C_PSIN,
     C_LIMIT,
     C_SIZE,
-) = range(28)
+) = range(26)
 
 # sizes of the stack work arrays, in float64 per lane
 _SIZE_KS = 5 * N_STATE * LANES
@@ -138,7 +134,8 @@ _SIZE_STATE = N_STATE * LANES
 _SIZE_FORCES = 6 * LANES
 _SIZE_ROTATION = 3 * LANES
 _SIZE_CONSTANTS = C_SIZE * LANES
-_SIZE_TIME_TERMS = (4 * MAX_BALLS + 2) * LANES
+_SIZE_TIME_TERMS = (2 * MAX_BALLS + 4) * LANES
+_SIZE_PITCH = 2 * MAX_BALLS
 _SIZE_TRIG = (MAX_ROWS + 2) * 2 * LANES
 
 
@@ -188,8 +185,6 @@ def _constants(p, c, nl):
         c[C_X0, b] = p[P_LOADING_X0, b]
         c[C_Y0, b] = p[P_LOADING_Y0, b]
         c[C_UNB, b] = p[P_UNBALANCE, b]
-        c[C_PCOS, b] = p[P_PITCH_COS, b]
-        c[C_PSIN, b] = p[P_PITCH_SIN, b]
         c[C_LIMIT, b] = p[P_MAX_DISPLACEMENT, b]
 
 
@@ -253,30 +248,21 @@ def _advance(trig, inc, rows, nl):
 def _time_terms(c, wav, trig, z, tt, rot, nl):
     """Time-only terms of the right-hand side at the time ``trig`` holds.
 
-    ``tt[j]``, ``tt[z + j]``: cos/sin of ball j's angle; ``tt[2z + j]``: the waviness seen by
-    ball j (sum over the surfaces: the series contact of the massless ball) minus the
-    diametral gap over two [m]; ``tt[3z + j]``: the waviness rate [m/s]; ``tt[4z]``,
-    ``tt[4z + 1]``: cos/sin of the shaft angle. ``rot`` is a (3, lanes) work array.
+    ``tt[j]``: the waviness seen by ball j (sum over the surfaces: the series contact of the
+    massless ball) minus the diametral gap over two [m]; ``tt[z + j]``: its rate [m/s];
+    ``tt[2z]``, ``tt[2z + 1]``: cos/sin of the shaft angle; ``tt[2z + 2]``, ``tt[2z + 3]``:
+    cos/sin of the cage angle (ball 0's). ``rot`` is a (3, lanes) work array.
     """
     rows = wav.shape[0]
     for b in range(nl):
-        tt[0, b] = trig[0, 0, b]
-        tt[z, b] = trig[0, 1, b]
-        tt[4 * z, b] = trig[rows + 1, 0, b]
-        tt[4 * z + 1, b] = trig[rows + 1, 1, b]
-    # three balls per lane loop (as in _rhs): the rotation's (cos, sin) stay in registers
-    j0 = 1
-    while j0 + 3 <= z:
-        for b in range(nl):
-            _ball_angles(tt, c, z, j0, 3, b)
-        j0 += 3
-    for j in range(j0, z):
-        for b in range(nl):
-            _ball_angles(tt, c, z, j, 1, b)
+        tt[2 * z, b] = trig[rows + 1, 0, b]
+        tt[2 * z + 1, b] = trig[rows + 1, 1, b]
+        tt[2 * z + 2, b] = trig[0, 0, b]
+        tt[2 * z + 3, b] = trig[0, 1, b]
     for j in range(z):
         for b in range(nl):
-            tt[2 * z + j, b] = -c[C_GAP, b]
-            tt[3 * z + j, b] = 0.0
+            tt[j, b] = -c[C_GAP, b]
+            tt[z + j, b] = 0.0
     for r in range(rows):
         surface = int(wav[r, W_SURFACE, 0])
         if surface == SURF_BALL:
@@ -288,8 +274,8 @@ def _time_terms(c, wav, trig, z, tt, rot, nl):
                 sa = a * k * c[C_WB, b] * trig[r + 1, 1, b]
                 # outer contact, and the inner one diametrically opposite: (-1)^k
                 sign = 1.0 if int(k) % 2 == 0 else -1.0
-                tt[2 * z + j, b] += ca + sign * ca
-                tt[3 * z + j, b] -= sa + sign * sa
+                tt[j, b] += ca + sign * ca
+                tt[z + j, b] -= sa + sign * sa
             continue
         # race harmonic: ball j sees it rotated by k times the ball pitch from ball j - 1
         outer = surface == SURF_OUTER
@@ -309,22 +295,6 @@ def _time_terms(c, wav, trig, z, tt, rot, nl):
 
 
 @numba.njit(**_JIT_INLINE)
-def _ball_angles(tt, c, z, j0, count, b):
-    """cos/sin of balls j0 .. j0 + count - 1 in lane b (``count`` a constant).
-
-    Each is the previous ball's turned by the ball pitch.
-    """
-    cj = tt[j0 - 1, b]
-    sj = tt[z + j0 - 1, b]
-    for u in range(count):
-        cn = cj * c[C_PCOS, b] - sj * c[C_PSIN, b]
-        sj = sj * c[C_PCOS, b] + cj * c[C_PSIN, b]
-        cj = cn
-        tt[j0 + u, b] = cj
-        tt[z + j0 + u, b] = sj
-
-
-@numba.njit(**_JIT_INLINE)
 def _race_balls(tt, wav, rot, r, z, j0, count, b):
     """Add race harmonic r to balls j0 .. j0 + count - 1 of lane b (``count`` a constant).
 
@@ -337,8 +307,8 @@ def _race_balls(tt, wav, rot, r, z, j0, count, b):
     cw = rot[0, b]
     sw = rot[1, b]
     for u in range(count):
-        tt[2 * z + j0 + u, b] += a * cw
-        tt[3 * z + j0 + u, b] -= rot[2, b] * sw
+        tt[j0 + u, b] += a * cw
+        tt[z + j0 + u, b] -= rot[2, b] * sw
         cn = cw * cd - sw * sd
         sw = sw * cd + cw * sd
         cw = cn
@@ -347,12 +317,14 @@ def _race_balls(tt, wav, rot, r, z, j0, count, b):
 
 
 @numba.njit(**_JIT_INLINE)
-def _contact(ehl, j, b, f, tt, c, p, z):
-    """Contact force of ball j in lane b [N] and the cos/sin of the ball's angle."""
-    cj = tt[j, b]
-    sj = tt[z + j, b]
-    d = f[2, b] * cj + f[3, b] * sj + tt[2 * z + j, b]
-    dd = f[4, b] * cj + f[5, b] * sj + tt[3 * z + j, b]
+def _contact(ehl, j, b, f, tt, c, p, z, pc, ps):
+    """Contact force of ball j in lane b [N].
+
+    ``f[2:6, b]`` the displacement and its rate in the cage frame (:func:`_kinematics`),
+    ``pc``, ``ps`` the cosine and sine of ball j's angle in that frame (j times the pitch).
+    """
+    d = f[2, b] * pc + f[3, b] * ps + tt[j, b]
+    dd = f[4, b] * pc + f[5, b] * ps + tt[z + j, b]
     if ehl:
         q = _hertz_ehl_table(
             d,
@@ -373,15 +345,16 @@ def _contact(ehl, j, b, f, tt, c, p, z):
         dp = d if d > 0.0 else 0.0
         q = c[C_K, b] * math.sqrt(dp) * (dp + c[C_TAU15, b] * dd)
         q = q if q > 0.0 else 0.0
-    return q, cj, sj
+    return q
 
 
 @numba.njit(**_JIT_INLINE)
-def _kinematics(scene, c, f, b, s0, s1, s2, s3, s4, s5, s6, s7):
+def _kinematics(scene, c, f, tt, z, b, s0, s1, s2, s3, s4, s5, s6, s7):
     """Contact kinematics of lane b in ``f[0:6, b]`` from its state ``s0..s7``.
 
-    Force sums zeroed, the shaft-to-housing displacement u and the rate of u . e_j without
-    the e_j terms (massless balls).
+    Force sums zeroed, then the shaft-to-housing displacement u and the rate of u . e_j
+    without the e_j terms (massless balls), both turned into the cage frame (ball 0 on its
+    x axis): u . e_j = u_c . (cos j pitch, sin j pitch), the same pitch terms in every lane.
     """
     wc = c[C_WC, b]
     rx = s0
@@ -393,33 +366,51 @@ def _kinematics(scene, c, f, b, s0, s1, s2, s3, s4, s5, s6, s7):
         ry -= s3
         vx -= s6
         vy -= s7
+    # d/dt (u . e_j) = (v + wc ez x u) . e_j
+    ux = vx + wc * ry
+    uy = vy - wc * rx
+    cc = tt[2 * z + 2, b]
+    sc = tt[2 * z + 3, b]
     f[0, b] = 0.0
     f[1, b] = 0.0
-    f[2, b] = rx
-    f[3, b] = ry
-    # d/dt (u . e_j) = (v + wc ez x u) . e_j
-    f[4, b] = vx + wc * ry
-    f[5, b] = vy - wc * rx
+    f[2, b] = rx * cc + ry * sc
+    f[3, b] = ry * cc - rx * sc
+    f[4, b] = ux * cc + uy * sc
+    f[5, b] = uy * cc - ux * sc
 
 
 @numba.njit(**_JIT_INLINE)
-def _rhs(scene, ehl, y, c, p, tt, z, f, dydt, nl):
+def _rhs(scene, ehl, y, c, p, tt, z, pitch, f, dydt, nl):
     """Right-hand side of every lane: ``dydt`` from the states ``y`` (both (8, lanes)).
 
-    ``tt`` the time terms (:func:`_time_terms`), ``f`` a (6, lanes) work array. The balls are
+    ``tt`` the time terms (:func:`_time_terms`), ``pitch`` (2, z) cos/sin of j times the ball
+    pitch, ``f`` a (6, lanes) work array. The balls are
     massless, so the housing carries the opposite of the shaft's contact force and each
     contact sees the shaft-to-housing displacement u: approach d = u . e_j + waviness - gap/2,
     its rate from the velocity relative to the rotating ball direction e_j.
     """
     for b in range(nl):
         _kinematics(
-            scene, c, f, b, y[0, b], y[1, b], y[2, b], y[3, b], y[4, b], y[5, b], y[6, b], y[7, b]
+            scene,
+            c,
+            f,
+            tt,
+            z,
+            b,
+            y[0, b],
+            y[1, b],
+            y[2, b],
+            y[3, b],
+            y[4, b],
+            y[5, b],
+            y[6, b],
+            y[7, b],
         )
-    _forces(ehl, y, c, p, tt, z, f, dydt, nl)
+    _forces(ehl, y, c, p, tt, z, pitch, f, dydt, nl)
 
 
 @numba.njit(**_JIT_INLINE)
-def _stage_rhs(scene, ehl, stage, h, dt, y, ks, tmp, c, p, tt, z, f, nl):
+def _stage_rhs(scene, ehl, stage, h, dt, y, ks, tmp, c, p, tt, z, pitch, f, nl):
     """One RK4 stage: ``tmp`` the stage's state, ``ks[stage + 1]`` the right-hand side there.
 
     The state update runs in the same lane loop as the contact kinematics.
@@ -428,14 +419,14 @@ def _stage_rhs(scene, ehl, stage, h, dt, y, ks, tmp, c, p, tt, z, f, nl):
         for b in range(nl):
             s = _stage_state(y, ks, stage, h, b)
             _store_state(tmp, b, s)
-            _kinematics(scene, c, f, b, s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7])
+            _kinematics(scene, c, f, tt, z, b, s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7])
     else:
         w = dt / 6.0
         for b in range(nl):
             s = _rk4_sum(y, ks, w, b)
             _store_state(tmp, b, s)
-            _kinematics(scene, c, f, b, s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7])
-    _forces(ehl, tmp, c, p, tt, z, f, ks[stage + 1], nl)
+            _kinematics(scene, c, f, tt, z, b, s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7])
+    _forces(ehl, tmp, c, p, tt, z, pitch, f, ks[stage + 1], nl)
 
 
 @numba.njit(**_JIT_INLINE)
@@ -482,31 +473,36 @@ def _rk4_sum(y, ks, w, b):
 
 
 @numba.njit(**_JIT_INLINE)
-def _forces(ehl, y, c, p, tt, z, f, dydt, nl):
+def _forces(ehl, y, c, p, tt, z, pitch, f, dydt, nl):
     """Contact force sums from the kinematics in ``f``, then ``dydt`` from the states ``y``."""
-    # three balls per lane loop: the force sums stay in registers across them
+    # the sums in the cage frame, three balls per lane loop (they stay in registers)
     j0 = 0
     while j0 + 3 <= z:
         for b in range(nl):
-            fx = f[0, b]
-            fy = f[1, b]
+            fa = f[0, b]
+            fb = f[1, b]
             for u in range(3):
-                q, cj, sj = _contact(ehl, j0 + u, b, f, tt, c, p, z)
-                fx -= q * cj
-                fy -= q * sj
-            f[0, b] = fx
-            f[1, b] = fy
+                q = _contact(ehl, j0 + u, b, f, tt, c, p, z, pitch[0, j0 + u], pitch[1, j0 + u])
+                fa += q * pitch[0, j0 + u]
+                fb += q * pitch[1, j0 + u]
+            f[0, b] = fa
+            f[1, b] = fb
         j0 += 3
     for j in range(j0, z):
         for b in range(nl):
-            q, cj, sj = _contact(ehl, j, b, f, tt, c, p, z)
-            f[0, b] -= q * cj
-            f[1, b] -= q * sj
+            q = _contact(ehl, j, b, f, tt, c, p, z, pitch[0, j], pitch[1, j])
+            f[0, b] += q * pitch[0, j]
+            f[1, b] += q * pitch[1, j]
     for b in range(nl):
+        # back to the fixed frame: the contact force on the shaft is minus the sum
+        cc = tt[2 * z + 2, b]
+        sc = tt[2 * z + 3, b]
+        fx = sc * f[1, b] - cc * f[0, b]
+        fy = -(sc * f[0, b] + cc * f[1, b])
         kl = c[C_KL, b]
         unbalance = c[C_UNB, b] * c[C_WS, b] * c[C_WS, b]
-        fxs = f[0, b] + c[C_FX, b] - kl * (y[0, b] - c[C_X0, b]) + unbalance * tt[4 * z, b]
-        fys = f[1, b] + c[C_FY, b] - kl * (y[1, b] - c[C_Y0, b]) + unbalance * tt[4 * z + 1, b]
+        fxs = fx + c[C_FX, b] - kl * (y[0, b] - c[C_X0, b]) + unbalance * tt[2 * z, b]
+        fys = fy + c[C_FY, b] - kl * (y[1, b] - c[C_Y0, b]) + unbalance * tt[2 * z + 1, b]
         g = c[C_G, b]
         dydt[0, b] = y[4, b]
         dydt[1, b] = y[5, b]
@@ -516,8 +512,8 @@ def _forces(ehl, y, c, p, tt, z, f, dydt, nl):
         dydt[5, b] = (fys - c[C_CS, b] * y[5, b]) * c[C_INV_MS, b] - g
         kh = c[C_KH, b]
         ch = c[C_CH, b]
-        dydt[6, b] = (-f[0, b] - ch * y[6, b] - kh * y[2, b]) * c[C_INV_MH, b]
-        dydt[7, b] = (-f[1, b] - ch * y[7, b] - kh * y[3, b]) * c[C_INV_MH, b] - g
+        dydt[6, b] = (-fx - ch * y[6, b] - kh * y[2, b]) * c[C_INV_MH, b]
+        dydt[7, b] = (-fy - ch * y[7, b] - kh * y[3, b]) * c[C_INV_MH, b] - g
 
 
 @numba.njit(**_JIT_INLINE)
@@ -578,10 +574,14 @@ def _rk4_impl(
     ks = numba.carray(_stack(_SIZE_KS), (5, N_STATE, nl))
     f = numba.carray(_stack(_SIZE_FORCES), (6, nl))
     rot = numba.carray(_stack(_SIZE_ROTATION), (3, nl))
-    tt = numba.carray(_stack(_SIZE_TIME_TERMS), (4 * z + 2, nl))
+    tt = numba.carray(_stack(_SIZE_TIME_TERMS), (2 * z + 4, nl))
+    pitch = numba.carray(_stack(_SIZE_PITCH), (2, z))
     trig = numba.carray(_stack(_SIZE_TRIG), (MAX_ROWS + 2, 2, nl))
     inc = numba.carray(_stack(_SIZE_TRIG), (MAX_ROWS + 2, 2, nl))
     _constants(p, c, nl)
+    for j in range(z):
+        pitch[0, j] = math.cos(2.0 * math.pi * j / z)
+        pitch[1, j] = math.sin(2.0 * math.pi * j / z)
     half = 0.5 * dt
     for r in range(rows + 2):
         for b in range(nl):
@@ -598,7 +598,7 @@ def _rk4_impl(
     f1 = ks[4]
     _phases(t0, p, wav, trig, nl)
     _time_terms(c, wav, trig, z, tt, rot, nl)
-    _rhs(scene, ehl, y, c, p, tt, z, f, k1, nl)
+    _rhs(scene, ehl, y, c, p, tt, z, pitch, f, k1, nl)
     col = column if which == 0 else 4 + column
     next_rec = 0
     t = t0
@@ -611,7 +611,7 @@ def _rk4_impl(
                 _advance(trig, inc, rows, nl)
                 _time_terms(c, wav, trig, z, tt, rot, nl)
             h = half if stage < 2 else dt
-            _stage_rhs(scene, ehl, stage, h, dt, y, ks, tmp, c, p, tt, z, f, nl)
+            _stage_rhs(scene, ehl, stage, h, dt, y, ks, tmp, c, p, tt, z, pitch, f, nl)
         y1 = tmp  # the step's end state (not written again before the next step's stage 0)
         while next_rec < n_record:
             theta = (t_first + next_rec * record_dt - t) / dt
