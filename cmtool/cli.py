@@ -455,14 +455,25 @@ def cmd_generate(args: argparse.Namespace) -> int:
         else:
             bar.update(done - bar.n)
 
-    summary = generate_dataset(
-        args.recipe,
-        args.out,
-        workers=args.workers,
-        resume=args.resume,
-        scheduler=args.scheduler,
-        progress=progress,
-    )
+    try:
+        summary = generate_dataset(
+            args.recipe,
+            args.out,
+            workers=args.workers,
+            resume=args.resume,
+            scheduler=args.scheduler,
+            progress=progress,
+        )
+    except KeyboardInterrupt:
+        # the chunks being written were finished; every visible part is whole
+        if bar is not None:
+            bar.close()
+        print(
+            f"cmtool generate: interrupted; the parts written in {args.out} are complete. "
+            "Run the same command with --resume to finish.",
+            file=sys.stderr,
+        )
+        return 130
     if bar is not None:
         bar.close()
     print(

@@ -217,6 +217,32 @@ def test_resume_after_a_killed_run_gives_every_signal_once(tiny, tmp_path):
         assert p.read_bytes() == (out / "data" / p.name).read_bytes()
 
 
+def test_ctrl_c_finishes_the_parts_being_written_and_resume_completes(tmp_path):
+    recipe = tmp_path / "longer.toml"
+    # 300 chunks of 2 signals: the interrupt arrives long before the last
+    recipe.write_text(TINY.replace("count = 3", "count = 300"))
+    out = tmp_path / "ds"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "cmtool", "generate", str(recipe), "--out", str(out)]
+        + ["--workers", "2"],
+        env={**os.environ, "PYTHONUNBUFFERED": "1"},
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and not (out / "data" / "part-00000.parquet").exists():
+        time.sleep(0.02)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130 and "--resume" in err and "Traceback" not in err
+    assert not list(out.rglob("*.tmp"))  # the parts being written were finished, not left
+    for part in (out / "data").glob("*.parquet"):
+        assert pq.read_table(part).num_rows == 2
+    generate_dataset(recipe, out, resume=True, workers=2)
+    assert sorted(read_dataset(out)["id"]) == [f"tiny-{i:06d}" for i in range(600)]
+
+
 def test_diverging_simulations_are_recorded_as_failures(tmp_path):
     recipe = tmp_path / "bad.toml"
     recipe.write_text(
