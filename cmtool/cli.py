@@ -525,8 +525,15 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     from .plots import plot_confusion
 
     bundle = load_model(args.model)
-    result = evaluate(bundle, read_dataset(args.dataset))
-    print(f"accuracy {result['accuracy']:.3f} on {len(result['predictions'])} signals")
+    frame = read_dataset(args.dataset)
+    in_sample = _check_training_overlap(bundle, frame, args)
+    result = evaluate(bundle, frame)
+    result["in_sample_fraction"] = in_sample
+    tag = " (IN-SAMPLE: signals the model was trained on; not a measure of accuracy)"
+    print(
+        f"accuracy {result['accuracy']:.3f} on {len(result['predictions'])} signals"
+        + (tag if in_sample else "")
+    )
     print(f"{'label':<12s} {'precision':>9s} {'recall':>7s} {'f1':>6s}")
     for label, m in result["per_class"].items():
         print(f"{label:<12s} {m['precision']:9.3f} {m['recall']:7.3f} {m['f1-score']:6.3f}")
@@ -540,13 +547,32 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
             result["confusion"],
             labels,
             out / "confusion.png",
-            title=f"{Path(args.model).name} on {Path(args.dataset).name}",
+            title=f"{Path(args.model).name} on {Path(args.dataset).name}"
+            + (" (in-sample)" if in_sample else ""),
         )
         (out / "evaluation.json").write_text(
             json.dumps({k: v for k, v in result.items() if k != "predictions"}, indent=2)
         )
         print(f"wrote {png}")
     return 0
+
+
+def _check_training_overlap(bundle: dict, frame, args: argparse.Namespace) -> float:
+    """Refuse to score a model on its own training signals unless --allow-training-data.
+
+    Returns the fraction of ``frame``'s signals the model was trained on (0 when none).
+    """
+    from .classifier import training_overlap
+
+    overlap = training_overlap(bundle, frame)
+    if overlap > 0 and not args.allow_training_data:
+        raise CliError(
+            f"{overlap:.0%} of the signals in {args.dataset} were used to train "
+            f"{args.model}: scores on them say nothing about new data. Evaluate on a dataset "
+            "generated with another seed, or pass --allow-training-data to run anyway "
+            "(every output is then labelled in-sample)"
+        )
+    return overlap
 
 
 def cmd_diagnose(args: argparse.Namespace) -> int:
@@ -609,6 +635,17 @@ def cmd_bench(args: argparse.Namespace) -> int:
         from .classifier import load_model
 
         model = load_model(args.model)
+        if not (Path(args.dataset) / "MANIFEST.csv").is_file():
+            from .datasets import read_dataset
+
+            in_sample = _check_training_overlap(
+                model, read_dataset(args.dataset, columns=["signal"]), args
+            )
+            if in_sample:
+                print(
+                    f"IN-SAMPLE: {in_sample:.0%} of these signals trained the model; its rates "
+                    "below are not a measure of accuracy"
+                )
     detectors = {spec: load_callable(spec) for spec in args.detector}
     bar = None
 
@@ -715,7 +752,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("train", help="train a classifier on a dataset")
     p.add_argument("dataset", help="dataset folder (cmtool generate)")
-    p.add_argument("--out", required=True, help="model file (.joblib)")
+    p.add_argument("--out", required=True, help="model file (skops archive, e.g. model.skops)")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument(
         "--feature-set",
@@ -731,6 +768,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("model")
     p.add_argument("dataset")
     p.add_argument("--out", help="folder for confusion.png and evaluation.json")
+    p.add_argument(
+        "--allow-training-data",
+        action="store_true",
+        help="score the model even on signals it was trained on (outputs labelled in-sample)",
+    )
     p.set_defaults(func=cmd_evaluate)
 
     p = sub.add_parser("diagnose", help="diagnose a measured recording")
@@ -762,6 +804,11 @@ def build_parser() -> argparse.ArgumentParser:
         help="bearing when the manifest does not say",
     )
     p.add_argument("--out", default=None, help="folder for CSV tables and plots")
+    p.add_argument(
+        "--allow-training-data",
+        action="store_true",
+        help="run --model even on signals it was trained on (outputs labelled in-sample)",
+    )
     p.set_defaults(func=cmd_bench)
 
     p = sub.add_parser("demo", help="the main job on the embedded default")

@@ -90,7 +90,7 @@ def run_demo(out: Path, *, recipe: Path = SMALL_RECIPE, workers: int = 1) -> int
         f"{', '.join(sorted(frame['label'].unique()))}"
     )
     bundle = train(frame, recipe=Path(recipe).read_text())
-    model_path = save_model(bundle, out / "model.joblib")
+    model_path = save_model(bundle, out / "model.skops")
     best = bundle["best"]
     print(
         f"  trained {best}: grouped-CV accuracy on held-out operating points "

@@ -2,14 +2,21 @@
 
 import json
 import pickle
+import zipfile
 from pathlib import Path
 
-import joblib
 import numpy as np
 import pandas as pd
 import pytest
 
-from cmtool.classifier import ModelVersionError, evaluate, load_model, save_model, train
+from cmtool.classifier import (
+    ModelFormatError,
+    ModelVersionError,
+    evaluate,
+    load_model,
+    save_model,
+    train,
+)
 from cmtool.cli import main
 from cmtool.datasets import read_dataset
 from cmtool.diagnose import DETECTION_DB, diagnose_signal
@@ -49,19 +56,71 @@ def test_training_reports_grouped_scores_and_keeps_the_best(bundle):
 
 
 def test_model_round_trip_and_version_check(bundle, small, tmp_path):
-    path = save_model(bundle, tmp_path / "m.joblib")
+    import skops.io as sio
+
+    path = save_model(bundle, tmp_path / "m.skops")
+    assert zipfile.is_zipfile(path)  # a skops archive, not a pickle
     loaded = load_model(path)
     np.testing.assert_array_equal(
         loaded["pipeline"].predict(small.head(8)), bundle["pipeline"].predict(small.head(8))
     )
-    assert json.loads(path.with_suffix(".joblib.json").read_text())["best"] == bundle["best"]
+    summary = json.loads(path.with_suffix(".skops.json").read_text())
+    assert summary["best"] == bundle["best"]
+    assert summary["training_fingerprint"] == bundle["training_fingerprint"]
     old = dict(bundle, versions={**bundle["versions"], "sklearn": "0.1"})
-    joblib.dump(old, tmp_path / "old.joblib")
+    sio.dump(old, tmp_path / "old.skops")
     with pytest.raises(ModelVersionError, match="sklearn 0.1"):
-        load_model(tmp_path / "old.joblib")
-    joblib.dump({"not": "a model"}, tmp_path / "junk.joblib")
-    with pytest.raises(ModelVersionError, match="not a cmtool model"):
-        load_model(tmp_path / "junk.joblib")
+        load_model(tmp_path / "old.skops")
+    sio.dump({"not": "a model"}, tmp_path / "junk.skops")
+    with pytest.raises(ModelFormatError, match="not a cmtool model of format 2"):
+        load_model(tmp_path / "junk.skops")
+    sio.dump(dict(bundle, training_fingerprint="x"), tmp_path / "nofp.skops")
+    with pytest.raises(ModelFormatError, match="fingerprint"):
+        load_model(tmp_path / "nofp.skops")
+
+
+class _RunsCodeOnLoad:
+    """A pickle payload that creates a file when unpickled."""
+
+    def __init__(self, marker):
+        self.marker = str(marker)
+
+    def __reduce__(self):
+        return (Path.touch, (Path(self.marker),))
+
+
+def test_crafted_model_files_run_no_code_and_are_refused(tmp_path, capsys):
+    import skops.io as sio
+
+    marker = tmp_path / "pwned"
+    evil = tmp_path / "evil.joblib"
+    evil.write_bytes(pickle.dumps({"format": 2, "payload": _RunsCodeOnLoad(marker)}))
+    with pytest.raises(ModelFormatError, match="not a cmtool model file"):
+        load_model(evil)
+    junk = tmp_path / "random.skops"
+    junk.write_bytes(np.random.default_rng(0).bytes(4096))
+    with pytest.raises(ModelFormatError, match="not a cmtool model file"):
+        load_model(junk)
+    # a skops archive that would build a type cmtool does not trust (a user class)
+    sio.dump({"format": 2, "payload": _RunsCodeOnLoad(marker)}, tmp_path / "foreign.skops")
+    with pytest.raises(ModelFormatError, match="does not trust"):
+        load_model(tmp_path / "foreign.skops")
+    truncated = tmp_path / "truncated.skops"
+    whole = (tmp_path / "foreign.skops").read_bytes()
+    truncated.write_bytes(whole[: len(whole) // 2])
+    with pytest.raises(ModelFormatError):
+        load_model(truncated)
+    csv = tmp_path / "rec.csv"
+    pd.DataFrame({"accel": np.random.default_rng(1).standard_normal(12000)}).to_csv(csv)
+    for path in (evil, junk, tmp_path / "foreign.skops", truncated):
+        for argv in (
+            ["evaluate", str(path), str(SMALL)],
+            ["diagnose", str(csv), "--fs", "12000", "--rpm", "1800", "--model", str(path)],
+        ):
+            assert main(argv) == 2
+            err = capsys.readouterr().err
+            assert "Traceback" not in err and err.count("\n") == 1, err
+    assert not marker.exists()
 
 
 def test_evaluate_metrics(bundle, small):
@@ -74,13 +133,21 @@ def test_evaluate_metrics(bundle, small):
 
 
 def test_cli_train_evaluate(tmp_path, capsys):
-    model = tmp_path / "model.joblib"
+    model = tmp_path / "model.skops"
     assert main(["train", str(SMALL), "--out", str(model)]) == 0
     out = capsys.readouterr().out
     assert "grouped" in out and "<- kept" in out
-    assert main(["evaluate", str(model), str(SMALL), "--out", str(tmp_path / "ev")]) == 0
+    # scoring a model on its own training signals is refused ...
+    assert main(["evaluate", str(model), str(SMALL)]) == 2
+    assert "100% of the signals" in capsys.readouterr().err
+    assert main(["bench", str(SMALL), "--model", str(model)]) == 2
+    assert "--allow-training-data" in capsys.readouterr().err
+    # ... unless asked for, and then every output says so
+    argv = ["evaluate", str(model), str(SMALL), "--out", str(tmp_path / "ev")]
+    assert main([*argv, "--allow-training-data"]) == 0
     out = capsys.readouterr().out
-    assert "confusion matrix" in out and "precision" in out
+    assert "confusion matrix" in out and "precision" in out and "IN-SAMPLE" in out
+    assert json.loads((tmp_path / "ev" / "evaluation.json").read_text())["in_sample_fraction"] == 1
     assert (tmp_path / "ev" / "confusion.png").stat().st_size > 5000
 
 
@@ -114,7 +181,7 @@ def test_cli_diagnose_csv_json_and_model(tmp_path, capsys, rng, bundle):
     x = rng.standard_normal(12000)
     csv = tmp_path / "rec.csv"
     pd.DataFrame({"time": np.arange(x.size) / 12000.0, "accel": x}).to_csv(csv, index=False)
-    model = save_model(bundle, tmp_path / "m.joblib")
+    model = save_model(bundle, tmp_path / "m.skops")
     assert (
         main(
             [
