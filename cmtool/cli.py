@@ -148,6 +148,19 @@ def _add_model_arguments(p: argparse.ArgumentParser) -> None:
     )
     g.add_argument("--cage-slip", type=float, default=0.0, help="cage slip fraction [-]")
     g.add_argument(
+        "--random-slip",
+        type=float,
+        default=0.0,
+        help="random fluctuation of the cage speed, standard deviation over its mean [-] "
+        "(real bearings 0.01-0.02; makes local-defect impacts cyclostationary)",
+    )
+    g.add_argument(
+        "--ball-jitter",
+        type=float,
+        default=0.0,
+        help="each ball's random offset in its cage pocket, standard deviation [rad]",
+    )
+    g.add_argument(
         "--waviness",
         action="append",
         default=[],
@@ -231,7 +244,12 @@ def _model_inputs(args: argparse.Namespace):
         overrides["radial_internal_clearance"] = args.clearance
     geometry = bearing(args.bearing, **overrides)
     operating = OperatingCondition.from_rpm(
-        args.rpm, args.load, load_angle=args.load_angle, cage_slip=args.cage_slip
+        args.rpm,
+        args.load,
+        load_angle=args.load_angle,
+        cage_slip=args.cage_slip,
+        random_slip=args.random_slip,
+        ball_jitter=args.ball_jitter,
     )
     defects = [parse_waviness(s) for s in args.waviness]
     defects += [parse_defect(s) for s in args.defect]

@@ -109,6 +109,16 @@ SURF_OUTER_DEFECT = 3
 SURF_INNER_DEFECT = 4
 SURF_BALL_DEFECT_OUTER = 5
 SURF_BALL_DEFECT_INNER = 6
+# Random slip (rows of the same table, after the defects): one sinusoidal component of the
+# angle by which the balls lag their nominal, evenly spaced cage positions where they meet a
+# local defect, phi_j(t) = sum over rows of angle * sin(rate t + phase) [rad]. W_BALL is the
+# ball (-1: every ball, the cage's own speed fluctuation), W_SLIP_RATE the component's angular
+# frequency [rad/s], W_SLIP_ANGLE its amplitude [rad], W_PHASE its phase. A ball's spin angle
+# lags with it (rolling: by phi_j times ball spin / cage speed), so a ball pit's impacts jitter
+# too. The varying-compliance geometry keeps the nominal spacing (docs/realism.md 1).
+SURF_SLIP = 7
+# rows of the time-terms work array (:func:`_scratch`) that hold each ball's slip angle and rate
+SLIP_LAG = 9
 (
     W_SURFACE,
     W_BALL,
@@ -122,6 +132,8 @@ SURF_BALL_DEFECT_INNER = 6
     W_TRACK,
     W_SIZE,
 ) = range(11)
+W_SLIP_RATE = W_ORDER  # slip rows: angular frequency [rad/s]
+W_SLIP_ANGLE = W_AMPLITUDE  # slip rows: amplitude [rad]
 # Ball defects only: W_LATITUDE the pit's angle from the ball's rolling circle at t = 0 [rad],
 # W_DRIFT the rate at which the spin axis turns that angle [rad/s], W_TRACK the half width of
 # the band around the rolling circle in which the pit meets the races, over the ball radius [-].
@@ -393,8 +405,38 @@ def _track_factor(wav, r, t):
 
 
 @numba.njit(**_JIT)
-def _defect(wav, r, surface, z, theta0, shaft_angle, t, wc, ws, wb, out):
-    """Localized defect rows of the waviness table (outer, inner race, or one ball)."""
+def _slip_lags(wav, trig, z, out):
+    """Each ball's slip angle [rad] into ``out[SLIP_LAG, j]``, its rate [rad/s] into the next row.
+
+    The sum of the slip rows (``SURF_SLIP``, the last rows of the table) for ball j and for
+    every ball (-1), from the cos/sin of their arguments in ``trig``.
+    """
+    for j in range(z):
+        out[SLIP_LAG, j] = 0.0
+        out[SLIP_LAG + 1, j] = 0.0
+    for r in range(wav.shape[0] - 1, -1, -1):
+        if int(wav[r, W_SURFACE]) != SURF_SLIP:
+            break
+        a = wav[r, W_SLIP_ANGLE]
+        angle = a * trig[r + 1, 1]
+        rate = a * wav[r, W_SLIP_RATE] * trig[r + 1, 0]
+        ball = int(wav[r, W_BALL])
+        if ball >= 0:
+            out[SLIP_LAG, ball] += angle
+            out[SLIP_LAG + 1, ball] += rate
+        else:
+            for j in range(z):
+                out[SLIP_LAG, j] += angle
+                out[SLIP_LAG + 1, j] += rate
+
+
+@numba.njit(**_JIT)
+def _defect(wav, r, surface, z, theta0, shaft_angle, t, wc, ws, wb, slipping, out):
+    """Localized defect rows of the waviness table (outer, inner race, or one ball).
+
+    ``slipping``: the table has slip rows (:data:`SURF_SLIP`); ball j then meets the defect at
+    its nominal position minus its slip angle ``out[SLIP_LAG, j]`` (:func:`_slip_lags`).
+    """
     half = wav[r, W_ORDER]
     depth = wav[r, W_AMPLITUDE]
     pos = wav[r, W_PHASE]
@@ -407,17 +449,28 @@ def _defect(wav, r, surface, z, theta0, shaft_angle, t, wc, ws, wb, out):
             return
         # spin angle of the outer contact point on the ball; the inner one is opposite
         chi = wb * t if surface == SURF_BALL_DEFECT_OUTER else wb * t + math.pi
+        spin = wb
+        if slipping:
+            # a ball that lags by phi has rolled phi * wb / wc less
+            lag, lag_rate = out[SLIP_LAG, j], out[SLIP_LAG + 1, j]
+            chi -= lag * wb / wc
+            spin -= lag_rate * wb / wc
         row = 4 if surface == SURF_BALL_DEFECT_OUTER else 6
-        _pit(_wrap(chi - pos), half, depth, radius, bridge, wb, scale, scale_rate, out, row, j)
+        _pit(_wrap(chi - pos), half, depth, radius, bridge, spin, scale, scale_rate, out, row, j)
         return
     pitch = 2.0 * math.pi / z
     for j in range(z):
         theta = theta0 + j * pitch
+        rate = wc
+        if slipping:
+            lag, lag_rate = out[SLIP_LAG, j], out[SLIP_LAG + 1, j]
+            theta -= lag
+            rate -= lag_rate
         if surface == SURF_OUTER_DEFECT:
-            _pit(_wrap(theta - pos), half, depth, radius, bridge, wc, 1.0, 0.0, out, 0, j)
+            _pit(_wrap(theta - pos), half, depth, radius, bridge, rate, 1.0, 0.0, out, 0, j)
         else:
             delta = _wrap(theta - shaft_angle - pos)
-            _pit(delta, half, depth, radius, bridge, wc - ws, 1.0, 0.0, out, 2, j)
+            _pit(delta, half, depth, radius, bridge, rate - ws, 1.0, 0.0, out, 2, j)
 
 
 @numba.njit(**_JIT_INLINE)
@@ -434,12 +487,18 @@ def _waviness(wav, z, theta0, shaft_angle, t, p, trig, out):
     wc = p[P_CAGE_SPEED]
     ws = p[P_SHAFT_SPEED]
     wb = p[P_BALL_SPIN_SPEED]
+    # slip rows come last in the table
+    slipping = wav.shape[0] > 0 and int(wav[wav.shape[0] - 1, W_SURFACE]) == SURF_SLIP
+    if slipping:
+        _slip_lags(wav, trig, z, out)
     for r in range(wav.shape[0]):
         surface = int(wav[r, W_SURFACE])
         k = wav[r, W_ORDER]
         a = wav[r, W_AMPLITUDE]
+        if surface == SURF_SLIP:
+            break
         if surface >= SURF_OUTER_DEFECT:
-            _defect(wav, r, surface, z, theta0, shaft_angle, t, wc, ws, wb, out)
+            _defect(wav, r, surface, z, theta0, shaft_angle, t, wc, ws, wb, slipping, out)
             continue
         if surface == SURF_BALL:
             j = int(wav[r, W_BALL])
@@ -473,7 +532,7 @@ def _waviness(wav, z, theta0, shaft_angle, t, p, trig, out):
 @numba.njit(**_JIT)
 def _scratch(z):
     """Work array of :func:`_rhs`: waviness per ball and the time-only terms (time = NaN)."""
-    scratch = np.zeros((9, max(z, 4)))
+    scratch = np.zeros((11, max(z, 4)))
     scratch[8, 0] = np.nan
     return scratch
 
@@ -491,6 +550,8 @@ def _phase_rate(p, wav, r):
         return k * (p[P_CAGE_SPEED] - p[P_SHAFT_SPEED])
     if surface == SURF_BALL:
         return k * p[P_BALL_SPIN_SPEED]
+    if surface == SURF_SLIP:
+        return wav[r - 1, W_SLIP_RATE]
     return 0.0  # localized defects: no harmonic argument
 
 
@@ -502,7 +563,7 @@ def _trig(wav):
 
 @numba.njit(**_JIT)
 def _start_waviness(p, wav, z, out):
-    """:func:`_waviness` at t = 0 into ``out`` (8, z): one call for the static start."""
+    """:func:`_waviness` at t = 0 into ``out`` (11, z): one call for the static start."""
     trig = _trig(wav)
     _phases(0.0, p, wav, trig)
     _waviness(wav, z, p[P_CAGE_ANGLE0], p[P_SHAFT_ANGLE0], 0.0, p, trig, out)
@@ -525,6 +586,8 @@ def _phases(t, p, wav, trig):
             arg = k * (theta0 - shaft_angle) + ph
         elif surface == SURF_BALL:
             arg = k * p[P_BALL_SPIN_SPEED] * t + ph
+        elif surface == SURF_SLIP:
+            arg = wav[r, W_SLIP_RATE] * t + ph
         else:
             continue
         trig[r + 1, 0] = math.cos(arg)
@@ -557,7 +620,8 @@ def _time_terms(t, p, wav, trig, scratch):
 
     ``trig`` must hold the cos/sin of the arguments at ``t`` (:func:`_phases`, or rotated to
     ``t`` by the RK4 loop). Rows 0-7: the waviness seen by each ball (:func:`_waviness`);
-    row 8: the time ``t`` [s], cos and sin of the cage angle, and the shaft angle [rad].
+    row 8: the time ``t`` [s], cos and sin of the cage angle, and the shaft angle [rad]; rows
+    9-10: each ball's slip angle and rate (local defects with random slip only).
     Called once per distinct stage time by the integrators (RK stages that share a time share
     them). Not inlined: the waviness code would otherwise sit in the right-hand side's hot
     loop and slow it down (measured: 62 ns against 33 ns per shaft-scene evaluation).
@@ -584,7 +648,7 @@ def _time_terms_at(t, p, wav, trig, scratch):
 def _rhs_inline(scene, ehl, y, p, wav, dydt, loads, scratch):
     """First-order right-hand side dy/dt of a scene; fills ``loads[0/1, j]`` (inner/outer).
 
-    ``scratch`` (shape (9, max(Z, 4)), from :func:`_scratch`) must hold the time terms of the
+    ``scratch`` (shape (11, max(Z, 4)), from :func:`_scratch`) must hold the time terms of the
     evaluation time (:func:`_time_terms`): the waviness seen by each ball (rows 0-7) and, in
     row 8, the time, the cage-angle cosine/sine and the shaft angle.
     """

@@ -63,6 +63,8 @@ __all__ = [
     "rk4_schedule",
     "simulate_lanes",
     "rk4_stability_radius",
+    "slip_rows",
+    "slip_line_factor",
 ]
 
 logger = logging.getLogger(__name__)
@@ -228,6 +230,94 @@ def _waviness_table(
     rows = [tuple(row) + (0.0,) * (K.W_SIZE - len(row)) for row in rows]
     table = np.array(rows, dtype=np.float64).reshape(-1, K.W_SIZE)
     return np.ascontiguousarray(table)
+
+
+#: Random slip as sums of sinusoids (docs/realism.md): components of the cage-speed
+#: fluctuation, log-spaced over [SLIP_BAND[0], SLIP_BAND[1]] times the cage frequency, and of
+#: each ball's pocket offset over [POCKET_BAND[0], POCKET_BAND[1]] times the cage frequency.
+SLIP_COMPONENTS = 12
+SLIP_BAND = (1.0 / 8.0, 2.0)
+POCKET_COMPONENTS = 4
+POCKET_BAND = (0.5, 4.0)
+
+
+def slip_rows(
+    operating: OperatingCondition, ball_count: int, cage_speed: float, rng: np.random.Generator
+) -> np.ndarray:
+    """Kernel table rows of the random slip (``_kernels.SURF_SLIP``), drawn from ``rng``.
+
+    The cage-speed fluctuation eps(t) (standard deviation ``operating.random_slip``) is a sum
+    of ``SLIP_COMPONENTS`` sinusoids of equal power at frequencies drawn log-uniformly, one per
+    equal log-band of ``SLIP_BAND`` x f_c, with uniform random phases; the balls' common lag
+    is its integral, psi(t) = w_c int eps dt, so component m has angle amplitude
+    w_c eps_m / w_m [rad]. Each ball's pocket offset (standard deviation
+    ``operating.ball_jitter`` [rad]) is a sum of ``POCKET_COMPONENTS`` such sinusoids over
+    ``POCKET_BAND`` x f_c. For random phases the coherent part of harmonic k of a race
+    defect's impact rate is multiplied by the product of J0(k Z a_m) over the rows
+    (:func:`slip_line_factor`).
+
+    Parameters
+    ----------
+    operating : OperatingCondition
+        Supplies ``random_slip`` [-] and ``ball_jitter`` [rad].
+    ball_count : int
+        Z.
+    cage_speed : float
+        Cage angular speed w_c [rad/s].
+    rng : numpy.random.Generator
+        Source of the frequencies and phases.
+
+    Returns
+    -------
+    ndarray, shape (rows, W_SIZE)
+        Empty when both are 0 or the cage stands.
+    """
+    rows = []
+    wc = abs(cage_speed)
+    for sigma, count, band, balls in (
+        (operating.random_slip, SLIP_COMPONENTS, SLIP_BAND, (-1,)),
+        (operating.ball_jitter, POCKET_COMPONENTS, POCKET_BAND, tuple(range(ball_count))),
+    ):
+        if sigma == 0.0 or wc == 0.0:
+            continue
+        edges = np.linspace(np.log(band[0] * wc), np.log(band[1] * wc), count + 1)
+        for ball in balls:
+            rates = np.exp(rng.uniform(edges[:-1], edges[1:]))
+            phases = rng.uniform(0.0, 2 * np.pi, count)
+            share = sigma * np.sqrt(2.0 / count)
+            # the cage's speed fluctuation integrates to an angle; a pocket offset is one
+            angles = wc * share / rates if ball == -1 else np.full(count, share)
+            for rate, angle, phase in zip(rates, angles, phases, strict=True):
+                rows.append((K.SURF_SLIP, ball, rate, angle, phase) + (0.0,) * (K.W_SIZE - 5))
+    return np.array(rows, dtype=np.float64).reshape(-1, K.W_SIZE)
+
+
+def slip_line_factor(wav: np.ndarray, multiple: float, ball: int = 0) -> float:
+    """Expected coherent fraction of a line whose argument is ``multiple`` x ball j's lag.
+
+    For psi = sum a_m sin(w_m t + phi_m) with independent uniform phases,
+    E[exp(i kappa psi)] = prod J0(kappa a_m): the factor by which slip shrinks the discrete
+    (periodic) part of harmonic k of a race defect's impacts, ``multiple = k Z`` for the
+    outer race (the rest spreads into a continuous spectrum).
+
+    Parameters
+    ----------
+    wav : ndarray
+        A kernel table (only its ``SURF_SLIP`` rows for ``ball`` and -1 are used).
+    multiple : float
+        kappa [-].
+    ball : int
+        The ball whose pocket rows count.
+
+    Returns
+    -------
+    float
+        Between 0 and 1 (1 without slip rows).
+    """
+    from scipy.special import j0
+
+    rows = wav[(wav[:, K.W_SURFACE] == K.SURF_SLIP) & np.isin(wav[:, K.W_BALL], (-1, ball))]
+    return float(np.prod(j0(multiple * rows[:, K.W_SLIP_ANGLE])))
 
 
 def resolve_scene(
@@ -410,7 +500,7 @@ def _film_sum(p: np.ndarray, loads: np.ndarray) -> np.ndarray:
 
 def _waviness_at_start(p: np.ndarray, wav: np.ndarray, z: int) -> np.ndarray:
     """Waviness values seen by each ball at t = 0: rows [w_o, w_i, wb_o, wb_i] [m]."""
-    out = np.zeros((8, z))
+    out = np.zeros((11, z))
     K._start_waviness(p, wav, z, out)
     return out[[0, 2, 4, 6]]
 
@@ -822,6 +912,13 @@ def _prepare(
         p = _film_tables(p)
     p[K.P_CAGE_ANGLE0] = settings.cage_angle
     wav = _waviness_table(defect_list, geometry, rng, operating.radial_load)
+    if (operating.random_slip or operating.ball_jitter) and np.any(
+        wav[:, K.W_SURFACE] >= K.SURF_OUTER_DEFECT
+    ):
+        # slip only moves where balls meet local defects: no rows (and no draws) without one
+        wav = np.ascontiguousarray(
+            np.vstack([wav, slip_rows(operating, z, p[K.P_CAGE_SPEED], rng)])
+        )
     y0, qmax = _static_state(level, ehl, geometry, operating, rig, p, wav)
     scale = max(map(abs, y0[: K.n_dof(code, z)].tolist()))
     p[K.P_MAX_DISPLACEMENT] = (

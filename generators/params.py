@@ -326,18 +326,30 @@ class OperatingCondition:
         Direction of the load, measured counter-clockwise from +x [rad]; -pi/2 is straight down.
     cage_slip : float
         Cage slip s: the cage turns at (1 - s) times its kinematic speed [-].
+    random_slip : float
+        Standard deviation of the random fluctuation of the cage speed, relative to its mean
+        [-] (real bearings: 0.01-0.02, Randall and Antoni 2011). The balls then meet a local
+        defect at randomly varying intervals: its impacts are second-order cyclostationary
+        and their harmonics smeared, the more the higher (docs/realism.md). 0: periodic.
+    ball_jitter : float
+        Standard deviation of each ball's own random angular offset within its cage pocket
+        [rad] (independent per ball; 0: none).
     """
 
     shaft_frequency: float
     radial_load: float = 500.0
     load_angle: float = -math.pi / 2
     cage_slip: float = 0.0
+    random_slip: float = 0.0
+    ball_jitter: float = 0.0
 
     def __post_init__(self) -> None:
         check_real("shaft_frequency", self.shaft_frequency, low=0.0, high=2000.0, unit="Hz")
         check_real("radial_load", self.radial_load, low=0.0, high=1e7, unit="N")
         check_real("load_angle", self.load_angle, low=-2 * math.pi, high=2 * math.pi, unit="rad")
         check_real("cage_slip", self.cage_slip, low=0.0, high=0.5)
+        check_real("random_slip", self.random_slip, low=0.0, high=0.1)
+        check_real("ball_jitter", self.ball_jitter, low=0.0, high=0.1, unit="rad")
 
     @classmethod
     def from_rpm(

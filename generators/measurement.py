@@ -1,0 +1,354 @@
+"""The measurement chain between a bearing and a recording, and the rest of the machine.
+
+A simulated housing signal is what the bearing does to its housing; a recording is that signal
+after the machine's structure, the accelerometer, the acquisition's anti-alias filter and its
+converter, with the rest of the machine added. docs/realism.md argues each element from the
+literature and the rigs' published descriptions:
+
+* :func:`transfer_path`: the structure between the bearing and the sensor as a sum of damped
+  modes (modal superposition of an accelerance: each mode a band-pass of unit peak gain times
+  its own gain), so that impacts ring at several resonances, as on real machines;
+* :func:`sensor_response`: the accelerometer's mounted resonance (second order, flat below it);
+* :func:`anti_alias_filter`: the acquisition's causal Butterworth low-pass;
+* :func:`digitise`: quantisation to a number of bits over a full scale, clipping beyond it;
+* :func:`machine_background`: shaft harmonics (unbalance, misalignment), electrical lines at
+  the line frequency and its harmonics, another bearing's lines and coloured broadband noise
+  (white noise through the same structure).
+
+All functions take plain arrays in the signal's own unit (m/s^2 for acceleration) and SI
+frequencies; the parameter objects validate their inputs.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import signal as sp_signal
+
+from ._validate import ParameterError, check_int, check_real
+
+__all__ = [
+    "StructuralMode",
+    "MachineBackground",
+    "transfer_path",
+    "sensor_response",
+    "anti_alias_filter",
+    "digitise",
+    "machine_background",
+    "band_power",
+    "fault_band",
+]
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class StructuralMode:
+    """One mode of the path from the bearing to the sensor.
+
+    Attributes
+    ----------
+    frequency : float
+        Natural frequency f_n [Hz].
+    damping : float
+        Damping ratio zeta [-].
+    gain : float
+        Gain at f_n relative to the input [-].
+    """
+
+    frequency: float
+    damping: float = 0.05
+    gain: float = 1.0
+
+    def __post_init__(self) -> None:
+        check_real("frequency", self.frequency, low=0.0, high=1e6, low_inclusive=False, unit="Hz")
+        check_real("damping", self.damping, low=0.0, high=1.0, low_inclusive=False)
+        check_real("gain", self.gain, low=0.0, high=1e6)
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class MachineBackground:
+    """Everything a sensor on a running machine picks up that is not the bearing under test.
+
+    Amplitudes are in the signal's unit (peak of each sinusoid; RMS of the noise).
+
+    Attributes
+    ----------
+    broadband_rms : float
+        RMS of the broadband noise after the structure (white noise through the
+        :func:`transfer_path` modes, or white when there are none).
+    shaft_harmonics : tuple of float
+        Amplitudes of the lines at 1, 2, 3, ... times the shaft frequency (unbalance at 1x,
+        misalignment at 2x and above).
+    line_frequency : float
+        Electrical line frequency [Hz] (50 or 60).
+    line_harmonics : tuple of float
+        Amplitudes at 1, 2, ... times the line frequency (2x: magnetostriction in motors).
+    other_lines : tuple of (float, float)
+        (frequency [Hz], amplitude) of other periodic sources, e.g. the machine's other
+        bearing's varying-compliance lines.
+    floor_rms : float
+        RMS of the sensor's and the electronics' white noise floor.
+    """
+
+    broadband_rms: float = 0.0
+    shaft_harmonics: tuple[float, ...] = ()
+    line_frequency: float = 60.0
+    line_harmonics: tuple[float, ...] = ()
+    other_lines: tuple[tuple[float, float], ...] = ()
+    floor_rms: float = 0.0
+
+    def __post_init__(self) -> None:
+        check_real("broadband_rms", self.broadband_rms, low=0.0, high=1e12)
+        check_real("floor_rms", self.floor_rms, low=0.0, high=1e12)
+        check_real("line_frequency", self.line_frequency, low=1.0, high=1e4, unit="Hz")
+        for name, values in (
+            ("shaft_harmonics", self.shaft_harmonics),
+            ("line_harmonics", self.line_harmonics),
+        ):
+            for i, a in enumerate(values):
+                check_real(f"{name}[{i}]", a, low=0.0, high=1e12)
+        for i, pair in enumerate(self.other_lines):
+            if len(pair) != 2:
+                raise ParameterError(
+                    f"other_lines[{i}] = {pair!r}: expected (frequency, amplitude)"
+                )
+            check_real(f"other_lines[{i}] frequency", pair[0], low=0.0, high=1e6, unit="Hz")
+            check_real(f"other_lines[{i}] amplitude", pair[1], low=0.0, high=1e12)
+
+
+#: Length of the lead-in [s] that causal filters run over before the record starts (an odd
+#: extension of the record: continuous value and slope), so that no start-up transient of a
+#: filter appears in the record (an envelope analyst would see it as one huge impact).
+LEAD_IN_S = 0.25
+
+
+def _causal(sos: np.ndarray, x: np.ndarray, fs: float) -> np.ndarray:
+    """``sosfilt`` as if the signal had been running: over a lead-in, started in steady state."""
+    x = np.asarray(x, dtype=float)
+    pad = min(x.size - 1, int(round(LEAD_IN_S * fs)))
+    if pad < 1:
+        return sp_signal.sosfilt(sos, x)
+    lead = 2.0 * x[0] - x[pad:0:-1]
+    padded = np.concatenate([lead, x])
+    zi = sp_signal.sosfilt_zi(sos) * padded[0]
+    return sp_signal.sosfilt(sos, padded, zi=zi)[0][pad:]
+
+
+def _prewarped(frequency: float, fs: float) -> float:
+    """Analogue angular frequency that the bilinear transform maps to ``frequency`` [rad/s]."""
+    return 2.0 * fs * math.tan(math.pi * frequency / fs)
+
+
+def _band_pass(fs: float, frequency: float, damping: float) -> np.ndarray:
+    """Second-order sections of H(s) = 2 zeta w s / (s^2 + 2 zeta w s + w^2), |H(j w)| = 1.
+
+    Bilinear, with w pre-warped so that the digital peak lies at ``frequency`` [Hz].
+    """
+    w = _prewarped(frequency, fs)
+    b, a = sp_signal.bilinear([2 * damping * w, 0.0], [1.0, 2 * damping * w, w * w], fs)
+    return sp_signal.tf2sos(b, a)
+
+
+def transfer_path(x: np.ndarray, fs: float, modes: tuple[StructuralMode, ...]) -> np.ndarray:
+    """The signal at the sensor: the sum of the modes' responses (identity without modes).
+
+    Parameters
+    ----------
+    x : ndarray
+        Signal at the bearing (any unit) sampled at ``fs`` [Hz].
+    fs : float
+        Sample rate [Hz].
+    modes : tuple of StructuralMode
+        The structure's modes below 0.45 fs (others are ignored: they lie above the band).
+
+    Returns
+    -------
+    ndarray
+        Same shape and unit as ``x``.
+    """
+    x = np.asarray(x, dtype=float)
+    kept = [m for m in modes if m.frequency < 0.45 * fs]
+    if not kept:
+        return x.copy()
+    y = np.zeros_like(x)
+    for mode in kept:
+        y += mode.gain * _causal(_band_pass(fs, mode.frequency, mode.damping), x, fs)
+    return y
+
+
+def sensor_response(x: np.ndarray, fs: float, resonance: float, damping: float) -> np.ndarray:
+    """An accelerometer's mounted resonance: w^2 / (s^2 + 2 zeta w s + w^2), unit gain at DC.
+
+    Parameters
+    ----------
+    x : ndarray
+        Acceleration at the mounting point, sampled at ``fs`` [Hz].
+    fs : float
+        Sample rate [Hz].
+    resonance : float
+        Mounted resonance [Hz]; at or above 0.45 fs the sensor is flat in band and ``x`` is
+        returned unchanged.
+    damping : float
+        Damping ratio of the resonance [-] (piezoelectric sensors: 0.01-0.05).
+
+    Returns
+    -------
+    ndarray
+        The sensor's output, in the unit of ``x``.
+    """
+    check_real("resonance", resonance, low=0.0, high=1e7, low_inclusive=False, unit="Hz")
+    check_real("damping", damping, low=0.0, high=1.0, low_inclusive=False)
+    if resonance >= 0.45 * fs:
+        return np.asarray(x, dtype=float).copy()
+    w = _prewarped(resonance, fs)
+    b, a = sp_signal.bilinear([w * w], [1.0, 2 * damping * w, w * w], fs)
+    return _causal(sp_signal.tf2sos(b, a), x, fs)
+
+
+def anti_alias_filter(x: np.ndarray, fs: float, cutoff: float, order: int = 8) -> np.ndarray:
+    """The acquisition's anti-alias low-pass: a causal Butterworth (as in analogue front ends).
+
+    Parameters
+    ----------
+    x : ndarray
+        Signal sampled at ``fs`` [Hz].
+    fs : float
+        Sample rate [Hz].
+    cutoff : float
+        -3 dB frequency over the sample rate [-], in (0, 0.5).
+    order : int
+        Filter order (roll-off 6 x order dB per octave).
+
+    Returns
+    -------
+    ndarray
+        The filtered signal.
+    """
+    check_real("cutoff", cutoff, low=0.0, high=0.5, low_inclusive=False, high_inclusive=False)
+    check_int("order", order, low=1, high=16)
+    sos = sp_signal.butter(order, 2.0 * cutoff, btype="low", output="sos")
+    return _causal(sos, x, fs)
+
+
+def digitise(x: np.ndarray, bits: int, full_scale: float) -> tuple[np.ndarray, float]:
+    """Quantise to ``bits`` over [-full_scale, full_scale) and clip beyond.
+
+    Parameters
+    ----------
+    x : ndarray
+        Signal (any unit).
+    bits : int
+        Converter resolution [bits].
+    full_scale : float
+        Largest representable magnitude, in the unit of ``x``.
+
+    Returns
+    -------
+    y : ndarray
+        The digitised signal (mid-tread quantiser), in the unit of ``x``.
+    clipped : float
+        Fraction of samples clipped [-].
+    """
+    check_int("bits", bits, low=2, high=32)
+    check_real("full_scale", full_scale, low=0.0, high=1e15, low_inclusive=False)
+    step = 2.0 * full_scale / 2**bits
+    top = full_scale - step
+    clipped = float(np.mean((x > top) | (x < -full_scale)))
+    return np.clip(np.round(x / step) * step, -full_scale, top), clipped
+
+
+def machine_background(
+    n: int,
+    fs: float,
+    shaft_frequency: float,
+    background: MachineBackground,
+    modes: tuple[StructuralMode, ...],
+    rng: np.random.Generator,
+) -> np.ndarray:
+    """A record of the rest of the machine: lines with random phases plus coloured noise.
+
+    Parameters
+    ----------
+    n : int
+        Samples.
+    fs : float
+        Sample rate [Hz].
+    shaft_frequency : float
+        Shaft rotation frequency [Hz] (the shaft harmonics).
+    background : MachineBackground
+        Levels of each source.
+    modes : tuple of StructuralMode
+        The structure the broadband excitation rings through (:func:`transfer_path`).
+    rng : numpy.random.Generator
+        Source of phases and noise.
+
+    Returns
+    -------
+    ndarray
+        ``n`` samples in the unit of the amplitudes. Lines at or above 0.45 fs are left out.
+    """
+    t = np.arange(n) / fs
+    y = np.zeros(n)
+    lines = [(h * shaft_frequency, a) for h, a in enumerate(background.shaft_harmonics, 1)]
+    lines += [
+        (h * background.line_frequency, a) for h, a in enumerate(background.line_harmonics, 1)
+    ]
+    lines += list(background.other_lines)
+    for frequency, amplitude in lines:
+        phase = rng.uniform(0.0, 2 * math.pi)
+        if amplitude > 0.0 and frequency < 0.45 * fs:
+            y += amplitude * np.cos(2 * math.pi * frequency * t + phase)
+    if background.broadband_rms > 0.0:
+        noise = transfer_path(rng.standard_normal(n), fs, modes)
+        y += noise * (background.broadband_rms / max(float(np.std(noise)), 1e-300))
+    if background.floor_rms > 0.0:
+        y += rng.normal(0.0, background.floor_rms, n)
+    return y
+
+
+def band_power(x: np.ndarray, fs: float, band: tuple[float, float]) -> float:
+    """Mean power of ``x`` in ``band`` [Hz] (Welch PSD integrated over the band).
+
+    Parameters
+    ----------
+    x : ndarray
+        Signal sampled at ``fs`` [Hz].
+    fs : float
+        Sample rate [Hz].
+    band : (float, float)
+        Lower and upper edge [Hz].
+
+    Returns
+    -------
+    float
+        Power in the band, in the unit of ``x`` squared.
+    """
+    f, psd = sp_signal.welch(x, fs, nperseg=min(512, len(x)))
+    keep = (f >= band[0]) & (f <= band[1])
+    return float(np.sum(psd[keep]) * (f[1] - f[0]))
+
+
+def fault_band(signature: np.ndarray, fs: float) -> tuple[float, float]:
+    """The octave in which a fault's signature (faulty minus healthy signal) is strongest.
+
+    The band an envelope analyst demodulates: centred on the peak of the signature's Welch
+    PSD (the resonance its impacts ring at), one octave wide, inside (0, 0.45 fs).
+
+    Parameters
+    ----------
+    signature : ndarray
+        The fault's own contribution to the signal.
+    fs : float
+        Sample rate [Hz].
+
+    Returns
+    -------
+    (float, float)
+        Band edges [Hz].
+    """
+    f, psd = sp_signal.welch(signature, fs, nperseg=min(512, len(signature)))
+    usable = (f > 0.02 * fs) & (f < 0.45 * fs)
+    centre = float(f[usable][np.argmax(psd[usable])])
+    low, high = centre / math.sqrt(2.0), centre * math.sqrt(2.0)
+    return max(low, 0.01 * fs), min(high, 0.45 * fs)

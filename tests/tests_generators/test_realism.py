@@ -1,0 +1,210 @@
+"""Random slip of local-defect impacts and the measurement chain (docs/realism.md)."""
+
+import math
+
+import numba
+import numpy as np
+import pytest
+from scipy import signal as sp_signal
+
+from generators import (
+    LocalizedDefect,
+    OperatingCondition,
+    ParameterError,
+    SimulationSettings,
+    bearing,
+    simulate,
+)
+from generators import _kernels as K
+from generators.measurement import (
+    MachineBackground,
+    StructuralMode,
+    anti_alias_filter,
+    band_power,
+    digitise,
+    fault_band,
+    machine_background,
+    sensor_response,
+    transfer_path,
+)
+from generators.model import prepare, slip_line_factor
+
+G6205 = bearing("6205")
+
+
+@numba.njit(cache=True)
+def _outer_race_excitation(p, wav, fs, n):
+    """Sum over the balls of the outer-race pit depth they see (the kernel's time terms)."""
+    trig = K._trig(wav)
+    scratch = K._scratch(int(p[K.P_BALL_COUNT]))
+    z = int(p[K.P_BALL_COUNT])
+    out = np.zeros(n)
+    for i in range(n):
+        K._time_terms_at(i / fs, p, wav, trig, scratch)
+        total = 0.0
+        for j in range(z):
+            total += scratch[0, j]
+        out[i] = total
+    return out
+
+
+def _lines(prep, fs, seconds, harmonics):
+    e = _outer_race_excitation(prep.p, prep.wav, fs, int(fs * seconds))
+    bpfo = prep.p[K.P_CAGE_SPEED] * G6205.ball_count / (2 * np.pi)
+    t = np.arange(e.size) / fs
+    return np.array([np.mean(e * np.exp(-2j * np.pi * k * bpfo * t)) for k in harmonics])
+
+
+def test_slip_smears_the_impact_lines_as_the_theory_of_random_phase_says():
+    """Coherent part of harmonic k of BPFO shrinks by prod J0(k Z a_m) (random-phase sum).
+
+    Six seeds of 30 s: the time average of exp(-i k Z psi) converges to its expectation; the
+    scatter of one seed's ratio was measured at 0.003-0.023, so 0.04 is five standard errors
+    of the six-seed mean.
+    """
+    harmonics = (1, 2, 3, 4, 6)
+    pit = LocalizedDefect(surface="outer", length=3e-3, depth=20e-6)
+    fs, seconds = 10000.0, 30.0
+    periodic = prepare(G6205, OperatingCondition.from_rpm(1797, 300.0), pit, random_state=0)
+    reference = _lines(periodic, fs, seconds, harmonics)
+    op = OperatingCondition.from_rpm(1797, 300.0, random_slip=0.012, ball_jitter=0.004)
+    measured, theory = [], []
+    for seed in range(6):
+        prep = prepare(G6205, op, pit, random_state=seed)
+        measured.append(_lines(prep, fs, seconds, harmonics) / reference)
+        theory.append([slip_line_factor(prep.wav, k * G6205.ball_count) for k in harmonics])
+    measured = np.abs(np.mean(measured, axis=0))
+    theory = np.mean(theory, axis=0)
+    assert theory[0] > 0.9 and theory[-1] < 0.2  # the test spans weak to strong smearing
+    np.testing.assert_allclose(measured, theory, atol=0.04)
+    assert np.all(np.diff(measured) < 0)  # the higher the harmonic, the more it is smeared
+
+
+def test_no_slip_adds_no_rows_and_slip_only_with_a_local_defect():
+    op = OperatingCondition.from_rpm(1797, 300.0, random_slip=0.02, ball_jitter=0.01)
+    healthy = prepare(G6205, op, random_state=1)
+    assert healthy.wav.shape[0] == 0
+    pit = LocalizedDefect(surface="inner", length=0.2e-3, depth=0.1e-3)
+    plain = prepare(G6205, OperatingCondition.from_rpm(1797, 300.0), pit, random_state=1)
+    slipping = prepare(G6205, op, pit, random_state=1)
+    np.testing.assert_array_equal(slipping.wav[: plain.wav.shape[0]], plain.wav)
+    slip = slipping.wav[plain.wav.shape[0] :]
+    assert np.all(slip[:, K.W_SURFACE] == K.SURF_SLIP)
+    cage = slip[slip[:, K.W_BALL] == -1]
+    # the cage rows' speed fluctuation has the requested standard deviation
+    speed = cage[:, K.W_SLIP_ANGLE] * cage[:, K.W_SLIP_RATE] / slipping.p[K.P_CAGE_SPEED]
+    assert math.sqrt(np.sum(speed**2) / 2) == pytest.approx(0.02, rel=1e-12)
+    pockets = slip[slip[:, K.W_BALL] >= 0]
+    assert sorted(set(pockets[:, K.W_BALL].astype(int))) == list(range(G6205.ball_count))
+    assert math.sqrt(np.sum(pockets[pockets[:, K.W_BALL] == 3, K.W_SLIP_ANGLE] ** 2) / 2) == (
+        pytest.approx(0.01, rel=1e-12)
+    )
+
+
+@pytest.mark.parametrize("surface", ["outer", "inner", "ball"])
+def test_a_slipping_fault_keeps_its_energy_but_loses_its_periodicity(surface):
+    settings = SimulationSettings(
+        fs=12000.0, duration=0.5, settle_time=0.05, channels=("housing_acceleration_y",)
+    )
+    pit = LocalizedDefect(surface=surface, length=0.5e-3, depth=0.2e-3, position=-math.pi / 2)
+    runs = {}
+    for slip in (0.0, 0.02):
+        op = OperatingCondition.from_rpm(1797, 400.0, random_slip=slip, ball_jitter=0.005)
+        runs[slip] = simulate(G6205, op, pit, settings=settings, random_state=3)[
+            "housing_acceleration_y"
+        ]
+    assert np.all(np.isfinite(runs[0.02]))
+    assert not np.array_equal(runs[0.0], runs[0.02])
+    assert np.std(runs[0.02]) == pytest.approx(np.std(runs[0.0]), rel=0.2)
+
+
+def test_slip_parameters_are_validated():
+    with pytest.raises(ParameterError, match=r"random_slip = 0\.5.*\[0, 0\.1\]"):
+        OperatingCondition.from_rpm(1797, 300.0, random_slip=0.5)
+    with pytest.raises(ParameterError, match="ball_jitter"):
+        OperatingCondition.from_rpm(1797, 300.0, ball_jitter=-0.1)
+
+
+def _gain_at(y_of_x, fs, f):
+    n = int(fs)
+    t = np.arange(n) / fs
+    x = np.sin(2 * np.pi * f * t)
+    y = y_of_x(x)[n // 2 :]
+    return np.sqrt(2) * np.std(y)
+
+
+def test_transfer_path_modes_ring_at_their_frequencies_with_their_gains():
+    fs = 48000.0
+    modes = (
+        StructuralMode(frequency=2000.0, damping=0.02, gain=1.0),
+        StructuralMode(frequency=7000.0, damping=0.05, gain=0.5),
+    )
+    path = lambda x: transfer_path(x, fs, modes)  # noqa: E731
+    assert _gain_at(path, fs, 2000.0) == pytest.approx(1.0, abs=0.02)
+    assert _gain_at(path, fs, 7000.0) == pytest.approx(0.5, abs=0.02)
+    assert _gain_at(path, fs, 4500.0) < 0.15  # between the modes
+    x = np.random.default_rng(0).standard_normal(4096)
+    np.testing.assert_array_equal(transfer_path(x, fs, ()), x)
+    # modes above the band are out of reach of the record
+    np.testing.assert_array_equal(transfer_path(x, 12000.0, modes[1:]), x)
+
+
+def test_sensor_anti_alias_and_converter():
+    fs = 48000.0
+    sensor = lambda x: sensor_response(x, fs, 5000.0, 0.05)  # noqa: E731
+    assert _gain_at(sensor, fs, 200.0) == pytest.approx(1.0, abs=0.01)
+    assert _gain_at(sensor, fs, 5000.0) == pytest.approx(1 / (2 * 0.05), rel=0.05)
+    aa = lambda x: anti_alias_filter(x, fs, 0.4, 8)  # noqa: E731
+    assert _gain_at(aa, fs, 0.4 * fs) == pytest.approx(1 / math.sqrt(2), abs=0.02)
+    assert _gain_at(aa, fs, 0.2 * fs) == pytest.approx(1.0, abs=0.01)
+    assert _gain_at(aa, fs, 0.49 * fs) < 0.3
+    x = np.linspace(-2.0, 2.0, 1001)
+    y, clipped = digitise(x, 4, 1.0)
+    assert clipped == pytest.approx(np.mean((x >= 1.0 - 2.0 / 16) | (x < -1.0)))
+    assert len(np.unique(y)) == 16 and y.max() == pytest.approx(1.0 - 2.0 / 16)
+    inside = np.abs(x) < 0.8
+    assert np.max(np.abs(y - x)[inside]) <= 1.0 / 16 + 1e-12  # half a step
+    with pytest.raises(ParameterError, match="bits"):
+        digitise(x, 1, 1.0)
+
+
+def test_machine_background_holds_its_lines_and_coloured_noise():
+    fs, n = 12000.0, 120000
+    rng = np.random.default_rng(5)
+    modes = (StructuralMode(frequency=3000.0, damping=0.05),)
+    spec = MachineBackground(
+        broadband_rms=0.5,
+        shaft_harmonics=(1.0, 0.5),
+        line_frequency=60.0,
+        line_harmonics=(0.0, 0.7),
+        other_lines=((91.4, 0.3),),
+    )
+    y = machine_background(n, fs, 30.0, spec, modes, rng)
+    f = np.fft.rfftfreq(n, 1 / fs)
+    amp = 2 * np.abs(np.fft.rfft(y)) / n
+    for freq, a in ((30.0, 1.0), (60.0, 0.5), (120.0, 0.7), (91.4, 0.3)):
+        assert amp[np.argmin(np.abs(f - freq))] == pytest.approx(a, rel=0.1)
+    noise = y - machine_background(
+        n,
+        fs,
+        30.0,
+        MachineBackground(
+            shaft_harmonics=(1.0, 0.5), line_harmonics=(0.0, 0.7), other_lines=((91.4, 0.3),)
+        ),
+        modes,
+        np.random.default_rng(5),
+    )
+    assert np.std(noise) == pytest.approx(0.5, rel=0.05)
+    # coloured by the structure: most of its power within an octave of the mode
+    octave = band_power(noise, fs, (3000 / math.sqrt(2), 3000 * math.sqrt(2)))
+    assert octave / np.var(noise) > 0.6
+
+
+def test_fault_band_finds_the_ringing_resonance():
+    fs = 12000.0
+    t = np.arange(24000) / fs
+    impacts = np.zeros_like(t)
+    impacts[:: int(fs / 107)] = 1.0
+    ring = sp_signal.lfilter(*sp_signal.iirpeak(3500.0, 20.0, fs), impacts)
+    low, high = fault_band(ring, fs)
+    assert low < 3500.0 < high and high / low == pytest.approx(2.0, rel=1e-9)
