@@ -74,6 +74,7 @@ _TYPES = {
     "operating_point_id": pa.int64(),
     "waviness_order": pa.int64(),
     "seed": pa.uint64(),
+    "chain": pa.string(),
 }
 DATA_SCHEMA = pa.schema(
     [pa.field(c, _TYPES.get(c, pa.float64())) for c in CASE_COLUMNS]

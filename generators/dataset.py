@@ -13,6 +13,7 @@ the number of workers or the order they finish in.
 from __future__ import annotations
 
 import copy
+import json
 import math
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -24,6 +25,17 @@ from scipy import signal as sp_signal
 from ._validate import ParameterError, SimulationDivergedError
 from .catalog import BEARINGS, bearing
 from .kinematics import _passage_lines, characteristic_frequencies
+from .measurement import (
+    MachineBackground,
+    StructuralMode,
+    anti_alias_filter,
+    band_power,
+    digitise,
+    fault_band,
+    machine_background,
+    sensor_response,
+    transfer_path,
+)
 from .model import Prepared, _default, _prepare, integrate, lanes_supported, simulate_lanes
 from .params import (
     INTEGRATORS,
@@ -103,6 +115,11 @@ CASE_COLUMNS = (
     "bsf_hz",
     "two_bsf_hz",
     "wpf_hz",
+    "random_slip",
+    "ball_jitter_rad",
+    "fault_band_low_hz",
+    "fault_band_high_hz",
+    "chain",
 )
 
 _TOP_KEYS = {
@@ -115,7 +132,33 @@ _TOP_KEYS = {
     "model",
     "sensor",
     "chunk_size",
+    "background",
 }
+
+#: Keys of [sensor] that describe the realistic measurement chain (docs/realism.md).
+_CHAIN_SENSOR_KEYS = {
+    "modes": (1, 12, ""),
+    "mode_hz": (1.0, 1e6, "Hz"),
+    "mode_damping": (1e-3, 0.99, ""),
+    "mode_gain_db": (-60.0, 60.0, "dB"),
+    "sensor_resonance_hz": (1.0, 1e6, "Hz"),
+    "sensor_damping": (1e-3, 0.99, ""),
+    "anti_alias": (0.05, 0.49, "x fs"),
+    "anti_alias_order": (1, 16, ""),
+    "adc_bits": (2, 32, "bits"),
+    "adc_headroom_db": (-20.0, 60.0, "dB"),
+}
+#: Keys of [background]: levels in dB relative to the healthy bearing's RMS at the sensor.
+_BACKGROUND_KEYS = {
+    "shaft_db": (-80.0, 80.0, "dB"),
+    "shaft_harmonics": (1, 20, ""),
+    "shaft_decay_db": (0.0, 40.0, "dB per harmonic"),
+    "line_hz": (1.0, 1000.0, "Hz"),
+    "line_db": (-80.0, 80.0, "dB"),
+    "other_bearing_db": (-80.0, 80.0, "dB"),
+    "floor_db": (-80.0, 80.0, "dB"),
+}
+_INTEGER_KEYS = {"modes", "anti_alias_order", "adc_bits", "shaft_harmonics"}
 
 
 def _fail(key: str, value: Any, why: str) -> ParameterError:
@@ -191,7 +234,7 @@ def validate_recipe(recipe: dict) -> dict:
     op = r.get("operating")
     if not isinstance(op, dict) or "rpm" not in op or "load_n" not in op:
         raise _fail("operating", op, "a table with rpm and load_n is required")
-    extra = set(op) - {"rpm", "load_n", "clearance_m"}
+    extra = set(op) - {"rpm", "load_n", "clearance_m", "random_slip", "ball_jitter_rad"}
     if extra:
         raise _fail(f"operating.{sorted(extra)[0]}", op[sorted(extra)[0]], "unknown key")
     r["operating"] = {
@@ -202,6 +245,11 @@ def validate_recipe(recipe: dict) -> dict:
         r["operating"]["clearance_m"] = _range_or_grid(
             "operating.clearance_m", op["clearance_m"], low=-20e-6, high=200e-6, unit="m"
         )
+    for key, high, unit in (("random_slip", 0.1, ""), ("ball_jitter_rad", 0.1, "rad")):
+        if key in op:
+            r["operating"][key] = _range_or_grid(
+                f"operating.{key}", op[key], low=0.0, high=high, unit=unit
+            )
     model = r.setdefault("model", {})
     if not isinstance(model, dict):
         raise _fail("model", model, "a table is required")
@@ -233,6 +281,8 @@ def validate_recipe(recipe: dict) -> dict:
         "noise_rms",
         "resonance_hz",
         "resonance_damping",
+        *_CHAIN_SENSOR_KEYS,
+        "other_bearing",
     }
     if extra:
         raise _fail(f"sensor.{sorted(extra)[0]}", sensor[sorted(extra)[0]], "unknown key")
@@ -298,6 +348,7 @@ def validate_recipe(recipe: dict) -> dict:
         zeta = sensor.setdefault("resonance_damping", 0.05)
         if isinstance(zeta, bool) or not isinstance(zeta, (int, float)) or not 0 < zeta < 1:
             raise _fail("sensor.resonance_damping", zeta, "a number in (0, 1) is required")
+    _validate_chain(r, fs_min)
     conditions = r.get("conditions")
     if not isinstance(conditions, list) or not conditions:
         raise _fail("conditions", conditions, "a non-empty list of [[conditions]] is required")
@@ -377,6 +428,71 @@ def validate_recipe(recipe: dict) -> dict:
     return r
 
 
+def _validate_chain(r: dict, fs_min: float) -> None:
+    """The realistic measurement chain's keys of [sensor] and the [background] table."""
+    sensor = r["sensor"]
+    for key, (low, high, unit) in _CHAIN_SENSOR_KEYS.items():
+        if key in sensor and key not in ("sensor_resonance_hz",):
+            sensor[key] = _range_or_grid(
+                f"sensor.{key}", sensor[key], low=low, high=high, unit=unit
+            )
+    if "sensor_resonance_hz" in sensor:
+        sensor["sensor_resonance_hz"] = _range_or_grid(
+            "sensor.sensor_resonance_hz",
+            sensor["sensor_resonance_hz"],
+            low=1.0,
+            high=1e6,
+            unit="Hz",
+        )
+    for key in _INTEGER_KEYS & set(sensor):
+        if any(v != int(v) for v in sensor[key].get("grid", sensor[key].get("range", ()))):
+            raise _fail(f"sensor.{key}", sensor[key], "integers are required")
+    background = r.get("background")
+    realistic = background is not None or "modes" in sensor
+    if not realistic:
+        for key in set(_CHAIN_SENSOR_KEYS) & set(sensor):
+            raise _fail(f"sensor.{key}", sensor[key], "needs sensor.modes (the transfer path)")
+        return
+    if "background_db" not in sensor:
+        raise _fail(
+            "sensor.background_db",
+            None,
+            "the realistic chain needs background_db (broadband machine noise over the "
+            "healthy bearing)",
+        )
+    if "resonance_hz" in sensor:
+        raise _fail(
+            "sensor.resonance_hz",
+            sensor["resonance_hz"],
+            "give the structure as modes, mode_hz, mode_damping (resonance_hz is the older "
+            "single-resonance sensor model)",
+        )
+    if "modes" in sensor and "mode_hz" not in sensor:
+        raise _fail("sensor.mode_hz", None, "the modes' frequency range is required")
+    if "other_bearing" in sensor and str(sensor["other_bearing"]).lower() not in BEARINGS:
+        raise _fail("sensor.other_bearing", sensor["other_bearing"], f"not in {sorted(BEARINGS)}")
+    if background is None:
+        r["background"] = background = {}
+    if not isinstance(background, dict):
+        raise _fail("background", background, "a table is required")
+    extra = set(background) - set(_BACKGROUND_KEYS) - {"other_bearing"}
+    if extra:
+        raise _fail(f"background.{sorted(extra)[0]}", background[sorted(extra)[0]], "unknown key")
+    if "other_bearing" in background:
+        name = str(background["other_bearing"]).lower()
+        if name not in BEARINGS:
+            raise _fail("background.other_bearing", name, f"not in {sorted(BEARINGS)}")
+        background["other_bearing"] = name
+    for key, (low, high, unit) in _BACKGROUND_KEYS.items():
+        if key in background:
+            background[key] = _range_or_grid(
+                f"background.{key}", background[key], low=low, high=high, unit=unit
+            )
+    if "other_bearing_db" in background and "other_bearing" not in background:
+        raise _fail("background.other_bearing", None, "other_bearing_db needs other_bearing")
+    del fs_min  # mode and sensor frequencies above 0.45 fs are out of band and ignored
+
+
 @dataclass(frozen=True)
 class Case:
     """One signal to generate (all parameters drawn, SI units)."""
@@ -403,6 +519,8 @@ class Case:
     defect_axis_drift_rad_s: float = math.nan
     fs_hz: float = math.nan
     resonance_hz: float = math.nan
+    random_slip: float = 0.0
+    ball_jitter_rad: float = 0.0
 
 
 def _draw(spec: dict, rng: np.random.Generator, cycle: int, *, integer: bool = False):
@@ -500,6 +618,9 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
             resonance = math.nan
             if "resonance_hz" in r["sensor"]:
                 resonance = _draw(r["sensor"]["resonance_hz"], rng, k)
+            # drawn last, so that recipes without them draw every other value as before
+            slip = _draw(op["random_slip"], rng, k) if "random_slip" in op else 0.0
+            jitter = _draw(op["ball_jitter_rad"], rng, k) if "ball_jitter_rad" in op else 0.0
             yield Case(
                 index=index,
                 label=cond["label"],
@@ -523,6 +644,8 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                 resonance_hz=resonance,
                 background_db=background,
                 fault_snr_db=fault_snr,
+                random_slip=slip,
+                ball_jitter_rad=jitter,
             )
             index += 1
 
@@ -562,7 +685,12 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         )
         geometry = bearing(case.bearing, **overrides)
         shared["bearing", case.bearing, case.clearance_m] = geometry
-    operating = OperatingCondition.from_rpm(case.rpm, case.radial_load_n)
+    operating = OperatingCondition.from_rpm(
+        case.rpm,
+        case.radial_load_n,
+        random_slip=case.random_slip,
+        ball_jitter=case.ball_jitter_rad,
+    )
     defects: list = []
     if case.defect_kind == "localized":
         defects.append(
@@ -649,6 +777,11 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         "bsf_hz": freqs.bsf,
         "two_bsf_hz": freqs.two_bsf,
         "wpf_hz": wpf,
+        "random_slip": case.random_slip,
+        "ball_jitter_rad": case.ball_jitter_rad,
+        "fault_band_low_hz": math.nan,
+        "fault_band_high_hz": math.nan,
+        "chain": "",
     }
     job = _Job(case=case, meta=meta, rng=np.random.default_rng(case.seed))
     scene = shared.get("scene")
@@ -685,10 +818,134 @@ def _measured(recipe: dict, case: Case, x: np.ndarray) -> np.ndarray:
     return x
 
 
+#: Largest factor by which the realistic chain scales a fault's simulated signature to reach
+#: the drawn fault SNR (40 dB).
+MAX_FAULT_GAIN = 100.0
+
+
+def _pick(spec: dict | None, rng: np.random.Generator, default, *, integer: bool = False):
+    """One value of a recipe grid (chosen at random) or range (uniform), or ``default``."""
+    if spec is None:
+        return default
+    if "grid" in spec:
+        v = spec["grid"][int(rng.integers(len(spec["grid"])))]
+    else:
+        lo, hi = spec["range"]
+        v = rng.integers(int(lo), int(hi) + 1) if integer else rng.uniform(lo, hi)
+    return int(v) if integer else float(v)
+
+
+def _realistic(recipe: dict) -> bool:
+    """Whether a validated recipe asks for the realistic measurement chain."""
+    return "background" in recipe or "modes" in recipe["sensor"]
+
+
+def _finish_realistic(
+    recipe: dict, job: _Job, x: np.ndarray, healthy: np.ndarray, signal_dtype: type
+) -> dict:
+    """The realistic chain (docs/realism.md): structure, background, fault SNR, sensor, ADC.
+
+    Every random choice of the chain comes from its own generator seeded by the case's seed,
+    so the simulation's draws are those of the same case without the chain.
+    """
+    case, meta, sensor = job.case, job.meta, recipe["sensor"]
+    background = recipe.get("background", {})
+    rng = np.random.default_rng([case.seed, 7])
+    fs = case.fs_hz
+    modes = tuple(
+        StructuralMode(
+            frequency=_pick(sensor.get("mode_hz"), rng, 3000.0),
+            damping=_pick(sensor.get("mode_damping"), rng, 0.05),
+            gain=10.0 ** (_pick(sensor.get("mode_gain_db"), rng, 0.0) / 20.0),
+        )
+        for _ in range(_pick(sensor.get("modes"), rng, 0, integer=True))
+    )
+    at_sensor = transfer_path(x, fs, modes)
+    healthy_at_sensor = at_sensor if healthy is x else transfer_path(healthy, fs, modes)
+    reference = float(np.sqrt(np.mean(healthy_at_sensor**2))) or 1e-12
+
+    def level(key: str, default_db: float | None) -> float:
+        db = _pick(background.get(key), rng, default_db)
+        return 0.0 if db is None else reference * 10.0 ** (db / 20.0)
+
+    shaft_1x = level("shaft_db", None)
+    decay = _pick(background.get("shaft_decay_db"), rng, 6.0)
+    shaft = tuple(
+        shaft_1x * 10.0 ** ((-decay * h + rng.uniform(-3.0, 3.0)) / 20.0)
+        for h in range(_pick(background.get("shaft_harmonics"), rng, 3, integer=True))
+    )
+    line_hz = _pick(background.get("line_hz"), rng, 60.0)
+    line_2x = level("line_db", None)
+    other = level("other_bearing_db", None)
+    other_lines: tuple = ()
+    if "other_bearing" in background and other > 0.0:
+        f = characteristic_frequencies(bearing(background["other_bearing"]), case.rpm / 60.0)
+        other_lines = ((f.bpfo, other), (2.0 * f.bpfo, other / 2.0), (f.bpfi, other / 2.0))
+    machine = MachineBackground(
+        broadband_rms=reference * 10.0 ** (case.background_db / 20.0),
+        shaft_harmonics=shaft,
+        line_frequency=line_hz,
+        line_harmonics=(line_2x / 2.0, line_2x),
+        other_lines=other_lines,
+        floor_rms=level("floor_db", None),
+    )
+    noise = machine_background(x.size, fs, case.rpm / 60.0, machine, modes, rng)
+    chain: dict = {
+        "modes": [[m.frequency, m.damping, m.gain] for m in modes],
+        "shaft_amplitudes": list(shaft),
+        "line_hz": line_hz,
+        "line_2x_amplitude": line_2x,
+        "other_lines": [list(pair) for pair in other_lines],
+        "floor_rms": machine.floor_rms,
+    }
+    y = healthy_at_sensor + noise
+    if healthy is not x:
+        signature = at_sensor - healthy_at_sensor
+        gain = 1.0
+        if not math.isnan(case.fault_snr_db) and np.any(signature):
+            # the fault's visibility where its impacts ring: the band SNR is the label. How
+            # loud a pit of a given size is on a machine is not known, so the signature is
+            # scaled to the drawn SNR, by at most MAX_FAULT_GAIN: a pit the balls barely
+            # touch (outside the load zone) stays as faint as the model makes it, and the
+            # SNR recorded is the one reached.
+            band = fault_band(signature, fs)
+            meta["fault_band_low_hz"], meta["fault_band_high_hz"] = band
+            rest = band_power(y, fs, band)
+            own = max(band_power(signature, fs, band), 1e-300)
+            wanted = rest * 10.0 ** (case.fault_snr_db / 10.0)
+            gain = min(math.sqrt(wanted / own), MAX_FAULT_GAIN)
+            meta["fault_snr_db"] = 10.0 * math.log10(max(gain * gain * own, 1e-300) / rest)
+        chain["fault_gain"] = gain
+        y = y + gain * signature
+    resonance = _pick(sensor.get("sensor_resonance_hz"), rng, None)
+    if resonance is not None:
+        zeta = _pick(sensor.get("sensor_damping"), rng, 0.03)
+        y = sensor_response(y, fs, resonance, zeta)
+        chain["sensor_resonance_hz"], chain["sensor_damping"] = resonance, zeta
+    cutoff = _pick(sensor.get("anti_alias"), rng, None)
+    if cutoff is not None:
+        order = _pick(sensor.get("anti_alias_order"), rng, 8, integer=True)
+        y = anti_alias_filter(y, fs, cutoff, order)
+        chain["anti_alias"], chain["anti_alias_order"] = cutoff, order
+    bits = _pick(sensor.get("adc_bits"), rng, None, integer=True)
+    if bits is not None:
+        headroom = _pick(sensor.get("adc_headroom_db"), rng, 6.0)
+        full_scale = float(np.max(np.abs(y))) * 10.0 ** (headroom / 20.0)
+        y, clipped = digitise(y, bits, max(full_scale, 1e-300))
+        chain.update(adc_bits=bits, adc_full_scale=full_scale, clipped_fraction=clipped)
+    if not np.all(np.isfinite(y)):
+        return {**meta, "error": "non-finite samples after the measurement chain"}
+    meta["noise_rms"] = machine.broadband_rms
+    meta["chain"] = json.dumps(chain, separators=(",", ":"))
+    return {**meta, "signal": y.astype(signal_dtype), "error": None}
+
+
 def _finish(
     recipe: dict, job: _Job, x: np.ndarray, healthy: np.ndarray, signal_dtype: type
 ) -> dict:
     """Add measurement noise (SNR, background or absolute) and build the row of a case."""
+    if _realistic(recipe):
+        return _finish_realistic(recipe, job, x, healthy, signal_dtype)
     case, meta, rng, sensor = job.case, job.meta, job.rng, recipe["sensor"]
     noise_rms = 0.0
     if case.snr_db is not None:

@@ -1,0 +1,119 @@
+"""The realistic measurement chain in recipes (docs/realism.md): fault SNR, chain, S-curve."""
+
+import json
+import math
+import tomllib
+
+import numpy as np
+import pytest
+
+from cmtool.diagnose import diagnose_signal
+from generators import ParameterError
+from generators.dataset import expand_cases, generate_cases, validate_recipe
+
+RECIPE = """
+name = "chain"
+seed = 11
+bearings = ["6205"]
+[operating]
+rpm = [1797]
+load_n = [400]
+clearance_m = [-5e-6]
+random_slip = { min = 0.005, max = 0.02 }
+ball_jitter_rad = { min = 0.003, max = 0.01 }
+[model]
+scene = "shaft+housing"
+ehl = false
+[sensor]
+fs_hz = 12000
+duration_s = 1.0
+settle_s = 0.05
+background_db = { min = 0, max = 20 }
+fault_snr_db = [-25, -15, -5, 5]
+modes = { min = 2, max = 3 }
+mode_hz = { min = 1000, max = 5000 }
+mode_damping = { min = 0.02, max = 0.08 }
+mode_gain_db = { min = -12, max = 0 }
+sensor_resonance_hz = { min = 4000, max = 8000 }
+anti_alias = 0.42
+adc_bits = 16
+[background]
+shaft_db = { min = 0, max = 20 }
+line_db = { min = -10, max = 10 }
+other_bearing = "6203"
+other_bearing_db = { min = -10, max = 0 }
+floor_db = { min = -20, max = -10 }
+[[conditions]]
+label = "healthy"
+count = 8
+[[conditions]]
+label = "outer"
+surface = "outer"
+defect = "localized"
+length_m = { min = 0.2e-3, max = 0.5e-3 }
+depth_m = [0.28e-3]
+position_rad = [-1.5708]
+count = 40
+"""
+
+
+@pytest.fixture(scope="module")
+def rows():
+    recipe = validate_recipe(tomllib.loads(RECIPE))
+    return generate_cases(recipe, expand_cases(recipe))
+
+
+def test_the_chain_is_recorded_and_the_fault_snr_is_reached(rows):
+    for row in rows:
+        assert row["error"] is None
+        assert np.all(np.isfinite(row["signal"]))
+        chain = json.loads(row["chain"])
+        assert 2 <= len(chain["modes"]) <= 3 and chain["adc_bits"] == 16
+        assert chain["anti_alias"] == 0.42 and 4000 <= chain["sensor_resonance_hz"] <= 8000
+        assert len(chain["other_lines"]) == 3 and len(chain["shaft_amplitudes"]) == 3
+        assert 0.005 <= row["random_slip"] <= 0.02
+        if row["label"] == "healthy":
+            assert math.isnan(row["fault_snr_db"]) and "fault_gain" not in chain
+            continue
+        low, high = row["fault_band_low_hz"], row["fault_band_high_hz"]
+        assert 0 < low < high <= 0.45 * 12000
+        # a pit in the load zone of a preloaded bearing is loud enough for every drawn SNR:
+        # the signature was scaled, not capped, and the recorded SNR is the drawn one
+        assert chain["fault_gain"] < 100.0
+        assert row["fault_snr_db"] in pytest.approx([-25, -15, -5, 5], abs=1e-6)
+
+
+def test_detection_rises_with_the_fault_snr_as_an_s_curve(rows):
+    """The rule detector on a sweep of the recipe's fault SNR: 0.3 or less in the lowest bin,
+    0.9 or more in the highest, never falling in between, and no healthy case called faulty."""
+    by_snr: dict[float, list[bool]] = {}
+    for row in rows:
+        d = diagnose_signal(row["signal"], row["fs_hz"], row["rpm"], "6205")
+        if row["label"] == "healthy":
+            assert d.verdict == "healthy", d.candidates
+            continue
+        by_snr.setdefault(round(row["fault_snr_db"]), []).append(d.verdict == "outer race")
+    rates = [np.mean(by_snr[k]) for k in sorted(by_snr)]
+    assert rates[0] <= 0.3 and rates[-1] >= 0.9, rates
+    assert all(b >= a - 0.1 for a, b in zip(rates, rates[1:], strict=False)), rates
+
+
+def test_chain_keys_are_validated():
+    base = tomllib.loads(RECIPE)
+    for key, value, match in (
+        ("modes", 0, r"sensor.modes = 0"),
+        ("anti_alias", 0.6, r"sensor.anti_alias"),
+        ("resonance_hz", 3000, r"resonance_hz is the older"),
+    ):
+        bad = tomllib.loads(RECIPE)
+        bad["sensor"][key] = value
+        with pytest.raises(ParameterError, match=match):
+            validate_recipe(bad)
+    bad = dict(base, background={**base["background"], "other_bearing": "9999"})
+    with pytest.raises(ParameterError, match="background.other_bearing"):
+        validate_recipe(bad)
+    bad = tomllib.loads(RECIPE)
+    del bad["sensor"]["background_db"]
+    del bad["sensor"]["fault_snr_db"]
+    with pytest.raises(ParameterError, match="background_db"):
+        validate_recipe(bad)
