@@ -775,7 +775,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--feature-set",
         default="all",
-        choices=["all", "scale-free", "envelope"],
+        choices=["all", "scale-free", "envelope", "evidence"],
         help="features: all; scale-free (none in the signal's unit); envelope (only the "
         "envelope line-to-floor ratios: the set that carries over from simulated to measured "
         "signals, see README)",

@@ -133,10 +133,12 @@ def run_demo(out: Path, *, recipe: Path = SMALL_RECIPE, workers: int = 1) -> int
     )
     summary.append(("report", report))
 
-    # a local defect: a 0.18 mm (0.007 inch) inner-race pit, the CWRU seeded-fault size
+    # a local defect: a 0.18 mm (0.007 inch) inner-race pit, the CWRU seeded-fault size, with
+    # the random slip of a real bearing (1 % cage speed, 0.005 rad of pocket play:
+    # docs/realism.md), without which its impacts would be as periodic as a machine's lines
     pit = simulate(
         geometry,
-        OperatingCondition.from_rpm(1797, 300.0),
+        OperatingCondition.from_rpm(1797, 300.0, random_slip=0.01, ball_jitter=0.005),
         [LocalizedDefect(surface="inner", length=0.1778e-3, depth=0.28e-3)],
         scene=scene,
         settings=SimulationSettings(fs=12000.0, duration=1.0, settle_time=0.1),

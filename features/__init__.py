@@ -21,6 +21,16 @@ from .catalog import (
     feature_units,
 )
 from .envelope import KurtogramResult, envelope, envelope_spectrum, kurtogram, prewhiten
+from .evidence import EVIDENCE_NAMES, Evidence, fault_evidence, slip_line
+from .separation import (
+    FALSE_ALARM,
+    LINE_DB,
+    BandSelection,
+    candidate_bands,
+    detection_threshold_db,
+    select_band,
+    separate_discrete,
+)
 from .spectra import (
     amplitude_spectrum,
     integrate_signal,
@@ -32,6 +42,17 @@ from .transformer import CONTEXT_COLUMNS, FEATURE_SETS, FeatureExtractor
 
 __all__ = [
     "BAND_METRIC_COLUMNS",
+    "EVIDENCE_NAMES",
+    "Evidence",
+    "fault_evidence",
+    "slip_line",
+    "BandSelection",
+    "FALSE_ALARM",
+    "LINE_DB",
+    "candidate_bands",
+    "detection_threshold_db",
+    "select_band",
+    "separate_discrete",
     "CONTEXT_COLUMNS",
     "DEFAULT_FAULTS",
     "FeatureError",

@@ -16,6 +16,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,11 +24,14 @@ from scipy import fft as sp_fft
 from scipy import signal as sp_signal
 
 from ._validate import FeatureError, check_fs, check_signal
+from .separation import select_band, separate_discrete
 from .spectra import amplitude_spectrum
 
 __all__ = ["KurtogramResult", "kurtogram", "envelope", "envelope_spectrum", "prewhiten"]
 
 TUKEY_ALPHA = 0.25
+#: Fraction of the record tapered (half at each end) before the kurtogram's FFT.
+EDGE_TAPER = 0.05
 
 
 @dataclass(frozen=True)
@@ -158,8 +162,9 @@ def envelope_spectrum(
     window: str = "hann",
     nlevel: int = 6,
     return_band: bool = False,
+    fault_frequencies: Mapping[str, float] | None = None,
 ):
-    """Amplitude spectrum of the envelope of ``x`` in a band (chosen by the kurtogram if None).
+    """Amplitude spectrum of the envelope of ``x`` in a band (chosen automatically if None).
 
     Parameters
     ----------
@@ -168,8 +173,10 @@ def envelope_spectrum(
     fs : float
         Sample rate [Hz].
     band : (float, float), optional
-        Demodulation band [Hz]. ``None`` selects the band of largest spectral kurtosis
-        (:func:`kurtogram`).
+        Demodulation band [Hz]. ``None`` with ``fault_frequencies``: the band ``cmtool
+        diagnose`` uses (discrete lines removed by :func:`features.separate_discrete`, then
+        :func:`features.select_band` for those rates, at least 3 x the fastest wide); ``None``
+        without: the band of largest spectral kurtosis (:func:`kurtogram`).
     method : {"hilbert", "squared"}
         Envelope |z| or squared envelope |z|^2.
     prewhitening : bool
@@ -180,6 +187,9 @@ def envelope_spectrum(
         Kurtogram depth when ``band`` is None.
     return_band : bool
         Also return the band used ``(low, high)`` [Hz].
+    fault_frequencies : mapping of str to float, optional
+        Fault rates to look for [Hz], e.g. ``{"bpfo": 107.4, "bpfi": 162.2, "two_bsf": 141.2}``
+        (only used to choose the band).
 
     Returns
     -------
@@ -203,7 +213,10 @@ def envelope_spectrum(
     fs = check_fs(fs)
     if prewhitening:
         x = prewhiten(x)
-    if band is None:
+    if band is None and fault_frequencies:
+        x = separate_discrete(x, fs)
+        band = select_band(x, fs, fault_frequencies, nlevel=nlevel).band
+    elif band is None:
         band = kurtogram(x, fs, nlevel=nlevel).band
     env = envelope(x, fs, band=band, method=method)
     freqs, amp = amplitude_spectrum(env, fs, window=window, detrend="constant")
@@ -258,7 +271,10 @@ def kurtogram(
     if not 1 <= int(nlevel) <= 12:
         raise FeatureError(f"nlevel = {nlevel} is outside the allowed range [1, 12]")
     n = x.size
-    spec = sp_fft.rfft(x - x.mean())
+    # the FFT treats the record as circular: a record that ends where it did not start has a
+    # jump at the seam, a broadband impulse that dominates the kurtosis of quiet bands (e.g.
+    # above an anti-alias filter's cut-off); tapered edges remove it
+    spec = sp_fft.rfft((x - x.mean()) * sp_signal.windows.tukey(n, EDGE_TAPER))
     df = fs / n
     min_bw = 3.0 * fs / n * 8 if min_bandwidth is None else float(min_bandwidth)
     cells = 3 * 2 ** (int(nlevel) - 1) * 2

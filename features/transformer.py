@@ -11,6 +11,7 @@ from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ._validate import FeatureError
 from .catalog import DEFAULT_FAULTS, extract_features, feature_names, feature_units
+from .evidence import EVIDENCE_NAMES, fault_evidence
 
 __all__ = ["FeatureExtractor", "CONTEXT_COLUMNS", "FEATURE_SETS"]
 
@@ -21,7 +22,11 @@ __all__ = ["FeatureExtractor", "CONTEXT_COLUMNS", "FEATURE_SETS"]
 #: sidebands [dB], the evidence of envelope analysis: independent of the transfer path's
 #: gain, of the background level (above the floor) and of how impulsive the impacts look,
 #: which a model of one machine cannot know for another.
-FEATURE_SETS = ("all", "scale-free", "envelope")
+#: ``evidence``: the analyst's evidence for each local fault (``features.evidence``): envelope
+#: lines of the random part (the machine's periodic components removed) in the band where a
+#: fault rate shows most clearly, searched within the slip, with sidebands and the margin
+#: over the detection threshold; ratios at the bearing's own rates only.
+FEATURE_SETS = ("all", "scale-free", "envelope", "evidence")
 
 #: DataFrame columns that carry each signal's context (dataset schema, Hz).
 CONTEXT_COLUMNS = {
@@ -37,10 +42,14 @@ CONTEXT_COLUMNS = {
 
 def _feature_rows(items, faults, n_harmonics, names):
     out = []
+    evidence = names[0].startswith("evidence_")
     for signal, ctx in items:
-        feats = extract_features(
-            signal, ctx["fs"], fault_frequencies=ctx, faults=faults, n_harmonics=n_harmonics
-        )
+        if evidence:
+            feats = fault_evidence(signal, ctx["fs"], ctx).features
+        else:
+            feats = extract_features(
+                signal, ctx["fs"], fault_frequencies=ctx, faults=faults, n_harmonics=n_harmonics
+            )
         out.append([feats[name] for name in names])
     return out
 
@@ -133,6 +142,8 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
             names = [n for n in names if units[n] != "U"]
         elif self.feature_set == "envelope":
             names = [n for n in names if n.startswith("envelope_") and n.endswith("_snr")]
+        elif self.feature_set == "evidence":
+            names = list(EVIDENCE_NAMES)
         self.feature_names_out_ = np.array(names, dtype=object)
         return self
 

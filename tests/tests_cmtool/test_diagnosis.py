@@ -214,24 +214,27 @@ def test_cli_diagnose_csv_json_and_model(tmp_path, capsys, rng, bundle):
     assert "give --rpm" in capsys.readouterr().err
 
 
+#: The measured recordings in ../shared/data (file, bearing, expected verdict); the files
+#: themselves are read only when present.
+MEASURED = [
+    ("cwru/12k_Drive_End_B021_0_222.mat", "6205", "ball"),
+    ("cwru/12k_Drive_End_IR007_0_105.mat", "6205", "inner race"),
+    ("cwru/12k_Drive_End_OR007@6_0_130.mat", "6205", "outer race"),
+    ("cwru/normal_0_97.mat", "6205", "healthy"),
+    ("mfpt/InnerRaceFault_vload_1.mat", "mfpt", "inner race"),
+    ("mfpt/OuterRaceFault_vload_2.mat", "mfpt", "outer race"),
+]
+
+
 @pytest.mark.realdata
-def test_measured_recordings_get_their_labelled_fault(shared_data, capsys):
-    manifest = pd.read_csv(shared_data / "MANIFEST.csv")
-    expected = {"inner": "inner race", "outer": "outer race", "ball": "ball", "normal": "healthy"}
-    for _, row in manifest.iterrows():
-        x, meta = read_recording(shared_data / row.file)
-        d = diagnose_signal(
-            x,
-            float(row.sampling_rate_hz),
-            float(row.shaft_rpm),
-            "6205" if row.dataset == "CWRU" else "mfpt",
-        )
-        assert d.verdict == expected[row.fault_location], (row.file, d.candidates)
-    rc = main(
-        ["diagnose", str(shared_data / "cwru" / "normal_0_97.mat"), "--fs", "48000", "--json"]
-    )
-    assert rc == 0
-    assert json.loads(capsys.readouterr().out)["verdict"] == "healthy"
+@pytest.mark.parametrize(("name", "bearing_name", "expected"), MEASURED)
+def test_measured_recordings_get_their_labelled_fault(shared_data, name, bearing_name, expected):
+    row = pd.read_csv(shared_data / "MANIFEST.csv").set_index("file").loc[name]
+    x, _ = read_recording(shared_data / name)
+    d = diagnose_signal(x, float(row.sampling_rate_hz), float(row.shaft_rpm), bearing_name)
+    assert d.verdict == expected, (name, d.candidates)
+    assert d.assumptions["fs_hz"] == float(row.sampling_rate_hz)
+    assert d.assumptions["record_s"] == pytest.approx(x.size / float(row.sampling_rate_hz))
 
 
 def test_demo_runs_end_to_end(tmp_path, capsys):
@@ -243,3 +246,40 @@ def test_demo_runs_end_to_end(tmp_path, capsys):
     assert (tmp_path / "diagnosis_local_defect" / "report.md").exists()
     # the simulated inner-race pit is called inner race by the rule-based envelope detector
     assert "inner-race pit 0.18 mm: rule-based verdict inner race" in out
+
+
+def test_simulated_healthy_bearings_are_healthy_and_slipping_pits_are_found(small):
+    """Issue 18's target: >= 95 % of simulated healthy bearings healthy, pits detected.
+
+    A loaded bearing's varying compliance is periodic: the separation takes it out. A pit's
+    impacts jitter (random slip, docs/realism.md): they stay.
+    """
+    from generators import (
+        LocalizedDefect,
+        OperatingCondition,
+        SimulationSettings,
+        bearing,
+        simulate,
+    )
+
+    healthy = small[small["label"] == "healthy"]
+    verdicts = [
+        diagnose_signal(x, fs, rpm, "6205").verdict
+        for x, fs, rpm in zip(healthy["signal"], healthy["fs_hz"], healthy["rpm"], strict=True)
+    ]
+    assert verdicts.count("healthy") >= 0.95 * len(verdicts), verdicts
+    g = bearing("6205")
+    clean = SimulationSettings(fs=25600.0, duration=1.0, channels=("housing_acceleration_y",))
+    for rpm in (1200, 1800, 3000):
+        run = simulate(g, OperatingCondition.from_rpm(rpm, 500.0), settings=clean)
+        d = diagnose_signal(run["housing_acceleration_y"], run.fs, rpm, g)
+        assert d.verdict == "healthy", (rpm, d.candidates)
+    settings = SimulationSettings(fs=12000.0, duration=1.0, channels=("housing_acceleration_y",))
+    slipping = OperatingCondition.from_rpm(1797, 300.0, random_slip=0.01, ball_jitter=0.005)
+    for surface, verdict in (("inner", "inner race"), ("outer", "outer race")):
+        pit = LocalizedDefect(surface=surface, length=0.1778e-3, depth=0.28e-3)
+        run = simulate(g, slipping, pit, settings=settings, random_state=2)
+        x = run["housing_acceleration_y"]
+        x = x + np.random.default_rng(2).normal(0.0, 0.3 * np.std(x), x.size)
+        d = diagnose_signal(x, run.fs, 1797.0, g)
+        assert d.verdict == verdict, (surface, d.candidates)
