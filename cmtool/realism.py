@@ -1,0 +1,189 @@
+"""``cmtool realism``: how well a classifier tells a simulated dataset from measured recordings.
+
+The realism gauge of issue 17. The recordings (a folder with a ``MANIFEST.csv``, the layout of
+``../shared/data``) are cut into segments as long as the dataset's signals; every segment and
+every simulated signal gets the scale-free features (no feature in the signal's unit: a
+sensor's gain or unit gives nothing away) computed with its own bearing's rates; a random
+forest learns "measured or simulated" under cross-validation grouped by recording (no
+recording has segments on both sides of a split; each simulated signal is its own group). The
+out-of-fold ROC AUC is the gauge: 0.5 means the two cannot be told apart, 1.0 that every
+recording is recognised. The features the forest leans on most are what gives the simulation
+away.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from generators import bearing as catalog_bearing
+from generators import characteristic_frequencies
+
+from .io import read_recording
+
+__all__ = ["realism", "recording_segments", "plot_realism"]
+
+#: The recordings' manifest columns used (``bearing`` or ``dataset`` names the bearing).
+MANIFEST_BEARINGS = {"CWRU": "6205", "MFPT": "mfpt"}
+
+
+def recording_segments(folder: str | Path, duration_s: float) -> pd.DataFrame:
+    """The recordings of a manifest folder cut into segments of ``duration_s`` [s].
+
+    Parameters
+    ----------
+    folder : str or Path
+        Holds ``MANIFEST.csv`` (``file``, ``sampling_rate_hz``, ``shaft_rpm``, and ``bearing``
+        or ``dataset``) and the files.
+    duration_s : float
+        Segment length [s] (a recording shorter than one segment is used whole).
+
+    Returns
+    -------
+    DataFrame
+        One row per segment: ``signal``, ``group`` (the file), and the context columns of the
+        feature extractor (``fs_hz``, ``shaft_frequency_hz``, ``ftf_hz``, ``bpfo_hz``,
+        ``bpfi_hz``, ``bsf_hz``, ``two_bsf_hz``).
+    """
+    folder = Path(folder)
+    manifest = folder / "MANIFEST.csv"
+    if not manifest.is_file():
+        raise FileNotFoundError(f"{folder}: no MANIFEST.csv (a folder of recordings needs one)")
+    rows = []
+    for _, entry in pd.read_csv(manifest).iterrows():
+        variable = entry.get("channel_variable")
+        variable = variable if isinstance(variable, str) and "." not in variable else None
+        x, _ = read_recording(folder / entry["file"], variable=variable)
+        fs = float(entry["sampling_rate_hz"])
+        name = entry.get("bearing")
+        if not isinstance(name, str):
+            name = MANIFEST_BEARINGS.get(str(entry.get("dataset")), "6205")
+        f = characteristic_frequencies(catalog_bearing(name), float(entry["shaft_rpm"]) / 60)
+        n = max(1, int(round(duration_s * fs)))
+        count = max(1, x.size // n)
+        for i in range(count):
+            rows.append(
+                {
+                    "signal": x[i * n : (i + 1) * n] if x.size >= n else x,
+                    "group": str(entry["file"]),
+                    "fs_hz": fs,
+                    "shaft_frequency_hz": f.shaft,
+                    "ftf_hz": f.ftf,
+                    "bpfo_hz": f.bpfo,
+                    "bpfi_hz": f.bpfi,
+                    "bsf_hz": f.bsf,
+                    "two_bsf_hz": f.two_bsf,
+                }
+            )
+    if not rows:
+        raise ValueError(f"{manifest}: lists no recordings")
+    return pd.DataFrame(rows)
+
+
+def realism(
+    simulated: pd.DataFrame,
+    measured: pd.DataFrame,
+    *,
+    feature_set: str = "scale-free",
+    random_state: int = 0,
+    n_jobs: int | None = None,
+) -> dict[str, Any]:
+    """ROC AUC of telling ``measured`` segments from ``simulated`` signals, and why.
+
+    Parameters
+    ----------
+    simulated : DataFrame
+        A dataset (``cmtool.datasets.read_dataset``).
+    measured : DataFrame
+        Segments (:func:`recording_segments`): ``signal``, ``group`` and the context columns.
+    feature_set : str
+        ``features.FEATURE_SETS`` (scale-free by default: nothing in the signal's unit).
+    random_state : int
+        Seed of the forest.
+    n_jobs : int, optional
+        Workers of the feature extraction.
+
+    Returns
+    -------
+    dict
+        ``auc``, ``folds``, ``recordings``, ``segments``, ``simulated``, ``roc`` (false and
+        true positive rates), ``features`` (name, importance) most telling first, and the
+        out-of-fold ``scores``.
+    """
+    from sklearn.ensemble import RandomForestClassifier
+    from sklearn.metrics import roc_auc_score, roc_curve
+    from sklearn.model_selection import GroupKFold
+
+    from features import FeatureExtractor
+
+    groups_measured = measured["group"].astype(str).to_numpy()
+    recordings = len(set(groups_measured))
+    if recordings < 2:
+        raise ValueError(
+            f"{recordings} recording: a recording-level split needs at least two recordings"
+        )
+    columns = ["signal", "fs_hz", "shaft_frequency_hz", "ftf_hz", "bpfo_hz", "bpfi_hz"]
+    columns += ["bsf_hz", "two_bsf_hz"]
+    both = pd.concat([simulated[columns], measured[columns]], ignore_index=True)
+    extractor = FeatureExtractor(feature_set=feature_set, n_jobs=n_jobs).fit(both)
+    X = extractor.transform(both)
+    names = list(extractor.get_feature_names_out())
+    y = np.r_[np.zeros(len(simulated)), np.ones(len(measured))]
+    groups = np.r_[[f"sim-{i}" for i in range(len(simulated))], groups_measured]
+    folds = min(5, recordings)
+    scores = np.zeros(len(y))
+    for train, test in GroupKFold(n_splits=folds).split(X, y, groups):
+        forest = RandomForestClassifier(
+            n_estimators=300, class_weight="balanced", random_state=random_state, n_jobs=-1
+        )
+        forest.fit(X[train], y[train])
+        scores[test] = forest.predict_proba(X[test])[:, 1]
+    auc = float(roc_auc_score(y, scores))
+    fpr, tpr, _ = roc_curve(y, scores)
+    forest = RandomForestClassifier(
+        n_estimators=300, class_weight="balanced", random_state=random_state, n_jobs=-1
+    ).fit(X, y)
+    ranked = sorted(zip(names, forest.feature_importances_, strict=True), key=lambda item: -item[1])
+    return {
+        "auc": auc,
+        "folds": folds,
+        "recordings": recordings,
+        "segments": int(len(measured)),
+        "simulated": int(len(simulated)),
+        "feature_set": feature_set,
+        "roc": {"false_positive_rate": fpr.tolist(), "true_positive_rate": tpr.tolist()},
+        "features": [(name, float(value)) for name, value in ranked],
+        "scores": scores.tolist(),
+    }
+
+
+def plot_realism(result: dict[str, Any], path: str | Path, *, top: int = 12) -> Path:
+    """ROC curve of the gauge and the features that give the simulation away (PNG)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    path = Path(path)
+    fig, (roc, bars) = plt.subplots(1, 2, figsize=(12, 4.8), width_ratios=(1, 1.4))
+    roc.plot(result["roc"]["false_positive_rate"], result["roc"]["true_positive_rate"], lw=2)
+    roc.plot([0, 1], [0, 1], "k--", lw=1, label="indistinguishable (AUC 0.5)")
+    roc.set(
+        xlabel="simulated signals taken for measured",
+        ylabel="measured segments recognised",
+        title=f"measured vs simulated: ROC AUC {result['auc']:.3f}",
+    )
+    roc.legend(loc="lower right")
+    names = [n for n, _ in result["features"][:top]][::-1]
+    values = [v for _, v in result["features"][:top]][::-1]
+    bars.barh(names, values)
+    bars.set(xlabel="importance (mean decrease in impurity)", title="what gives it away")
+    bars.tick_params(axis="y", labelsize=8)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
