@@ -166,6 +166,34 @@ def make_classifier(name: str = "random_forest", *, random_state: int = 0, **ext
     )
 
 
+#: Default feature set of :func:`train` and ``cmtool train``: the one that carried over best
+#: between simulated rigs (``benchmarks/cross_domain.py``; features.FEATURE_SETS).
+DEFAULT_FEATURE_SET = "evidence+scale-free"
+#: Faulty training signals whose fault SNR (where their impacts ring) is below this are left
+#: out by default [dB]: nothing in them can show the fault their label names.
+MIN_FAULT_SNR_DB = -10.0
+
+
+def visible_faults(frame: pd.DataFrame, min_fault_snr_db: float | None) -> pd.Series:
+    """Rows to train on: healthy signals, and faulty ones whose fault SNR reaches the floor.
+
+    Parameters
+    ----------
+    frame : DataFrame
+        A dataset; without a ``fault_snr_db`` column every row is kept.
+    min_fault_snr_db : float or None
+        Floor [dB]; None keeps every row.
+
+    Returns
+    -------
+    Series of bool
+        True for the rows kept (a NaN fault SNR, as healthy signals have, is kept).
+    """
+    if min_fault_snr_db is None or "fault_snr_db" not in frame.columns:
+        return pd.Series(True, index=frame.index)
+    return ~(frame["fault_snr_db"] < min_fault_snr_db)
+
+
 def _features(frame: pd.DataFrame, feature_set: str = "all") -> tuple[np.ndarray, list[str]]:
     ext = features.FeatureExtractor(feature_set=feature_set).fit(frame)
     return ext.transform(frame), list(ext.get_feature_names_out())
@@ -203,7 +231,8 @@ def train(
     recipe: str = "",
     random_state: int = 0,
     n_splits: int | None = None,
-    feature_set: str = "all",
+    feature_set: str = DEFAULT_FEATURE_SET,
+    min_fault_snr_db: float | None = MIN_FAULT_SNR_DB,
 ) -> dict[str, Any]:
     """Fit the candidates with grouped cross-validation and keep the best.
 
@@ -218,9 +247,13 @@ def train(
         Seed of the classifiers.
     n_splits : int, optional
         Grouped folds (default: min(5, number of operating points)).
-    feature_set : {"all", "scale-free"}
-        Features used (``features.FEATURE_SETS``); ``scale-free`` for a model that will meet
-        measured signals (any sensor gain or unit).
+    feature_set : str
+        Features used (``features.FEATURE_SETS``); the default ``evidence+scale-free`` carried
+        over best between simulated rigs and holds nothing in the signal's unit (any sensor
+        gain or unit).
+    min_fault_snr_db : float or None
+        Faulty signals with a ``fault_snr_db`` below this are left out [dB] (None: none);
+        the count left out is in the bundle (``left_out``).
 
     Returns
     -------
@@ -229,6 +262,9 @@ def train(
         all data), ``classes``, ``feature_names``, ``scores`` (grouped-CV accuracy of every
         candidate), ``best``, ``extrapolation``, ``recipe``, ``versions``.
     """
+    kept = visible_faults(frame, min_fault_snr_db)
+    left_out = int((~kept).sum())
+    frame = frame[kept.to_numpy()].reset_index(drop=True)
     X, names = _features(frame, feature_set)
     y = frame["label"].astype(str).to_numpy()
     groups = frame["operating_point_id"].to_numpy()
@@ -261,6 +297,8 @@ def train(
         "extrapolation": extrapolation,
         "recipe": recipe,
         "feature_set": feature_set,
+        "left_out": left_out,
+        "min_fault_snr_db": min_fault_snr_db,
         "signal_duration_s": float(np.median(frame["duration_s"]))
         if "duration_s" in frame.columns
         else None,

@@ -18,6 +18,7 @@ from pathlib import Path
 
 from generators import (
     BEARINGS,
+    CHANNELS,
     LUBRICANTS,
     LocalizedDefect,
     OperatingCondition,
@@ -278,8 +279,50 @@ def _model_inputs(args: argparse.Namespace):
         oversample=args.oversample,
         cage_angle=args.cage_angle,
         record_contact_loads=args.contact_loads,
+        channels=_simulated_channels(args),
     )
     return geometry, operating, defects, scene, rig, settings
+
+
+def _requested_channels(args: argparse.Namespace) -> tuple[str, ...] | None:
+    """``--channels`` as a tuple of channel names (None: all), checked."""
+    if getattr(args, "channels", None) is None:
+        return None
+    names = tuple(c.strip() for c in args.channels.split(",") if c.strip())
+    unknown = [c for c in names if c not in CHANNELS]
+    if not names or unknown:
+        raise CliError(
+            f"--channels {args.channels!r}: {', '.join(unknown) or 'no channel'} is not one of "
+            f"{', '.join(CHANNELS)}"
+        )
+    return names
+
+
+def _simulated_channels(args: argparse.Namespace) -> tuple[str, ...] | None:
+    """The channels to simulate: those asked for, plus those the plots need."""
+    names = _requested_channels(args)
+    if names is None:
+        return None
+    need = ["housing_velocity_y"] if getattr(args, "plot", None) else []
+    need += ["housing_acceleration_y"] if getattr(args, "envelope_plot", None) else []
+    return tuple(dict.fromkeys([*names, *need]))
+
+
+#: Formats matplotlib writes (checked before a run, not after it).
+PLOT_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff", ".webp")
+
+
+def _check_outputs(args: argparse.Namespace) -> None:
+    """Refuse output names the command could not write, before anything runs."""
+    if getattr(args, "out", None) and Path(args.out).suffix.lower() not in (".parquet", ".csv"):
+        raise CliError(f"--out {args.out!r}: the file must end in .parquet or .csv")
+    for flag in ("plot", "envelope_plot"):
+        value = getattr(args, flag, None)
+        if value and Path(value).suffix.lower() not in PLOT_SUFFIXES:
+            raise CliError(
+                f"--{flag.replace('_', '-')} {value!r}: the file must end in one of "
+                f"{', '.join(PLOT_SUFFIXES)}"
+            )
 
 
 def waviness_markers(result, defects) -> dict[str, float]:
@@ -305,6 +348,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     from .io import write_signal
     from .plots import plot_spectrum
 
+    _check_outputs(args)
     geometry, operating, defects, scene, rig, settings = _model_inputs(args)
     result = simulate(
         geometry,
@@ -326,7 +370,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         f"BSF {f.bsf:.3f} Hz  2xBSF {f.two_bsf:.3f} Hz"
     )
     if args.out:
-        path = write_signal(result, args.out)
+        path = write_signal(result, args.out, channels=_requested_channels(args))
         print(f"wrote {path}")
     if args.plot:
         freqs, amp = features.amplitude_spectrum(result["housing_velocity_y"], result.fs)
@@ -341,7 +385,17 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         print(f"wrote {path}")
     if args.envelope_plot:
         x = result["housing_acceleration_y"]
-        freqs, amp, band = features.envelope_spectrum(x, result.fs, return_band=True)
+        freqs, amp, band = features.envelope_spectrum(
+            x,
+            result.fs,
+            return_band=True,
+            fault_frequencies={
+                "bpfo": f.bpfo,
+                "bpfi": f.bpfi,
+                "two_bsf": f.two_bsf,
+                "shaft": f.shaft,
+            },
+        )
         markers = waviness_markers(result, defects)
         title = (
             f"{geometry.name}, {operating.rpm:g} rpm: envelope of housing acceleration (y), "
@@ -522,11 +576,13 @@ def cmd_train(args: argparse.Namespace) -> int:
         recipe=recipe.read_text() if recipe.is_file() else "",
         random_state=args.seed,
         feature_set=args.feature_set,
+        min_fault_snr_db=None if args.min_fault_snr is None else float(args.min_fault_snr),
     )
     print(
-        f"trained on {len(frame)} signals, {frame['operating_point_id'].nunique()} operating "
-        f"points; grouped {bundle['n_splits']}-fold accuracy (no operating point in both "
-        "train and test):"
+        f"trained on {len(frame) - bundle['left_out']} signals ({bundle['left_out']} faulty "
+        f"ones below the fault SNR floor left out), {frame['operating_point_id'].nunique()} "
+        f"operating points, features {bundle['feature_set']}; grouped "
+        f"{bundle['n_splits']}-fold accuracy (no operating point in both train and test):"
     )
     for name, score in sorted(bundle["scores"].items(), key=lambda kv: -kv[1]):
         print(f"  {name:<22s} {score:.3f}{'  <- kept' if name == bundle['best'] else ''}")
@@ -617,6 +673,8 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
         model = load_model(args.model)
     diagnosis = diagnose_signal(x, float(fs), float(rpm), args.bearing, model=model)
     diagnosis.warnings = warnings + diagnosis.warnings
+    diagnosis.assumptions["channel"] = str(meta.get("variable") or args.channel or "first")
+    diagnosis.assumptions["file"] = Path(args.recording).name
     if args.report:
         report = write_report(
             diagnosis, args.report, title=Path(args.recording).name, x=x, fs=float(fs)
@@ -629,7 +687,12 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
         print(
             f"{Path(args.recording).name}: {diagnosis.verdict} (confidence "
             f"{diagnosis.confidence:.2f}); envelope band {diagnosis.band_hz[0]:.0f}-"
-            f"{diagnosis.band_hz[1]:.0f} Hz"
+            f"{diagnosis.band_hz[1]:.0f} Hz, threshold {diagnosis.threshold_db:.1f} dB"
+        )
+        a = diagnosis.assumptions
+        print(
+            f"  assumed: bearing {a['bearing']}, {a['rpm']:g} rpm, fs {a['fs_hz']:g} Hz, "
+            f"{a['record_s']:g} s ({a['samples']} samples), channel {a['channel']}"
         )
         for c in diagnosis.candidates:
             print(
@@ -733,6 +796,17 @@ def cmd_demo(args: argparse.Namespace) -> int:
     return run_demo(Path(args.out))
 
 
+def _positive_int(text: str) -> int:
+    """An argparse type: an integer of at least 1 (workers, counts)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{value} is outside the allowed range [1, inf)")
+    return value
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of ``cmtool``."""
     parser = argparse.ArgumentParser(
@@ -740,7 +814,17 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"cmtool {__version__}")
     parser.add_argument("-v", "--verbose", action="count", default=0)
-    sub = parser.add_subparsers(dest="command", required=True)
+    commands = parser.add_subparsers(dest="command", required=True)
+
+    class _Commands:
+        """Sub-parsers that show every option's default in --help."""
+
+        @staticmethod
+        def add_parser(name: str, **kwargs) -> argparse.ArgumentParser:
+            kwargs.setdefault("formatter_class", argparse.ArgumentDefaultsHelpFormatter)
+            return commands.add_parser(name, **kwargs)
+
+    sub = _Commands()
 
     p = sub.add_parser("simulate", help="simulate one housing vibration signal")
     _add_model_arguments(p)
@@ -781,7 +865,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", required=True, help="dataset folder")
     p.add_argument(
         "--workers",
-        type=int,
+        type=_positive_int,
         default=os.cpu_count() or 1,
         help="local worker threads (default: all cores)",
     )
@@ -805,11 +889,20 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0)
     p.add_argument(
         "--feature-set",
-        default="all",
-        choices=["all", "scale-free", "envelope", "evidence"],
-        help="features: all; scale-free (none in the signal's unit); envelope (only the "
-        "envelope line-to-floor ratios: the set that carries over from simulated to measured "
-        "signals, see README)",
+        default="evidence+scale-free",
+        choices=["all", "scale-free", "envelope", "evidence", "evidence+scale-free"],
+        help="features (default: evidence+scale-free, the set that carried over best between "
+        "simulated rigs: benchmarks/cross_domain.py); all; scale-free (none in the signal's "
+        "unit); envelope (envelope line-to-floor ratios); evidence (the rule detector's "
+        "evidence)",
+    )
+    p.add_argument(
+        "--min-fault-snr",
+        type=float,
+        default=-10.0,
+        metavar="DB",
+        help="leave out faulty signals whose fault SNR is below DB (nothing in them shows the "
+        "fault; default -10 dB)",
     )
     p.set_defaults(func=cmd_train)
 
@@ -871,7 +964,7 @@ def build_parser() -> argparse.ArgumentParser:
         choices=["scale-free", "envelope", "evidence"],
         help="features compared (default: scale-free, nothing in the signal's unit)",
     )
-    p.add_argument("--workers", type=int, default=1, help="feature-extraction processes")
+    p.add_argument("--workers", type=_positive_int, default=1, help="feature-extraction processes")
     p.add_argument("--out", default=None, help="folder for realism.json and realism.png")
     p.set_defaults(func=cmd_realism)
 

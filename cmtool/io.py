@@ -49,6 +49,16 @@ def to_jsonable(obj: Any) -> Any:
     return obj
 
 
+def _process_umask() -> int:
+    """The process's umask (read once, at import: setting it is not thread-safe)."""
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+_UMASK = _process_umask()
+
+
 def atomic_write(path: Path, write) -> None:
     """Call ``write(tmp_path)`` then rename the temporary file onto ``path`` (atomic on POSIX)."""
     path = Path(path)
@@ -57,6 +67,8 @@ def atomic_write(path: Path, write) -> None:
     os.close(fd)
     try:
         write(Path(tmp))
+        # mkstemp makes 0600 files; a written result gets the mode the user's umask gives
+        os.chmod(tmp, 0o666 & ~_UMASK)
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
@@ -77,7 +89,12 @@ def signal_metadata(result: SimulationResult) -> dict[str, Any]:
     )
 
 
-def write_signal(result: SimulationResult, path: str | os.PathLike) -> Path:
+def write_signal(
+    result: SimulationResult,
+    path: str | os.PathLike,
+    *,
+    channels: tuple[str, ...] | None = None,
+) -> Path:
     """Write a simulated signal to ``.parquet`` or ``.csv`` (with a ``.json`` sidecar).
 
     Parameters
@@ -86,6 +103,8 @@ def write_signal(result: SimulationResult, path: str | os.PathLike) -> Path:
         Output of :func:`generators.simulate`.
     path : str or PathLike
         Destination; the suffix selects the format.
+    channels : tuple of str, optional
+        Channels written (default: every channel of the result), after ``time``.
 
     Returns
     -------
@@ -94,6 +113,8 @@ def write_signal(result: SimulationResult, path: str | os.PathLike) -> Path:
     """
     path = Path(path)
     frame = result.to_frame()
+    if channels is not None:
+        frame = frame[["time", *channels]]
     meta = signal_metadata(result)
     suffix = path.suffix.lower()
     if suffix == ".parquet":

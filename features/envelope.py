@@ -174,8 +174,9 @@ def envelope_spectrum(
         Sample rate [Hz].
     band : (float, float), optional
         Demodulation band [Hz]. ``None`` with ``fault_frequencies``: the band ``cmtool
-        diagnose`` uses (discrete lines removed by :func:`features.separate_discrete`, then
-        :func:`features.select_band` for those rates, at least 3 x the fastest wide); ``None``
+        diagnose`` uses (periodic parts and discrete lines removed by
+        :func:`features.separate_discrete`, then :func:`features.select_band` for the rates
+        ``bpfo``, ``bpfi``, ``two_bsf`` given, at least 3 x the fastest wide); ``None``
         without: the band of largest spectral kurtosis (:func:`kurtogram`).
     method : {"hilbert", "squared"}
         Envelope |z| or squared envelope |z|^2.
@@ -188,8 +189,9 @@ def envelope_spectrum(
     return_band : bool
         Also return the band used ``(low, high)`` [Hz].
     fault_frequencies : mapping of str to float, optional
-        Fault rates to look for [Hz], e.g. ``{"bpfo": 107.4, "bpfi": 162.2, "two_bsf": 141.2}``
-        (only used to choose the band).
+        Fault rates to look for [Hz], e.g. ``{"bpfo": 107.4, "bpfi": 162.2, "two_bsf": 141.2,
+        "shaft": 29.95}`` (only used to choose the band; with ``shaft`` and ``bpfo`` their
+        harmonics are removed first, exactly as ``cmtool diagnose`` does).
 
     Returns
     -------
@@ -214,8 +216,10 @@ def envelope_spectrum(
     if prewhitening:
         x = prewhiten(x)
     if band is None and fault_frequencies:
-        x = separate_discrete(x, fs)
-        band = select_band(x, fs, fault_frequencies, nlevel=nlevel).band
+        rates = {k: v for k, v in fault_frequencies.items() if k in ("bpfo", "bpfi", "two_bsf")}
+        periodic = tuple(fault_frequencies[k] for k in ("shaft", "bpfo") if k in fault_frequencies)
+        x = separate_discrete(x, fs, fundamentals=periodic)
+        band = select_band(x, fs, rates or fault_frequencies, nlevel=nlevel).band
     elif band is None:
         band = kurtogram(x, fs, nlevel=nlevel).band
     env = envelope(x, fs, band=band, method=method)

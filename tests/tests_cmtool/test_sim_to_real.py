@@ -1,14 +1,15 @@
 """A model trained only on simulated data (datasets/cwru-rig.toml) diagnoses measured recordings.
 
 The recipe's counts are cut to COUNT per class here (the full recipe has 100; CI time); the
-model is the envelope feature set (``cmtool train --feature-set envelope``), the set that does
-not depend on the transfer path, background level or impulsiveness, which a simulation of one
-rig cannot know for another. Nothing here was fitted to the recordings.
+model is ``cmtool train``'s default: the evidence+scale-free feature set (chosen by the
+simulated cross-domain check of benchmarks/cross_domain.py, before any look at recordings),
+faulty signals below -10 dB fault SNR left out. Nothing here was fitted to the recordings.
 
-Targets (issue 7): the labelled fault first on every record that envelope analysis clearly
-diagnoses - the race faults (../shared/data/README.md: Smith and Randall 2015 find the race
-faults clear and the ball faults the hardest) - and no fault called on the normal baseline.
-The ball record is run and reported but not asserted.
+Targets: the labelled fault first on every record that envelope analysis clearly diagnoses -
+the race faults (../shared/data/README.md: Smith and Randall 2015 find the race faults clear
+and the ball faults the hardest) - each diagnosed with its own bearing (the MFPT records with
+the MFPT bearing, by a model that saw only the 6205), and no fault called on the normal
+baseline. The ball record is run and reported but not asserted.
 """
 
 import tomllib
@@ -17,7 +18,7 @@ from pathlib import Path
 import pytest
 
 REPO = Path(__file__).resolve().parents[2]
-COUNT = 50
+COUNT = 40
 
 pytestmark = [pytest.mark.validation, pytest.mark.realdata]
 
@@ -42,7 +43,7 @@ def sim_model(tmp_path_factory):
     generate_dataset(recipe, tmp / "data", workers=2)
     frame = read_dataset(tmp / "data")
     assert len(frame) == 4 * COUNT
-    return train(frame, feature_set="envelope", n_splits=3)
+    return train(frame, n_splits=3)
 
 
 def test_sim_trained_model_on_measured_recordings(sim_model, shared_data):

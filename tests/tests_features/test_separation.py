@@ -114,7 +114,7 @@ def test_library_envelope_band_is_the_diagnose_band(rng):
     _, _, band = features.envelope_spectrum(
         x,
         FS,
-        fault_frequencies={"bpfo": f.bpfo, "bpfi": f.bpfi, "two_bsf": f.two_bsf},
+        fault_frequencies={"bpfo": f.bpfo, "bpfi": f.bpfi, "two_bsf": f.two_bsf, "shaft": f.shaft},
         return_band=True,
     )
     assert d.verdict == "inner race"
