@@ -63,7 +63,7 @@ def load_callable(spec: str) -> Callable:
     return fn
 
 
-def _records(path: Path, bearing_default: str):
+def _records(path: Path, bearing_default: str, allow_incomplete: bool = False):
     """Yield (id, x, fs, rpm, bearing, label, metadata) for every signal of a dataset."""
     manifest = path / "MANIFEST.csv"
     if manifest.is_file():
@@ -89,7 +89,7 @@ def _records(path: Path, bearing_default: str):
         return
     from .datasets import read_dataset
 
-    frame = read_dataset(path)
+    frame = read_dataset(path, allow_incomplete=allow_incomplete)
     for _, row in frame.iterrows():
         meta = {c: row[c] for c in GROUP_COLUMNS if c in row and pd.notna(row[c])}
         yield (
@@ -110,12 +110,13 @@ def run_bench(
     detectors: dict[str, Callable] | None = None,
     bearing: str = "6205",
     progress=None,
+    allow_incomplete: bool = False,
 ) -> pd.DataFrame:
     """One row per (signal, detector): true label, verdict and the grouping columns."""
     path = Path(path)
     detectors = dict(detectors or {})
     rows = []
-    records = list(_records(path, bearing))
+    records = list(_records(path, bearing, allow_incomplete))
     for i, (sid, x, fs, rpm, brg, label, meta) in enumerate(records):
         geometry = catalog_bearing(brg)
         d = diagnose_signal(x, fs, rpm, geometry, model=model)

@@ -569,7 +569,7 @@ def cmd_train(args: argparse.Namespace) -> int:
     from .classifier import save_model, train
     from .datasets import read_dataset
 
-    frame = read_dataset(args.dataset)
+    frame = read_dataset(args.dataset, allow_incomplete=args.allow_incomplete)
     recipe = Path(args.dataset, "recipe.toml")
     bundle = train(
         frame,
@@ -599,7 +599,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     from .plots import plot_confusion
 
     bundle = load_model(args.model)
-    frame = read_dataset(args.dataset)
+    frame = read_dataset(args.dataset, allow_incomplete=args.allow_incomplete)
     in_sample = _check_training_overlap(bundle, frame, args)
     result = evaluate(bundle, frame)
     result["in_sample_fraction"] = in_sample
@@ -654,6 +654,8 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     from .diagnose import diagnose_signal, write_report
     from .io import read_recording
 
+    if args.report and Path(args.report).exists() and not Path(args.report).is_dir():
+        raise CliError(f"--report {args.report!r} is a file; give a folder for report.md")
     x, meta = read_recording(args.recording, variable=args.variable, channel=args.channel)
     warnings = []
     fs = args.fs if args.fs is not None else meta.get("fs_hz")
@@ -666,12 +668,20 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     rpm = args.rpm if args.rpm is not None else meta.get("rpm")
     if rpm is None:
         raise CliError(f"{args.recording}: the file holds no shaft speed; give --rpm")
+    name = args.bearing or meta.get("bearing")
+    if name is None:
+        raise CliError(
+            f"{args.recording}: the file does not say which bearing it is; give --bearing "
+            f"(one of {', '.join(sorted(BEARINGS))})"
+        )
+    if args.bearing and meta.get("bearing") and args.bearing != meta["bearing"]:
+        warnings.append(f"--bearing {args.bearing} differs from the file's {meta['bearing']}")
     model = None
     if args.model:
         from .classifier import load_model
 
         model = load_model(args.model)
-    diagnosis = diagnose_signal(x, float(fs), float(rpm), args.bearing, model=model)
+    diagnosis = diagnose_signal(x, float(fs), float(rpm), name, model=model)
     diagnosis.warnings = warnings + diagnosis.warnings
     diagnosis.assumptions["channel"] = str(meta.get("variable") or args.channel or "first")
     diagnosis.assumptions["file"] = Path(args.recording).name
@@ -714,7 +724,7 @@ def cmd_realism(args: argparse.Namespace) -> int:
     from .datasets import read_dataset
     from .realism import plot_realism, realism, recording_segments
 
-    simulated = read_dataset(args.dataset)
+    simulated = read_dataset(args.dataset, allow_incomplete=args.allow_incomplete)
     duration = float(np.median(simulated["duration_s"])) if "duration_s" in simulated else 1.0
     measured = recording_segments(args.recordings, duration)
     result = realism(simulated, measured, feature_set=args.feature_set, n_jobs=args.workers)
@@ -751,7 +761,11 @@ def cmd_bench(args: argparse.Namespace) -> int:
             from .datasets import read_dataset
 
             in_sample = _check_training_overlap(
-                model, read_dataset(args.dataset, columns=["signal"]), args
+                model,
+                read_dataset(
+                    args.dataset, columns=["signal"], allow_incomplete=args.allow_incomplete
+                ),
+                args,
             )
             if in_sample:
                 print(
@@ -770,7 +784,12 @@ def cmd_bench(args: argparse.Namespace) -> int:
         bar.update(done - bar.n)
 
     results = run_bench(
-        args.dataset, model=model, detectors=detectors, bearing=args.bearing, progress=progress
+        args.dataset,
+        model=model,
+        detectors=detectors,
+        bearing=args.bearing,
+        progress=progress,
+        allow_incomplete=args.allow_incomplete,
     )
     if bar is not None:
         bar.close()
@@ -794,6 +813,14 @@ def cmd_demo(args: argparse.Namespace) -> int:
     from .demo import run_demo
 
     return run_demo(Path(args.out))
+
+
+def _add_allow_incomplete(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "--allow-incomplete",
+        action="store_true",
+        help="use a dataset whose generation did not finish (no _dataset.json)",
+    )
 
 
 def _positive_int(text: str) -> int:
@@ -904,6 +931,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="leave out faulty signals whose fault SNR is below DB (nothing in them shows the "
         "fault; default -10 dB)",
     )
+    _add_allow_incomplete(p)
     p.set_defaults(func=cmd_train)
 
     p = sub.add_parser("evaluate", help="accuracy and confusion matrix of a model")
@@ -915,13 +943,20 @@ def build_parser() -> argparse.ArgumentParser:
         action="store_true",
         help="score the model even on signals it was trained on (outputs labelled in-sample)",
     )
+    _add_allow_incomplete(p)
     p.set_defaults(func=cmd_evaluate)
 
     p = sub.add_parser("diagnose", help="diagnose a measured recording")
     p.add_argument("recording", help="CSV, WAV, MATLAB .mat, .npy/.npz or parquet file")
     p.add_argument("--fs", type=float, default=None, help="sample rate [Hz] (if not in file)")
     p.add_argument("--rpm", type=float, default=None, help="shaft speed [rev/min]")
-    p.add_argument("--bearing", default="6205", choices=sorted(BEARINGS))
+    p.add_argument(
+        "--bearing",
+        default=None,
+        choices=sorted(BEARINGS),
+        help="bearing (required unless the file says: cmtool parquet files, the CWRU and "
+        "MFPT layouts)",
+    )
     p.add_argument("--variable", default=None, help="variable of a .mat/.npz file")
     p.add_argument("--channel", default=None, help="column or channel")
     p.add_argument("--model", default=None, help="trained model (cmtool train)")
@@ -951,6 +986,7 @@ def build_parser() -> argparse.ArgumentParser:
         action="store_true",
         help="run --model even on signals it was trained on (outputs labelled in-sample)",
     )
+    _add_allow_incomplete(p)
     p.set_defaults(func=cmd_bench)
 
     p = sub.add_parser(
@@ -966,6 +1002,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--workers", type=_positive_int, default=1, help="feature-extraction processes")
     p.add_argument("--out", default=None, help="folder for realism.json and realism.png")
+    _add_allow_incomplete(p)
     p.set_defaults(func=cmd_realism)
 
     p = sub.add_parser("demo", help="the main job on the embedded default")

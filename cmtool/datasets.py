@@ -390,12 +390,40 @@ def _run(
         pool.shutdown(wait=True)
 
 
-def read_dataset(path: str | os.PathLike, *, columns: list[str] | None = None) -> pd.DataFrame:
-    """Read the signals of a dataset folder (``data/``) as a DataFrame sorted by index."""
+def dataset_complete(path: str | os.PathLike) -> bool:
+    """Whether a dataset folder's generation finished (its ``_dataset.json`` was written).
+
+    ``path`` may be the dataset folder or its ``data/`` folder. A folder of parquet files that
+    ``cmtool generate`` did not make (no ``recipe.toml``) counts as complete.
+    """
+    path = Path(path)
+    root = path.parent if path.name == "data" and not (path / "data").is_dir() else path
+    if (root / "_dataset.json").is_file():
+        return True
+    return not (root / "recipe.toml").is_file()
+
+
+def read_dataset(
+    path: str | os.PathLike,
+    *,
+    columns: list[str] | None = None,
+    allow_incomplete: bool = False,
+) -> pd.DataFrame:
+    """Read the signals of a dataset folder (``data/``) as a DataFrame sorted by index.
+
+    An interrupted ``cmtool generate`` (no ``_dataset.json``) is refused unless
+    ``allow_incomplete``: some classes or operating points may be missing from it.
+    """
     path = Path(path)
     data = path / "data" if (path / "data").is_dir() else path
     if not data.is_dir() or not any(data.glob("*.parquet")):
         raise DatasetError(f"{path}: no data/*.parquet files")
+    if not allow_incomplete and not dataset_complete(path):
+        raise DatasetError(
+            f"{path}: generation did not finish (no _dataset.json; some classes or operating "
+            "points may be missing): finish it with `cmtool generate RECIPE --out "
+            f"{path} --resume`, or pass --allow-incomplete to use it as it is"
+        )
     frame = pq.read_table(data, columns=columns).to_pandas()
     if "index" in frame.columns:
         frame = frame.sort_values("index").reset_index(drop=True)
@@ -420,8 +448,17 @@ _RANGE_COLUMNS = (
 def dataset_info(path: str | os.PathLike) -> str:
     """Counts per label and parameter ranges of a dataset, as text."""
     path = Path(path)
-    frame = read_dataset(path, columns=["label", "bearing", *_RANGE_COLUMNS, "operating_point_id"])
+    frame = read_dataset(
+        path,
+        columns=["label", "bearing", *_RANGE_COLUMNS, "operating_point_id"],
+        allow_incomplete=True,
+    )
     lines = [f"dataset {path}: {len(frame)} signals"]
+    if not dataset_complete(path):
+        lines[0] += (
+            " -- INCOMPLETE: generation did not finish (no _dataset.json); resume it with "
+            "`cmtool generate RECIPE --out DIR --resume`"
+        )
     failures = path / "failures"
     if failures.is_dir() and any(failures.glob("*.parquet")):
         nfail = pq.read_table(failures, columns=["id"]).num_rows

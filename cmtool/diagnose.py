@@ -41,6 +41,9 @@ __all__ = ["diagnose_signal", "Diagnosis", "write_report", "DETECTION_DB", "FAUL
 DETECTION_DB = 12.0
 CONFIDENCE_SCALE_DB = 3.0
 SLIP_SEARCH = features.evidence.SLIP_SEARCH
+#: Shortest record [periods of the slowest fault rate]: its envelope spectrum's bins are then
+#: 5 % of that rate apart, as far as the rates of a bearing lie from each other at the least.
+MIN_RATE_PERIODS = 20
 #: verdict name -> characteristic frequency used as its evidence
 FAULTS = {"outer race": "bpfo", "inner race": "bpfi", "ball": "two_bsf"}
 
@@ -192,9 +195,21 @@ def diagnose_signal(
         "two_bsf": freqs.two_bsf,
     }
     fastest = max(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])
-    if fs < 2 * 3 * features.catalog.MIN_BAND_FACTOR * fastest:
-        warnings.append(
-            f"fs = {fs:g} Hz is low for envelope analysis of fault rates up to {fastest:.1f} Hz"
+    # the demodulation band (3 x the fastest rate wide) must fit under the analyser span
+    # fs / 2.56, with the rates' third harmonics inside it
+    needed = features.separation.ANALYSER_RATIO * features.catalog.MIN_BAND_FACTOR * fastest
+    if fs < needed:
+        raise ValueError(
+            f"fs = {fs:g} Hz is too low to diagnose this bearing at {rpm:g} rpm: envelope "
+            f"analysis of fault rates up to {fastest:.1f} Hz needs fs >= {needed:.0f} Hz"
+        )
+    slowest = min(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])
+    shortest = MIN_RATE_PERIODS / slowest
+    if x.size / fs < shortest:
+        raise ValueError(
+            f"the record is {x.size / fs:.3g} s long ({x.size} samples at {fs:g} Hz); telling "
+            f"the fault rates apart needs at least {MIN_RATE_PERIODS} periods of the slowest "
+            f"({slowest:.1f} Hz): {shortest:.3g} s, {int(math.ceil(shortest * fs))} samples"
         )
     if x.size / fs < 20.0 / freqs.ftf:
         warnings.append(

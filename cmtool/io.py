@@ -161,7 +161,42 @@ def _mat_variables(path: Path) -> dict[str, Any]:
         raise RecordingError(
             f"{path}: MATLAB v7.3 files are not supported; save with -v7"
         ) from None
+    except Exception as err:  # noqa: BLE001 - a truncated or foreign file fails in many ways
+        raise RecordingError(f"{path}: not a readable MATLAB file ({err})") from None
     return {k: v for k, v in data.items() if not k.startswith("__")}
+
+
+def _pick(count: int, channel: str | int | None, path: Path) -> int:
+    """Index of a channel among ``count``, checked (default 0)."""
+    index = 0 if channel is None else channel
+    try:
+        index = int(index)
+    except (TypeError, ValueError):
+        raise RecordingError(f"{path}: channel {channel!r} is not a channel number") from None
+    if not 0 <= index < count:
+        raise RecordingError(
+            f"{path}: channel {index} is outside the allowed range [0, {count - 1}]"
+        )
+    return index
+
+
+def _is_number(text: object) -> bool:
+    try:
+        float(str(text))
+    except ValueError:
+        return False
+    return True
+
+
+def _time_axis(values: np.ndarray) -> float | None:
+    """The sample rate [Hz] if ``values`` is a time axis (rising in equal steps), else None."""
+    if values.size < 3:
+        return None
+    steps = np.diff(values)
+    step = float(np.median(steps))
+    if step > 0 and np.all(np.abs(steps - step) <= 1e-3 * step):
+        return 1.0 / step
+    return None
 
 
 def read_recording(
@@ -191,7 +226,8 @@ def read_recording(
     signal : ndarray, 1-D float64
         The samples (unit as stored: g for CWRU and MFPT).
     metadata : dict
-        ``fs_hz`` and ``rpm`` when the file holds them, ``variable``, ``unit`` when known.
+        ``fs_hz``, ``rpm`` and ``bearing`` when the file holds them (cmtool parquet files;
+        the CWRU and MFPT layouts name their bearing), ``variable``, ``unit`` when known.
     """
     path = Path(path)
     if not path.is_file():
@@ -225,10 +261,11 @@ def read_recording(
             if "rate" in fields:
                 meta["rpm"] = 60.0 * float(np.asarray(value.rate).ravel()[0])
             meta["unit"] = "g"
+            meta["bearing"] = "mfpt"  # the MFPT layout: struct bearing.gs/sr/rate
         else:
             x = np.asarray(value, dtype=float)
             if x.ndim == 2 and min(x.shape) > 1:
-                col = 0 if channel is None else int(channel)
+                col = _pick(min(x.shape), channel, path)
                 x = x[:, col] if x.shape[0] > x.shape[1] else x[col]
             x = x.ravel()
             prefix = variable.split("_")[0]
@@ -237,6 +274,10 @@ def read_recording(
                 meta["rpm"] = float(np.asarray(data[rpm_key]).ravel()[0])
             if variable.endswith("_time"):
                 meta["unit"] = "g"
+            if variable.endswith("_DE_time"):  # the CWRU layout: drive-end SKF 6205
+                meta["bearing"] = "6205"
+            elif variable.endswith("_FE_time"):  # fan end: SKF 6203
+                meta["bearing"] = "6203"
         meta["variable"] = variable
     elif suffix == ".wav":
         from scipy.io import wavfile
@@ -244,7 +285,7 @@ def read_recording(
         rate, data = wavfile.read(path)
         data = np.asarray(data)
         if data.ndim == 2:
-            data = data[:, 0 if channel is None else int(channel)]
+            data = data[:, _pick(data.shape[1], channel, path)]
         if np.issubdtype(data.dtype, np.integer):
             data = data / float(np.iinfo(data.dtype).max)
         x = data.astype(float)
@@ -260,21 +301,42 @@ def read_recording(
             meta["variable"] = key
         x = np.asarray(loaded, dtype=float)
         if x.ndim == 2:
-            x = x[:, 0 if channel is None else int(channel)]
+            x = x[:, _pick(x.shape[1], channel, path)]
     elif suffix in (".csv", ".parquet"):
-        frame = pd.read_csv(path) if suffix == ".csv" else pd.read_parquet(path)
+        if suffix == ".csv":
+            frame = pd.read_csv(path)
+            if all(_is_number(c) for c in frame.columns):  # no header: the first row is data
+                frame = pd.read_csv(path, header=None)
+                frame.columns = [f"column {i}" for i in range(frame.shape[1])]
+        else:
+            frame = pd.read_parquet(path)
+            stored = pq.read_schema(path).metadata or {}
+            if b"cmtool" in stored:  # a cmtool simulate file: rate, speed and bearing
+                info = json.loads(stored[b"cmtool"])
+                meta["fs_hz"] = float(info["fs_hz"])
+                params = info.get("parameters", {})
+                shaft = params.get("operating", {}).get("shaft_frequency")
+                if shaft is not None:
+                    meta["rpm"] = 60.0 * float(shaft)
+                name = params.get("bearing", {}).get("name")
+                if name:
+                    meta["bearing"] = str(name)
+        time_cols = [c for c in frame.columns if str(c).lower() in ("time", "t", "time_s")]
         numeric = [
             c
             for c in frame.columns
-            if pd.api.types.is_numeric_dtype(frame[c])
-            and str(c).lower() not in ("time", "t", "time_s")
+            if pd.api.types.is_numeric_dtype(frame[c]) and c not in time_cols
         ]
-        if channel is None:
-            if not numeric:
-                raise RecordingError(f"{path}: no numeric column")
-            col = numeric[0]
-        elif isinstance(channel, int) or str(channel).isdigit():
-            col = numeric[int(channel)]
+        if not time_cols and len(numeric) >= 2:
+            rate = _time_axis(frame[numeric[0]].to_numpy(dtype=float))
+            if rate is not None:  # an unnamed first column rising in equal steps: time
+                time_cols, numeric = [numeric[0]], numeric[1:]
+        if "housing_acceleration_y" in numeric and channel is None:
+            channel = "housing_acceleration_y"  # what an accelerometer on the housing sees
+        if not numeric:
+            raise RecordingError(f"{path}: no numeric column")
+        if channel is None or isinstance(channel, int) or str(channel).isdigit():
+            col = numeric[_pick(len(numeric), channel, path)]
         else:
             if channel not in frame.columns:
                 raise RecordingError(
@@ -283,8 +345,7 @@ def read_recording(
             col = channel
         x = frame[col].to_numpy(dtype=float)
         meta["variable"] = str(col)
-        time_cols = [c for c in frame.columns if str(c).lower() in ("time", "t", "time_s")]
-        if time_cols and len(frame) > 2:
+        if time_cols and len(frame) > 2 and "fs_hz" not in meta:
             dt = np.diff(frame[time_cols[0]].to_numpy(dtype=float))
             meta["fs_hz"] = float(1.0 / np.median(dt))
     else:

@@ -115,11 +115,23 @@ def test_crafted_model_files_run_no_code_and_are_refused(tmp_path, capsys):
     for path in (evil, junk, tmp_path / "foreign.skops", truncated):
         for argv in (
             ["evaluate", str(path), str(SMALL)],
-            ["diagnose", str(csv), "--fs", "12000", "--rpm", "1800", "--model", str(path)],
+            [
+                "diagnose",
+                str(csv),
+                "--fs",
+                "12000",
+                "--rpm",
+                "1800",
+                "--bearing",
+                "6205",
+                "--model",
+                str(path),
+            ],
         ):
             assert main(argv) == 2
             err = capsys.readouterr().err
             assert "Traceback" not in err and err.count("\n") == 1, err
+            assert f"model {path}" in err, err
     assert not marker.exists()
 
 
@@ -189,6 +201,8 @@ def test_cli_diagnose_csv_json_and_model(tmp_path, capsys, rng, bundle):
                 str(csv),
                 "--rpm",
                 "1800",
+                "--bearing",
+                "6205",
                 "--json",
                 "--model",
                 str(model),

@@ -1,0 +1,131 @@
+"""Inputs a new user tries: each gets a clear one-line error or the right reading (issue 19)."""
+
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from cmtool.cli import main
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def _one_line_error(capsys) -> str:
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and err.count("\n") == 1, err
+    return err
+
+
+@pytest.fixture
+def outer_race_csv(tmp_path, rng):
+    """A header-less two-column CSV (time, value) of impacts at BPFO with jitter, 12 kHz."""
+    from scipy import signal as sp_signal
+
+    from generators import bearing, characteristic_frequencies
+
+    fs, n = 12000.0, 24000
+    f = characteristic_frequencies(bearing("6205"), 1797 / 60)
+    times = np.arange(0.0, n / fs, 1 / f.bpfo)
+    times = times + rng.normal(0.0, 0.01 / f.bpfo, times.size)
+    x = np.zeros(n)
+    x[np.clip((times * fs).astype(int), 0, n - 1)] = 1.0
+    x = sp_signal.lfilter(*sp_signal.iirpeak(3000.0, 15.0, fs), x) + 0.05 * rng.standard_normal(n)
+    path = tmp_path / "rec.csv"
+    np.savetxt(path, np.c_[np.arange(n) / fs, x], delimiter=",")
+    return path
+
+
+def test_headerless_time_value_csv_is_read_on_its_value_column(outer_race_csv, capsys):
+    assert main(["diagnose", str(outer_race_csv), "--rpm", "1797", "--bearing", "6205"]) == 0
+    out = capsys.readouterr().out
+    assert "outer race" in out.splitlines()[0] and "fs 12000 Hz" in out
+    assert "channel column 1" in out
+
+
+def test_inputs_that_cannot_be_diagnosed_are_errors(outer_race_csv, tmp_path, capsys):
+    base = ["diagnose", str(outer_race_csv), "--rpm", "1797"]
+    assert main(base) == 2  # the CSV does not say which bearing
+    assert "give --bearing" in _one_line_error(capsys)
+    assert main([*base, "--bearing", "6205", "--fs", "200"]) == 2
+    assert "fs >= " in _one_line_error(capsys)
+    short = tmp_path / "short.csv"
+    np.savetxt(short, np.random.default_rng(0).standard_normal(100))
+    assert (
+        main(["diagnose", str(short), "--rpm", "1797", "--bearing", "6205", "--fs", "12000"]) == 2
+    )
+    assert "samples" in _one_line_error(capsys)
+    assert main([*base, "--bearing", "6205", "--channel", "5"]) == 2
+    assert "channel 5 is outside" in _one_line_error(capsys)
+    report = tmp_path / "report.md"
+    report.write_text("mine")
+    assert main([*base, "--bearing", "6205", "--report", str(report)]) == 2
+    assert "is a file" in _one_line_error(capsys)
+    assert report.read_text() == "mine"
+
+
+def test_cmtool_parquet_carries_rate_speed_and_bearing(tmp_path, capsys):
+    signal = tmp_path / "sig.parquet"
+    argv = ["simulate", "--bearing", "6203", "--rpm", "2400", "--duration", "0.5", "--fs"]
+    assert (
+        main(
+            [
+                *argv,
+                "12000",
+                "--channels",
+                "housing_acceleration_y,shaft_velocity_x",
+                "--out",
+                str(signal),
+            ]
+        )
+        == 0
+    )
+    assert list(pd.read_parquet(signal).columns) == [
+        "time",
+        "housing_acceleration_y",
+        "shaft_velocity_x",
+    ]
+    capsys.readouterr()
+    assert main(["diagnose", str(signal), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assumed = data["assumptions"]
+    assert (assumed["bearing"], assumed["rpm"], assumed["fs_hz"]) == ("6203", 2400.0, 12000.0)
+    assert assumed["channel"] == "housing_acceleration_y"
+
+
+def test_truncated_mat_and_bad_outputs_are_refused_before_work(tmp_path, capsys):
+    truncated = tmp_path / "x.mat"
+    truncated.write_bytes(b"MATLAB 5.0 MAT-file" + bytes(100))
+    assert (
+        main(["diagnose", str(truncated), "--rpm", "1797", "--bearing", "6205", "--fs", "12000"])
+        == 2
+    )
+    assert "not a readable MATLAB file" in _one_line_error(capsys)
+    for flag, value in (("--out", "sig.txt"), ("--plot", "x.jpgx"), ("--channels", "bogus")):
+        assert main(["simulate", "--duration", "5000", flag, str(tmp_path / value)]) == 2
+        _one_line_error(capsys)  # refused at once: a 5000 s run would take minutes
+    with pytest.raises(SystemExit) as stop:  # argparse's usage error
+        main(
+            [
+                "generate",
+                str(REPO / "datasets" / "small.toml"),
+                "--out",
+                str(tmp_path),
+                "--workers",
+                "0",
+            ]
+        )
+    assert stop.value.code == 2
+    assert "--workers: 0 is outside the allowed range [1, inf)" in capsys.readouterr().err
+
+
+def test_an_interrupted_dataset_is_refused_unless_asked(tmp_path, capsys):
+    copy = tmp_path / "small"
+    shutil.copytree(REPO / "datasets" / "small", copy)
+    (copy / "_dataset.json").unlink()
+    assert main(["train", str(copy), "--out", str(tmp_path / "m.skops")]) == 2
+    assert "--resume" in _one_line_error(capsys)
+    assert main(["dataset", "info", str(copy)]) == 0
+    assert "INCOMPLETE" in capsys.readouterr().out
