@@ -6,8 +6,9 @@ Datasets: a ``cmtool generate`` folder (``data/*.parquet``), or a folder of reco
 ``../shared/data``).
 
 Detectors: ``envelope`` (the rule-based detector of ``cmtool diagnose``), ``model`` (a trained
-model) and any user callable ``module:function`` with signature ``f(x, fs, rpm, bearing) ->
-label`` (labels ``healthy``, ``inner race``, ``outer race``, ``ball``).
+model) and ``combined`` (both pooled: the verdict of ``diagnose --model``), and any user
+callable ``module:function`` with signature ``f(x, fs, rpm, bearing) -> label`` (labels
+``healthy``, ``inner race``, ``outer race``, ``ball``).
 
 Metrics per detector: detection rate (faulty signals called faulty), false-alarm rate (healthy
 signals called faulty), correct-fault-first rate (faulty signals whose first verdict is their
@@ -120,9 +121,10 @@ def run_bench(
     for i, (sid, x, fs, rpm, brg, label, meta) in enumerate(records):
         geometry = catalog_bearing(brg)
         d = diagnose_signal(x, fs, rpm, geometry, model=model)
-        verdicts = {"envelope": d.verdict}
+        verdicts = {"envelope": d.rule_verdict["label"]}
         if model is not None:
             verdicts["model"] = CANONICAL.get(d.model_verdict["label"], d.model_verdict["label"])
+            verdicts["combined"] = d.verdict
         for name, fn in detectors.items():
             verdicts[name] = CANONICAL.get(str(fn(x, fs, rpm, brg)), str(fn(x, fs, rpm, brg)))
         for name, verdict in verdicts.items():

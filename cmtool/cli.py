@@ -710,6 +710,7 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
                 f"{c['envelope_snr_db'][0]:6.1f} / {c['envelope_snr_db'][1]:6.1f} / "
                 f"{c['envelope_snr_db'][2]:6.1f} dB (1x/2x/3x)"
             )
+        print(f"  basis: {diagnosis.basis}")
         if diagnosis.model_verdict:
             print(f"  model: {diagnosis.model_verdict}")
         for w in diagnosis.warnings:

@@ -128,8 +128,9 @@ def run_demo(out: Path, *, recipe: Path = SMALL_RECIPE, workers: int = 1) -> int
         title="simulated inner-race waviness N_w = 9, 2100 rpm, 550 N",
     )
     print(
-        f"  simulated inner-race waviness: rule-based verdict {diagnosis.verdict}, model "
-        f"verdict {diagnosis.model_verdict['label']}"
+        f"  simulated inner-race waviness: rule-based verdict "
+        f"{diagnosis.rule_verdict['label']}, model verdict {diagnosis.model_verdict['label']}, "
+        f"together {diagnosis.verdict} ({diagnosis.basis})"
     )
     summary.append(("report", report))
 

@@ -63,6 +63,9 @@ class Diagnosis:
     spectra: Any = None
     threshold_db: float = DETECTION_DB
     assumptions: dict = field(default_factory=dict)
+    rule_verdict: dict | None = None
+    basis: str = "the rule evidence (envelope analysis of the random part)"
+    probabilities: dict | None = None
 
     def to_dict(self) -> dict:
         """JSON-serialisable form (without the spectra)."""
@@ -72,14 +75,19 @@ class Diagnosis:
             "candidates": self.candidates,
             "frequencies": self.frequencies,
             "envelope_band_hz": list(self.band_hz),
+            "basis": self.basis,
             "threshold_db": round(self.threshold_db, 2),
             "assumptions": self.assumptions,
             "warnings": self.warnings,
         }
         if self.waviness is not None:
             out["waviness"] = self.waviness
+        if self.rule_verdict is not None:
+            out["rule_verdict"] = self.rule_verdict
         if self.model_verdict is not None:
             out["model_verdict"] = self.model_verdict
+        if self.probabilities is not None:
+            out["probabilities"] = self.probabilities
         return out
 
 
@@ -282,9 +290,80 @@ def diagnose_signal(
     )
     if verdict == "healthy":
         diagnosis.waviness = _waviness_hint(spectra, freqs, geometry)
+    diagnosis.rule_verdict = {"label": verdict, "confidence": confidence}
     if model is not None:
         diagnosis.model_verdict = model_verdict(model, x, fs, freqs, context_extra or {})
+        _combine(diagnosis)
     return diagnosis
+
+
+#: Verdict names of model labels (recipe labels or verdicts).
+_VERDICTS = {
+    "healthy": "healthy",
+    "normal": "healthy",
+    "inner": "inner race",
+    "inner race": "inner race",
+    "outer": "outer race",
+    "outer race": "outer race",
+    "ball": "ball",
+}
+
+
+def rule_probabilities(candidates: list[dict]) -> dict[str, float]:
+    """The rule detector's evidence as probabilities over healthy and the three faults.
+
+    Each fault's confidence c_i (logistic in its margin over the threshold) is read as the
+    probability that its line is real; a fault alone: c_i prod_{j != i} (1 - c_j), healthy:
+    prod (1 - c_j); normalised.
+    """
+    conf = {c["fault"]: float(c["confidence"]) for c in candidates}
+    scores = {"healthy": float(np.prod([1.0 - v for v in conf.values()]))}
+    for fault, value in conf.items():
+        others = [1.0 - v for k, v in conf.items() if k != fault]
+        scores[fault] = value * float(np.prod(others))
+    total = sum(scores.values()) or 1.0
+    return {k: v / total for k, v in scores.items()}
+
+
+def _combine(diagnosis: Diagnosis) -> None:
+    """One verdict from the rule evidence and the model's probabilities (log-linear pooling).
+
+    p(class) proportional to sqrt(p_rule p_model): each source counts as much, and a class
+    that either gives almost no chance stays unlikely. The headline says what the verdict
+    rests on and whether the two agree.
+    """
+    probabilities = diagnosis.model_verdict.get("probabilities")
+    if not probabilities:
+        return
+    model_p = {}
+    for label, value in probabilities.items():
+        name = _VERDICTS.get(str(label))
+        if name is not None:
+            model_p[name] = model_p.get(name, 0.0) + float(value)
+    rule_p = rule_probabilities(diagnosis.candidates)
+    floor = 1e-6
+    pooled = {
+        k: math.sqrt(max(rule_p.get(k, 0.0), floor) * max(model_p.get(k, 0.0), floor))
+        for k in rule_p
+    }
+    total = sum(pooled.values())
+    pooled = {k: v / total for k, v in pooled.items()}
+    verdict = max(pooled, key=pooled.get)
+    rule_label = diagnosis.rule_verdict["label"]
+    model_label = max(model_p, key=model_p.get) if model_p else rule_label
+    if rule_label == model_label:
+        basis = f"the rule evidence and the model agree ({rule_label})"
+    else:
+        basis = (
+            f"the rule evidence says {rule_label} "
+            f"({diagnosis.rule_verdict['confidence']:.2f}) and the model {model_label} "
+            f"({model_p[model_label]:.2f}): they disagree; the verdict follows their pooled "
+            "probabilities"
+        )
+    diagnosis.verdict = verdict
+    diagnosis.confidence = round(pooled[verdict], 4)
+    diagnosis.basis = basis
+    diagnosis.probabilities = {k: round(v, 4) for k, v in pooled.items()}
 
 
 def model_verdict(model, x, fs, freqs: BearingFrequencies, extra: dict) -> dict:
@@ -366,7 +445,8 @@ def write_report(
     lines = [
         f"# Diagnosis: {title}",
         "",
-        f"**Verdict: {diagnosis.verdict}** (confidence {diagnosis.confidence:.2f})",
+        f"**Verdict: {diagnosis.verdict}** (confidence {diagnosis.confidence:.2f}; "
+        f"{diagnosis.basis})",
         "",
     ]
     if diagnosis.model_verdict:

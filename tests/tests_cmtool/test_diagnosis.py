@@ -297,3 +297,34 @@ def test_simulated_healthy_bearings_are_healthy_and_slipping_pits_are_found(smal
         x = x + np.random.default_rng(2).normal(0.0, 0.3 * np.std(x), x.size)
         d = diagnose_signal(x, run.fs, 1797.0, g)
         assert d.verdict == verdict, (surface, d.candidates)
+
+
+def test_rule_and_model_give_one_verdict_that_says_what_it_rests_on(bundle, small):
+    from cmtool.diagnose import rule_probabilities
+
+    row = small[small["label"] == "healthy"].iloc[0]
+    d = diagnose_signal(row["signal"], row["fs_hz"], row["rpm"], "6205", model=bundle)
+    assert d.rule_verdict["label"] == "healthy"
+    assert set(d.probabilities) == {"healthy", "inner race", "outer race", "ball"}
+    assert sum(d.probabilities.values()) == pytest.approx(1.0, abs=1e-3)
+    assert d.verdict == max(d.probabilities, key=d.probabilities.get)
+    assert d.confidence == d.probabilities[d.verdict]
+    model_says = {"healthy": "healthy"}.get(d.model_verdict["label"], d.model_verdict["label"])
+    assert ("agree" in d.basis) == (model_says == "healthy")
+    # the rule's own probabilities: a clear line makes its fault likely, none makes healthy
+    clear = [
+        {"fault": "outer race", "confidence": 0.99},
+        {"fault": "inner race", "confidence": 0.01},
+        {"fault": "ball", "confidence": 0.02},
+    ]
+    p = rule_probabilities(clear)
+    assert max(p, key=p.get) == "outer race" and p["outer race"] > 0.9
+    quiet = [dict(c, confidence=0.01) for c in clear]
+    assert max(rule_probabilities(quiet), key=rule_probabilities(quiet).get) == "healthy"
+    # disagreement is stated
+    disagree = diagnose_signal(row["signal"], row["fs_hz"], row["rpm"], "6205")
+    disagree.model_verdict = {"label": "outer", "probabilities": {"outer": 0.9, "healthy": 0.1}}
+    from cmtool.diagnose import _combine
+
+    _combine(disagree)
+    assert "disagree" in disagree.basis and "outer race (0.90)" in disagree.basis
