@@ -65,7 +65,8 @@ def _parse_spec(
         try:
             fields[name] = convert(value)  # type: ignore[operator]
         except ValueError as err:
-            raise CliError(f"{option} {spec!r}: {key}={value!r} is not a number") from err
+            kind = "an integer" if convert is int else "a number"
+            raise CliError(f"{option} {spec!r}: {key}={value!r} is not {kind}") from err
     for key in required:
         if keys[key][0] not in fields:
             raise CliError(f"{option} {spec!r}: {key}= is missing")
