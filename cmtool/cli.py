@@ -1029,3 +1029,6 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SimulationDivergedError as exc:
         print(f"cmtool {args.command}: simulation diverged: {exc}", file=sys.stderr)
         return 3
+    except BrokenPipeError:  # the reader of our output went away (``| head``): stop quietly
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
