@@ -836,11 +836,16 @@ def _positive_int(text: str) -> int:
     return value
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line usage errors (``cmtool CMD: error: ...``, exit 2)."""
+
+    def error(self, message: str):  # noqa: D102 - argparse's hook
+        self.exit(2, f"{self.prog}: error: {message} (see --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of ``cmtool``."""
-    parser = argparse.ArgumentParser(
-        prog="cmtool", description=(__doc__ or "").strip().split("\n")[0]
-    )
+    parser = _Parser(prog="cmtool", description=(__doc__ or "").strip().split("\n")[0])
     parser.add_argument("--version", action="version", version=f"cmtool {__version__}")
     parser.add_argument("-v", "--verbose", action="count", default=0)
     commands = parser.add_subparsers(dest="command", required=True)

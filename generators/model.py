@@ -77,6 +77,8 @@ DEFAULT_STEP_MASSLESS = 2e-5
 #: Safety factor on the RK4 stability limit of the linearised scene (dynamic overloads stiffen
 #: the contacts beyond the static linearisation).
 STABILITY_SAFETY = 0.8
+#: Slowest shaft [Hz] (1 rpm) at which the EHL film is modelled; slower runs are dry.
+EHL_MIN_SHAFT_FREQUENCY = 1.0 / 60.0
 #: Default oversampling of the integration record over the output rate (anti-alias margin).
 DEFAULT_OVERSAMPLE = 4
 
@@ -905,8 +907,10 @@ def _prepare(
     z = geometry.ball_count
     level, reason = resolve_scene(scene, geometry, operating, rig, settings)
     code = SCENE_CODES[level]
-    # no entrainment, no film: a standing bearing runs the dry path (nothing to pay for)
-    ehl = bool(scene.ehl) and operating.shaft_frequency > 0.0
+    # no entrainment, no film: a bearing standing or creeping (below EHL_MIN_SHAFT_FREQUENCY)
+    # runs the dry path; a film of a few nanometres adds nothing but a stiffness so high that
+    # the integration crawls (1e-9 rpm took minutes per millisecond)
+    ehl = bool(scene.ehl) and operating.shaft_frequency >= EHL_MIN_SHAFT_FREQUENCY
     p = _pack(geometry, operating, rig, ehl, freqs)
     if ehl:
         p = _film_tables(p)
