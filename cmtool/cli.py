@@ -682,7 +682,15 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
         from .classifier import load_model
 
         model = load_model(args.model)
-    diagnosis = diagnose_signal(x, float(fs), float(rpm), name, model=model)
+    baseline = baseline_fs = None
+    if args.baseline:
+        baseline, base_meta = read_recording(
+            args.baseline, variable=args.variable, channel=args.channel
+        )
+        baseline_fs = base_meta.get("fs_hz", float(fs))
+    diagnosis = diagnose_signal(
+        x, float(fs), float(rpm), name, model=model, baseline=baseline, baseline_fs=baseline_fs
+    )
     diagnosis.warnings = warnings + diagnosis.warnings
     diagnosis.assumptions["channel"] = str(meta.get("variable") or args.channel or "first")
     diagnosis.assumptions["file"] = Path(args.recording).name
@@ -712,6 +720,19 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
                 f"{c['envelope_snr_db'][2]:6.1f} dB (1x/2x/3x)"
             )
         print(f"  basis: {diagnosis.basis}")
+        change = (diagnosis.baseline or {}).get("velocity_bands_change_db", {})
+        bands = ", ".join(
+            f"{k} {v:.3g}" + (f" ({change[k]:+.1f} dB)" if change.get(k) is not None else "")
+            for k, v in (diagnosis.velocity_bands or {}).items()
+        )
+        print(f"  velocity RMS (ISO 15242 bands, signal unit x s): {bands}")
+        if diagnosis.waviness:
+            w = diagnosis.waviness
+            over = w.get("over_baseline_db")
+            print(
+                f"  waviness hint: {w['surface']} race order ~{w['order']} at {w['line_hz']} Hz"
+                + ("" if over is None else f", {over:+.1f} dB over the baseline")
+            )
         if diagnosis.model_verdict:
             print(f"  model: {diagnosis.model_verdict}")
         for w in diagnosis.warnings:
@@ -968,6 +989,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--channel", default=None, help="column or channel")
     p.add_argument("--model", default=None, help="trained model (cmtool train)")
     p.add_argument("--report", default=None, help="folder for report.md and plots")
+    p.add_argument(
+        "--baseline",
+        default=None,
+        help="a healthy recording of the same machine: ISO 15242 bands and the waviness line "
+        "reported against it",
+    )
     p.add_argument("--json", action="store_true", help="print the verdict as JSON")
     p.set_defaults(func=cmd_diagnose)
 

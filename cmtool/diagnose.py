@@ -66,6 +66,8 @@ class Diagnosis:
     rule_verdict: dict | None = None
     basis: str = "the rule evidence (envelope analysis of the random part)"
     probabilities: dict | None = None
+    velocity_bands: dict | None = None
+    baseline: dict | None = None
 
     def to_dict(self) -> dict:
         """JSON-serialisable form (without the spectra)."""
@@ -88,6 +90,10 @@ class Diagnosis:
             out["model_verdict"] = self.model_verdict
         if self.probabilities is not None:
             out["probabilities"] = self.probabilities
+        if self.velocity_bands is not None:
+            out["velocity_bands_iso15242"] = self.velocity_bands
+        if self.baseline is not None:
+            out["baseline"] = self.baseline
         return out
 
 
@@ -160,6 +166,8 @@ def diagnose_signal(
     *,
     model=None,
     context_extra: dict | None = None,
+    baseline: np.ndarray | None = None,
+    baseline_fs: float | None = None,
 ) -> Diagnosis:
     """Diagnose one signal.
 
@@ -177,6 +185,11 @@ def diagnose_signal(
         A model from ``cmtool train``: its verdict is added.
     context_extra : dict, optional
         Extra metadata columns for the model.
+    baseline : ndarray, optional
+        A healthy recording of the same machine (same sensor and unit); the ISO 15242
+        velocity bands and the waviness line are then reported against it [dB].
+    baseline_fs : float, optional
+        Its sample rate [Hz] (default ``fs``).
 
     Returns
     -------
@@ -288,13 +301,38 @@ def diagnose_signal(
             "each kinematic fault rate (slip)",
         },
     )
+    diagnosis.velocity_bands = {k: float(v) for k, v in features.velocity_band_rms(x, fs).items()}
     if verdict == "healthy":
         diagnosis.waviness = _waviness_hint(spectra, freqs, geometry)
+    if baseline is not None:
+        _against_baseline(diagnosis, np.asarray(baseline, dtype=float), baseline_fs or fs)
     diagnosis.rule_verdict = {"label": verdict, "confidence": confidence}
     if model is not None:
         diagnosis.model_verdict = model_verdict(model, x, fs, freqs, context_extra or {})
         _combine(diagnosis)
     return diagnosis
+
+
+def _against_baseline(diagnosis: Diagnosis, baseline: np.ndarray, fs: float) -> None:
+    """The ISO 15242 bands and the waviness line of ``diagnosis`` over a healthy baseline [dB]."""
+    check_signal_quality(baseline)
+    bands = features.velocity_band_rms(baseline, fs)
+    change = {}
+    for name, value in diagnosis.velocity_bands.items():
+        base = bands.get(name, float("nan"))
+        ok = value > 0 and base > 0 and math.isfinite(value) and math.isfinite(base)
+        change[name] = round(20 * math.log10(value / base), 2) if ok else None
+    diagnosis.baseline = {"velocity_bands": bands, "velocity_bands_change_db": change}
+    if diagnosis.waviness:
+        f, a = features.amplitude_spectrum(baseline, fs)
+        line = diagnosis.waviness["line_hz"]
+        near = np.abs(f - line) <= max(1.5 * (f[1] - f[0]), 0.003 * line)
+        ours = diagnosis.spectra.amplitude[
+            np.abs(diagnosis.spectra.frequencies - line) <= max(1.5 * (f[1] - f[0]), 0.003 * line)
+        ]
+        if near.any() and ours.size and a[near].max() > 0:
+            rise = 20 * math.log10(float(ours.max()) / float(a[near].max()))
+            diagnosis.waviness["over_baseline_db"] = round(rise, 2)
 
 
 #: Verdict names of model labels (recipe labels or verdicts).
@@ -462,6 +500,17 @@ def write_report(
             f"{w['line_hz']} Hz, {w['snr_db']} dB above the floor; {w['note']})",
             "",
         ]
+    if diagnosis.velocity_bands:
+        lines += [
+            "## Velocity bands (ISO 15242: 50-300, 300-1800, 1800-10000 Hz), RMS [signal unit x s]",
+            "",
+            "| band | RMS | over baseline [dB] |",
+            "|---|---|---|",
+        ]
+        change = (diagnosis.baseline or {}).get("velocity_bands_change_db", {})
+        for name, value in diagnosis.velocity_bands.items():
+            lines.append(f"| {name} | {value:.4g} | {change.get(name, '-')} |")
+        lines.append("")
     if diagnosis.warnings:
         lines += ["## Warnings", ""] + [f"- {w}" for w in diagnosis.warnings] + [""]
     lines += [

@@ -32,10 +32,12 @@ from .separation import (
     separate_discrete,
 )
 from .spectra import (
+    ISO_15242_BANDS,
     amplitude_spectrum,
     integrate_signal,
     integrate_spectrum,
     power_spectral_density,
+    velocity_band_rms,
 )
 from .stats import TIME_STATISTICS, time_statistics
 from .transformer import CONTEXT_COLUMNS, FEATURE_SETS, FeatureExtractor
@@ -78,4 +80,6 @@ __all__ = [
     "power_spectral_density",
     "prewhiten",
     "time_statistics",
+    "velocity_band_rms",
+    "ISO_15242_BANDS",
 ]

@@ -196,8 +196,9 @@ def separate_discrete(
     >>> import numpy as np
     >>> fs = 1000.0; t = np.arange(4000) / fs
     >>> noise = np.random.default_rng(0).standard_normal(t.size)
-    >>> tone = 10 * np.sin(2 * np.pi * 50.3 * t)
-    >>> rest = separate_discrete(tone + noise, fs)
+    >>> shaft = sum(np.sin(2 * np.pi * k * 50.3 * t + k) for k in range(1, 9))
+    >>> mains = 5 * np.sin(2 * np.pi * 60.0 * t)  # on a bin: the line editing takes it
+    >>> rest = separate_discrete(10 * shaft + mains + noise, fs, fundamentals=(50.3,))
     >>> bool(np.std(rest - noise) < 0.3 * np.std(noise))
     True
     """

@@ -328,3 +328,33 @@ def test_rule_and_model_give_one_verdict_that_says_what_it_rests_on(bundle, smal
 
     _combine(disagree)
     assert "disagree" in disagree.basis and "outer race (0.90)" in disagree.basis
+
+
+def test_race_waviness_is_reported_against_a_healthy_baseline():
+    """Outer-race waviness N_w = 9 (2 um) against the same machine healthy: a waviness hint of
+    the right surface and order far over the baseline, and the ISO 15242 low band up."""
+    from generators import (
+        OperatingCondition,
+        SimulationSettings,
+        Waviness,
+        bearing,
+        simulate,
+    )
+
+    g = bearing("6205")
+    settings = SimulationSettings(fs=25600.0, duration=1.0, channels=("housing_acceleration_y",))
+    op = OperatingCondition.from_rpm(1800, 500.0)
+    noise = np.random.default_rng(1)
+    signals = []
+    for wav in (None, Waviness(surface="outer", order=9, amplitude=2e-6)):
+        x = simulate(g, op, wav, settings=settings)["housing_acceleration_y"]
+        signals.append(x + noise.normal(0.0, 0.1 * np.std(x), x.size))
+    healthy, wavy = signals
+    d = diagnose_signal(wavy, 25600.0, 1800.0, g, baseline=healthy)
+    assert d.verdict == "healthy"  # waviness is no local fault
+    assert d.waviness["surface"] == "outer" and d.waviness["order"] == 9
+    assert d.waviness["over_baseline_db"] > 20
+    change = d.baseline["velocity_bands_change_db"]
+    assert change["low"] > 10 and set(change) == {"low", "medium", "high"}
+    same = diagnose_signal(healthy, 25600.0, 1800.0, g, baseline=healthy)
+    assert all(abs(v) < 1e-9 for v in same.baseline["velocity_bands_change_db"].values())
