@@ -1,0 +1,36 @@
+"""Generation rate of the rig recipes with the realistic chain (issue 17's target: 200/s).
+
+Each recipe is generated whole (400 signals; cwru-rig: 12 and 48 kHz, mfpt-rig: 48.8 and 97.7
+kHz; local defects with slip, each with its healthy twin) on two workers, timed from the call
+to the last file; the rate is printed with the single-core yardstick of bench_generate.py's
+host note in mind.
+
+Run: .venv/bin/python benchmarks/bench_generate_rig.py [recipe ...]
+"""
+
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from cmtool.datasets import generate_dataset
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+def main(recipes: list[str]) -> None:
+    for name in recipes or ["cwru-rig", "mfpt-rig"]:
+        recipe = REPO / "datasets" / f"{name}.toml"
+        with tempfile.TemporaryDirectory() as tmp:
+            start = time.perf_counter()
+            summary = generate_dataset(recipe, Path(tmp) / name, workers=2)
+            seconds = time.perf_counter() - start
+        done = summary["written"] + summary["failed"]
+        print(
+            f"{name}: {done} signals in {seconds:.1f} s on 2 workers: {done / seconds:.1f} per "
+            f"second ({summary['failed']} failed)"
+        )
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
