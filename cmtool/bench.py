@@ -27,20 +27,11 @@ import pandas as pd
 
 from generators import bearing as catalog_bearing
 
-from .diagnose import diagnose_signal
+from .diagnose import CANONICAL, diagnose_signal
 from .io import read_recording
 
 __all__ = ["run_bench", "summarise", "CANONICAL", "load_callable", "plot_bench"]
 
-CANONICAL = {
-    "healthy": "healthy",
-    "normal": "healthy",
-    "inner": "inner race",
-    "inner race": "inner race",
-    "outer": "outer race",
-    "outer race": "outer race",
-    "ball": "ball",
-}
 MANIFEST_BEARINGS = {"CWRU": "6205", "MFPT": "mfpt"}
 GROUP_COLUMNS = (
     "snr_db",

@@ -335,8 +335,8 @@ def _against_baseline(diagnosis: Diagnosis, baseline: np.ndarray, fs: float) -> 
             diagnosis.waviness["over_baseline_db"] = round(rise, 2)
 
 
-#: Verdict names of model labels (recipe labels or verdicts).
-_VERDICTS = {
+#: Verdict names of labels (recipe labels, manifest fault locations, verdicts).
+CANONICAL = {
     "healthy": "healthy",
     "normal": "healthy",
     "inner": "inner race",
@@ -375,7 +375,7 @@ def _combine(diagnosis: Diagnosis) -> None:
         return
     model_p = {}
     for label, value in probabilities.items():
-        name = _VERDICTS.get(str(label))
+        name = CANONICAL.get(str(label))
         if name is not None:
             model_p[name] = model_p.get(name, 0.0) + float(value)
     rule_p = rule_probabilities(diagnosis.candidates)

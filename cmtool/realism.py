@@ -22,12 +22,10 @@ import pandas as pd
 from generators import bearing as catalog_bearing
 from generators import characteristic_frequencies
 
+from .bench import MANIFEST_BEARINGS
 from .io import read_recording
 
 __all__ = ["realism", "recording_segments", "plot_realism"]
-
-#: The recordings' manifest columns used (``bearing`` or ``dataset`` names the bearing).
-MANIFEST_BEARINGS = {"CWRU": "6205", "MFPT": "mfpt"}
 
 
 def recording_segments(folder: str | Path, duration_s: float) -> pd.DataFrame:
