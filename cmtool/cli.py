@@ -342,15 +342,66 @@ def waviness_markers(result, defects) -> dict[str, float]:
     return markers
 
 
+#: Runs with more output samples than this stream to disk in blocks (bounded memory): about
+#: 41 s at 51.2 kHz; an in-memory run of this length holds about 0.4 GB.
+STREAM_ABOVE_SAMPLES = 1 << 21
+
+
+def _check_run_size(args: argparse.Namespace, settings, n_samples: int) -> bool:
+    """Whether the run streams; refuses what a long run cannot do, and a disk too small."""
+    import shutil
+
+    from .io import estimated_file_bytes
+
+    streams = n_samples > STREAM_ABOVE_SAMPLES
+    if streams and settings.integrator != "rk4":
+        raise CliError(
+            f"--duration {args.duration:g} at --fs {args.fs:g}: {n_samples:,} samples; "
+            f"--integrator {settings.integrator} runs in memory, at most "
+            f"{STREAM_ABOVE_SAMPLES:,} samples (use --integrator rk4, which streams to disk)"
+        )
+    if streams and (args.plot or args.envelope_plot):
+        flag = "--plot" if args.plot else "--envelope-plot"
+        raise CliError(
+            f"{flag}: a run of {n_samples:,} samples streams to disk (more than "
+            f"{STREAM_ABOVE_SAMPLES:,}) and is never whole in memory; plot a shorter run, or "
+            "the written file with cmtool diagnose --report"
+        )
+    if args.out:
+        out = Path(args.out)
+        channels = _requested_channels(args) or CHANNELS
+        size = estimated_file_bytes(out, n_samples, len(channels))
+        folder = out.parent if str(out.parent) else Path(".")
+        while not folder.exists() and folder != folder.parent:
+            folder = folder.parent
+        free = shutil.disk_usage(folder).free
+        if size > 0.95 * free:
+            raise CliError(
+                f"--out {args.out!r}: the run writes about {size / 1e9:.2f} GB "
+                f"({n_samples:,} samples x {len(channels) + 1} columns) and {folder} has "
+                f"{free / 1e9:.2f} GB free; choose fewer --channels, a shorter --duration or "
+                "another disk"
+            )
+        if size > 100e6:
+            print(f"writing about {size / 1e9:.2f} GB to {out}", file=sys.stderr)
+    return streams
+
+
 def cmd_simulate(args: argparse.Namespace) -> int:
     """Run one simulation, write the signal and optionally the spectrum plot."""
     import features
+    from generators.model import EHL_MIN_SHAFT_FREQUENCY
 
     from .io import write_signal
     from .plots import plot_spectrum
 
     _check_outputs(args)
     geometry, operating, defects, scene, rig, settings = _model_inputs(args)
+    n_samples = int(round(settings.duration * settings.fs))
+    streams = _check_run_size(args, settings, n_samples)
+    film = scene.ehl and operating.shaft_frequency >= EHL_MIN_SHAFT_FREQUENCY
+    if streams:
+        return _simulate_streamed(args, geometry, operating, defects, scene, rig, settings, film)
     result = simulate(
         geometry,
         operating,
@@ -360,19 +411,11 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         settings=settings,
         random_state=args.seed,
     )
-    level = result.parameters["scene"]["resolved_level"]
-    print(
-        f"simulated {settings.duration:g} s of {geometry.name} at {operating.rpm:g} rpm, "
-        f"{operating.radial_load:g} N, scene {level}/{'ehl' if scene.ehl else 'dry'}"
-    )
-    f = result.frequencies
-    print(
-        f"FTF {f.ftf:.3f} Hz  BPFO {f.bpfo:.3f} Hz  BPFI {f.bpfi:.3f} Hz  "
-        f"BSF {f.bsf:.3f} Hz  2xBSF {f.two_bsf:.3f} Hz"
-    )
+    _print_run(result, settings, geometry, operating, film)
     if args.out:
         path = write_signal(result, args.out, channels=_requested_channels(args))
         print(f"wrote {path}")
+    f = result.frequencies
     if args.plot:
         freqs, amp = features.amplitude_spectrum(result["housing_velocity_y"], result.fs)
         markers = waviness_markers(result, defects)
@@ -412,6 +455,63 @@ def cmd_simulate(args: argparse.Namespace) -> int:
             fmax=min(result.fs / 2, 5 * f.bpfi),
         )
         print(f"wrote {path}")
+    return 0
+
+
+def _print_run(run, settings, geometry, operating, film: bool) -> None:
+    """The header of ``simulate``: what ran, and the bearing's frequencies."""
+    level = run.parameters["scene"]["resolved_level"]
+    contacts = "ehl" if film else "dry"
+    if not film and run.parameters["scene"]["ehl"]:
+        contacts = "dry (no film below 1 rpm)"
+    print(
+        f"simulated {settings.duration:g} s of {geometry.name} at {operating.rpm:g} rpm, "
+        f"{operating.radial_load:g} N, scene {level}/{contacts}"
+    )
+    f = run.frequencies
+    print(
+        f"FTF {f.ftf:.3f} Hz  BPFO {f.bpfo:.3f} Hz  BPFI {f.bpfi:.3f} Hz  "
+        f"BSF {f.bsf:.3f} Hz  2xBSF {f.two_bsf:.3f} Hz"
+    )
+
+
+def _simulate_streamed(args, geometry, operating, defects, scene, rig, settings, film) -> int:
+    """A long run: integrated and written block by block, with a progress bar."""
+    from tqdm import tqdm
+
+    from generators.stream import simulate_stream
+
+    from .io import write_signal_stream
+
+    stream = simulate_stream(
+        geometry,
+        operating,
+        defects,
+        scene=scene,
+        rig=rig,
+        settings=settings,
+        random_state=args.seed,
+    )
+    bar = tqdm(
+        total=stream.n_samples,
+        desc="simulate",
+        unit="sample",
+        unit_scale=True,
+        disable=None,
+        file=sys.stderr,
+    )
+    with bar:
+        if args.out:
+            path = write_signal_stream(
+                stream, args.out, channels=_requested_channels(args), progress=bar.update
+            )
+        else:
+            path = None
+            for block in stream:
+                bar.update(len(block.time))
+    _print_run(stream, settings, geometry, operating, film)
+    if path is not None:
+        print(f"wrote {path} (streamed in blocks of {stream.block_samples:,} samples)")
     return 0
 
 

@@ -898,7 +898,7 @@ def _rk4_impl(
     Records at ``t_first + k * record_dt`` (k < n_record), interpolating inside the step that
     contains each record time, so the step may be longer or shorter than the record interval.
     The right-hand side at the end of a step is the first stage of the next (computed once).
-    Returns (status, time).
+    Returns (status, time, state): the state at that time (a later call continues from it).
     """
     numba.literally(scene)
     numba.literally(ehl)
@@ -974,10 +974,10 @@ def _rk4_impl(
         if step % 64 == 0 or next_rec >= n_record:
             status = _check(y, nd, limit)
             if status != STATUS_OK:
-                return status, t + dt
+                return status, t + dt, y
         if next_rec >= n_record:
-            return STATUS_OK, t + dt
-    return _check(y, nd, limit), t0 + n_steps * dt
+            return STATUS_OK, t + dt, y
+    return _check(y, nd, limit), t0 + n_steps * dt, y
 
 
 # --------------------------------------------------------------------- Dormand-Prince 5(4)
@@ -1024,7 +1024,7 @@ def _dopri5_impl(
 
     Records at ``t_first + k * record_dt``; each record evaluates the right-hand side once at
     the interpolated state (accelerations, loads). ``step_stats`` receives [accepted steps,
-    rejected steps, smallest step, largest step]. Returns (status, time).
+    rejected steps, smallest step, largest step]. Returns (status, time, state at that time).
     """
     numba.literally(scene)
     numba.literally(ehl)
@@ -1065,11 +1065,11 @@ def _dopri5_impl(
         if accepted + rejected >= max_steps:
             step_stats[0], step_stats[1] = accepted, rejected
             step_stats[2], step_stats[3] = h_min_seen, h_max_seen
-            return STATUS_TOO_MANY_STEPS, t
+            return STATUS_TOO_MANY_STEPS, t, y
         if h < 1e-13 * max(abs(t), record_dt):
             step_stats[0], step_stats[1] = accepted, rejected
             step_stats[2], step_stats[3] = h_min_seen, h_max_seen
-            return STATUS_STEP_COLLAPSE, t
+            return STATUS_STEP_COLLAPSE, t, y
         if h > h_max:
             h = h_max
         if t + h > t_end and t_end > t:
@@ -1142,7 +1142,7 @@ def _dopri5_impl(
                     tmp[i] = y[i] + th * (r1[i] + th1 * (r2[i] + th * (r3[i] + th1 * r4[i])))
                 status = _check(tmp, nd, limit)
                 if status != STATUS_OK:
-                    return status, tr
+                    return status, tr, y
                 _time_terms_at(tr, p, wav, trig, scratch)
                 _rhs(scene, ehl, tmp, p, wav, acc, loads, scratch)
                 _record(tmp, acc, nd, next_rec, out_state, out_accel)
@@ -1164,7 +1164,7 @@ def _dopri5_impl(
             if status != STATUS_OK:
                 step_stats[0], step_stats[1] = accepted, rejected
                 step_stats[2], step_stats[3] = h_min_seen, h_max_seen
-                return status, t
+                return status, t, y
             # PI step control (Hairer: beta = 0.04)
             fac = 0.9 * err ** (-0.2 + 0.04 * 0.75) * err_old**0.04 if err > 0 else 5.0
             fac = min(5.0, max(0.2, fac))
@@ -1175,7 +1175,7 @@ def _dopri5_impl(
             h *= max(0.2, 0.9 * err**-0.2)
     step_stats[0], step_stats[1] = accepted, rejected
     step_stats[2], step_stats[3] = h_min_seen, h_max_seen
-    return STATUS_OK, t
+    return STATUS_OK, t, y
 
 
 # ------------------------------------------------------------------ compiled entry points

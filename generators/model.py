@@ -1235,7 +1235,7 @@ def integrate(prep: Prepared) -> SimulationResult:
     extra: dict = {}
     if settings.integrator == "rk4":
         dt, n_steps, t_first = plan.dt, plan.n_steps, plan.t_first
-        status, t_fail = K._rk4(
+        status, t_fail, _ = K._rk4(
             code,
             int(ehl),
             y0,
@@ -1263,7 +1263,7 @@ def integrate(prep: Prepared) -> SimulationResult:
         # never step over a local defect: at most half a passage per step
         h_max = min(record_dt * 4, 0.5 * DEFECT_STEPS * defect_step(p, wav))
         max_steps = int(settings.max_steps_per_second * (t_first + settings.duration)) + 1000
-        status, t_fail = K._dopri5(
+        status, t_fail, _ = K._dopri5(
             code,
             int(ehl),
             y0,

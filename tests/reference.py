@@ -198,7 +198,7 @@ def rk4_records(prep, record_dt, n_record, substeps, *, y0=None, ehl=None):
     st = np.zeros((n_record, K.N_OUT_STATE))
     ac = np.zeros((n_record, K.N_OUT_ACCEL))
     ld = np.zeros((1, 2, prep.geometry.ball_count))
-    status, _ = K._rk4(
+    status, _, _ = K._rk4(
         prep.code,
         int(ehl),
         y0,

@@ -129,3 +129,54 @@ def test_an_interrupted_dataset_is_refused_unless_asked(tmp_path, capsys):
     assert "--resume" in _one_line_error(capsys)
     assert main(["dataset", "info", str(copy)]) == 0
     assert "INCOMPLETE" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("suffix", [".parquet", ".csv"])
+def test_long_runs_stream_to_the_same_file(tmp_path, monkeypatch, capsys, suffix):
+    """Above STREAM_ABOVE_SAMPLES simulate writes block by block; the file is the same one."""
+    import cmtool.cli as cli
+    import generators.stream as stream
+    from cmtool.io import read_signal
+
+    argv = ["simulate", "--duration", "0.3", "--channels", "housing_acceleration_y"]
+    assert main([*argv, "--out", str(tmp_path / f"whole{suffix}")]) == 0
+    monkeypatch.setattr(cli, "STREAM_ABOVE_SAMPLES", 1000)
+    monkeypatch.setitem(stream.simulate_stream.__kwdefaults__, "block_samples", 1000)
+    assert main([*argv, "--out", str(tmp_path / f"streamed{suffix}")]) == 0
+    assert "streamed in blocks of 1,000 samples" in capsys.readouterr().out
+    whole, meta_whole = read_signal(tmp_path / f"whole{suffix}")
+    streamed, meta_streamed = read_signal(tmp_path / f"streamed{suffix}")
+    assert list(streamed.columns) == ["time", "housing_acceleration_y"]
+    np.testing.assert_array_equal(streamed["time"], whole["time"])
+    x, reference = streamed["housing_acceleration_y"], whole["housing_acceleration_y"]
+    rms = np.sqrt(np.mean(reference**2))
+    # 8 blocks; the file's precision (CSV: 10 digits) inside, the filter's ends at the edges
+    np.testing.assert_allclose(x[10:-10], reference[10:-10], rtol=1e-9, atol=1e-9 * rms)
+    np.testing.assert_allclose(x, reference, rtol=0, atol=1e-3 * rms)
+    assert meta_streamed["parameters"]["streamed_block_samples"] == 1000
+    meta_streamed["parameters"].pop("streamed_block_samples")
+    assert meta_streamed["parameters"] == meta_whole["parameters"]
+    if suffix == ".parquet":
+        import pyarrow.parquet as pq
+
+        assert pq.ParquetFile(tmp_path / "streamed.parquet").num_row_groups == 8
+    for flag in ("--plot", "--envelope-plot"):
+        assert main([*argv, flag, str(tmp_path / "x.png")]) == 2
+        assert "streams to disk" in _one_line_error(capsys)
+    assert main([*argv, "--integrator", "dopri5"]) == 2
+    assert "use --integrator rk4" in _one_line_error(capsys)
+    assert not (tmp_path / "x.png").exists()
+
+
+def test_an_output_larger_than_the_free_disk_is_refused_before_the_run(
+    tmp_path, monkeypatch, capsys
+):
+    import collections
+
+    usage = collections.namedtuple("usage", "total used free")
+    monkeypatch.setattr(shutil, "disk_usage", lambda path: usage(10**9, 10**9 - 10**6, 10**6))
+    out = tmp_path / "deep" / "sig.csv"
+    assert main(["simulate", "--duration", "3600", "--fs", "51200", "--out", str(out)]) == 2
+    message = _one_line_error(capsys)
+    assert "writes about 43.13 GB" in message and "0.00 GB free" in message
+    assert not out.exists()
