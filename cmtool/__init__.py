@@ -4,6 +4,8 @@ The public API re-exports the physics (``generators``) and the features (``featu
 user needs, plus the application layer (I/O, plots, command line).
 """
 
+from typing import TYPE_CHECKING
+
 __version__ = "0.1.0"
 
 from generators import (  # noqa: E402
@@ -14,13 +16,24 @@ from generators import (  # noqa: E402
     Rig,
     Scene,
     SimulationDivergedError,
-    SimulationResult,
     SimulationSettings,
     Waviness,
     bearing,
     characteristic_frequencies,
-    simulate,
 )
+
+if TYPE_CHECKING:
+    from generators import SimulationResult, simulate
+
+
+def __getattr__(name: str):
+    # the model (numpy, scipy, numba) loads on first use: ``cmtool --help`` stays fast
+    if name in ("SimulationResult", "simulate"):
+        import generators
+
+        return getattr(generators, name)
+    raise AttributeError(f"module 'cmtool' has no attribute {name!r}")
+
 
 __all__ = [
     "BEARINGS",

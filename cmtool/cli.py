@@ -30,8 +30,8 @@ from generators import (
     Waviness,
     bearing,
     characteristic_frequencies,
-    simulate,
 )
+from generators.params import check_shaft_speed_rpm
 
 from . import __version__
 
@@ -246,7 +246,7 @@ def _model_inputs(args: argparse.Namespace):
         overrides["radial_internal_clearance"] = args.clearance
     geometry = bearing(args.bearing, **overrides)
     operating = OperatingCondition.from_rpm(
-        args.rpm,
+        check_shaft_speed_rpm("--rpm", args.rpm, standing=True),
         args.load,
         load_angle=args.load_angle,
         cage_slip=args.cage_slip,
@@ -390,6 +390,7 @@ def _check_run_size(args: argparse.Namespace, settings, n_samples: int) -> bool:
 def cmd_simulate(args: argparse.Namespace) -> int:
     """Run one simulation, write the signal and optionally the spectrum plot."""
     import features
+    from generators import simulate
     from generators.model import EHL_MIN_SHAFT_FREQUENCY
 
     from .io import write_signal
@@ -518,7 +519,8 @@ def _simulate_streamed(args, geometry, operating, defects, scene, rig, settings,
 def cmd_frequencies(args: argparse.Namespace) -> int:
     """Print the characteristic frequencies of a catalog bearing."""
     geometry = bearing(args.bearing)
-    f = characteristic_frequencies(geometry, args.rpm / 60.0)
+    rpm = check_shaft_speed_rpm("--rpm", args.rpm)
+    f = characteristic_frequencies(geometry, rpm / 60.0)
     data = f.as_dict()
     if args.json:
         print(
@@ -766,7 +768,7 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
         warnings.append(
             f"--fs {args.fs:g} Hz differs from the file's {meta['fs_hz']:g} Hz; using --fs"
         )
-    rpm = args.rpm if args.rpm is not None else meta.get("rpm")
+    rpm = check_shaft_speed_rpm("--rpm", args.rpm) if args.rpm is not None else meta.get("rpm")
     if rpm is None:
         raise CliError(f"{args.recording}: the file holds no shaft speed; give --rpm")
     name = args.bearing or meta.get("bearing")

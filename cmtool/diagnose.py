@@ -35,6 +35,7 @@ import numpy as np
 import features
 from generators import BearingGeometry, bearing, characteristic_frequencies
 from generators.kinematics import BearingFrequencies
+from generators.params import check_shaft_speed_rpm
 
 __all__ = ["diagnose_signal", "Diagnosis", "write_report", "DETECTION_DB", "FAULTS"]
 
@@ -201,11 +202,11 @@ def diagnose_signal(
     geometry = bearing(geometry) if isinstance(geometry, str) else geometry
     x = np.asarray(x, dtype=float)
     warnings = check_signal_quality(x)
-    limit = geometry.limiting_speed_rpm or 30000.0
-    if not 1.0 <= rpm <= 1.5 * limit:
-        raise ValueError(
-            f"rpm = {rpm:g} is outside the plausible range [1, {1.5 * limit:g}] "
-            f"rpm for bearing {geometry.name}"
+    rpm = check_shaft_speed_rpm("rpm", rpm)
+    if geometry.limiting_speed_rpm is not None and rpm > geometry.limiting_speed_rpm:
+        warnings.append(
+            f"{rpm:g} rpm is above the catalogue limiting speed of the {geometry.name} "
+            f"({geometry.limiting_speed_rpm:g} rpm): check --rpm and --bearing"
         )
     freqs = characteristic_frequencies(geometry, rpm / 60.0)
     ctx = {

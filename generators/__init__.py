@@ -3,30 +3,21 @@
 All quantities are SI (m, kg, s, N, Pa, rad); frequencies are in Hz.
 """
 
+from typing import TYPE_CHECKING
+
+# the light modules (pure Python: parameters, catalog, kinematics) load with the package; the
+# numerical ones (numpy, scipy, numba) on first use of one of their names, so that a command
+# line's --help or a parameter check does not pay for the compiler (PEP 562)
 from ._validate import ParameterError, SimulationDivergedError
 from .catalog import BEARINGS, bearing
-from .contact import (
-    ContactGeometry,
-    HertzContact,
-    contact_geometry,
-    contact_static_capacity,
-    entrainment_speed,
-    film_stiffness,
-    film_thickness,
-    hertz_contact,
-    load_deflection_constants,
-    series_constant,
-    squeeze_film_damping,
-)
-from .defects import DefectPath, defect_path, sagitta
 from .kinematics import (
     BearingFrequencies,
     WavinessLine,
     characteristic_frequencies,
     waviness_passage_frequencies,
 )
-from .model import CHANNELS, SimulationResult, natural_frequencies, resolve_scene, simulate
 from .params import (
+    CHANNELS,
     LUBRICANTS,
     STEEL_52100,
     BearingGeometry,
@@ -39,7 +30,65 @@ from .params import (
     SimulationSettings,
     Waviness,
 )
-from .static import StaticSolution, static_load_distribution
+
+#: Public name -> the submodule that defines it (imported when the name is first used).
+_LAZY = {
+    **dict.fromkeys(
+        (
+            "ContactGeometry",
+            "HertzContact",
+            "contact_geometry",
+            "contact_static_capacity",
+            "entrainment_speed",
+            "film_stiffness",
+            "film_thickness",
+            "hertz_contact",
+            "load_deflection_constants",
+            "series_constant",
+            "squeeze_film_damping",
+        ),
+        "contact",
+    ),
+    **dict.fromkeys(("DefectPath", "defect_path", "sagitta"), "defects"),
+    **dict.fromkeys(
+        ("SimulationResult", "natural_frequencies", "resolve_scene", "simulate"), "model"
+    ),
+    **dict.fromkeys(("StaticSolution", "static_load_distribution"), "static"),
+}
+
+if TYPE_CHECKING:
+    from .contact import (
+        ContactGeometry,
+        HertzContact,
+        contact_geometry,
+        contact_static_capacity,
+        entrainment_speed,
+        film_stiffness,
+        film_thickness,
+        hertz_contact,
+        load_deflection_constants,
+        series_constant,
+        squeeze_film_damping,
+    )
+    from .defects import DefectPath, defect_path, sagitta
+    from .model import SimulationResult, natural_frequencies, resolve_scene, simulate
+    from .static import StaticSolution, static_load_distribution
+
+
+def __getattr__(name: str):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'generators' has no attribute {name!r}")
+    import importlib
+
+    value = getattr(importlib.import_module(f".{module}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
+
 
 __all__ = [
     "BEARINGS",

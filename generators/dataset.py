@@ -39,6 +39,7 @@ from .measurement import (
 from .model import Prepared, _default, _prepare, integrate, lanes_supported, simulate_lanes
 from .params import (
     INTEGRATORS,
+    MAX_SHAFT_SPEED_RPM,
     SCENE_LEVELS,
     LocalizedDefect,
     OperatingCondition,
@@ -165,29 +166,34 @@ def _fail(key: str, value: Any, why: str) -> ParameterError:
     return ParameterError(f"recipe key {key} = {value!r}: {why}")
 
 
-def _range_or_grid(key: str, value: Any, *, low: float, high: float, unit: str) -> dict:
+def _range_or_grid(
+    key: str, value: Any, *, low: float, high: float, unit: str, low_inclusive: bool = True
+) -> dict:
     """A list of numbers (grid) or a table {min, max} (random uniform per case)."""
     given = value
+    interval = f"{'[' if low_inclusive else '('}{low:g}, {high:g}] {unit}"
+
+    def inside(v: object) -> bool:
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            return False
+        return (low <= v if low_inclusive else low < v) and v <= high
+
     if isinstance(value, (int, float)) and not isinstance(value, bool):
         value = [value]
     if isinstance(value, list):
         if not value:
             raise _fail(key, given, "the list is empty")
         for v in value:
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not low <= v <= high:
-                raise _fail(
-                    key, given, f"every value must be a number in [{low:g}, {high:g}] {unit}"
-                )
+            if not inside(v):
+                raise _fail(key, given, f"every value must be a number in {interval}")
         return {"grid": [float(v) for v in value]}
     if isinstance(value, dict):
         if set(value) != {"min", "max"}:
             raise _fail(key, value, "a range is a table with exactly 'min' and 'max'")
         lo, hi = value["min"], value["max"]
         for v in (lo, hi):
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not low <= v <= high:
-                raise _fail(
-                    key, value, f"min and max must be numbers in [{low:g}, {high:g}] {unit}"
-                )
+            if not inside(v):
+                raise _fail(key, value, f"min and max must be numbers in {interval}")
         if lo > hi:
             raise _fail(key, value, "min is larger than max")
         return {"range": (float(lo), float(hi))}
@@ -238,7 +244,14 @@ def validate_recipe(recipe: dict) -> dict:
     if extra:
         raise _fail(f"operating.{sorted(extra)[0]}", op[sorted(extra)[0]], "unknown key")
     r["operating"] = {
-        "rpm": _range_or_grid("operating.rpm", op["rpm"], low=1.0, high=60000.0, unit="rpm"),
+        "rpm": _range_or_grid(
+            "operating.rpm",
+            op["rpm"],
+            low=0.0,
+            high=MAX_SHAFT_SPEED_RPM,
+            unit="rpm",
+            low_inclusive=False,
+        ),
         "load_n": _range_or_grid("operating.load_n", op["load_n"], low=0.0, high=1e6, unit="N"),
     }
     if "clearance_m" in op:

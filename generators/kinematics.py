@@ -17,7 +17,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass
 
 from ._validate import check_choice, check_int, check_real
-from .params import SURFACES, BearingGeometry
+from .params import MAX_SHAFT_SPEED_RPM, SURFACES, BearingGeometry
 
 __all__ = [
     "BearingFrequencies",
@@ -96,7 +96,7 @@ def characteristic_frequencies(
         "shaft_frequency_hz",
         shaft_frequency_hz,
         low=0.0,
-        high=2000.0,
+        high=MAX_SHAFT_SPEED_RPM / 60.0,
         low_inclusive=False,
         unit="Hz",
     )

@@ -34,6 +34,8 @@ __all__ = [
     "SCENE_LEVELS",
     "INTEGRATORS",
     "CHANNELS",
+    "MAX_SHAFT_SPEED_RPM",
+    "check_shaft_speed_rpm",
 ]
 
 GRAVITY = 9.81  # [m/s^2]
@@ -312,6 +314,27 @@ class Rig:
             raise ParameterError(f"gravity = {self.gravity!r} must be True or False")
 
 
+#: Highest shaft speed every command, recipe and parameter object accepts [rpm]: a 2 kHz shaft
+#: rate, above the catalogue limiting speed of any bearing here.
+MAX_SHAFT_SPEED_RPM = 120000.0
+
+
+def check_shaft_speed_rpm(name: str, rpm: object, *, standing: bool = False) -> float:
+    """Check a shaft speed [rpm] against the one range of the toolkit; return it as a float.
+
+    (0, 120000] rpm, or [0, 120000] where a standing shaft makes sense (``standing=True``: a
+    simulation's static start).
+
+    Examples
+    --------
+    >>> check_shaft_speed_rpm("rpm", 1797)
+    1797.0
+    """
+    return check_real(
+        name, rpm, low=0.0, high=MAX_SHAFT_SPEED_RPM, low_inclusive=standing, unit="rpm"
+    )
+
+
 @dataclass(frozen=True, slots=True, kw_only=True)
 class OperatingCondition:
     """Shaft speed and radial load.
@@ -344,7 +367,13 @@ class OperatingCondition:
     ball_jitter: float = 0.0
 
     def __post_init__(self) -> None:
-        check_real("shaft_frequency", self.shaft_frequency, low=0.0, high=2000.0, unit="Hz")
+        check_real(
+            "shaft_frequency",
+            self.shaft_frequency,
+            low=0.0,
+            high=MAX_SHAFT_SPEED_RPM / 60.0,
+            unit="Hz",
+        )
         check_real("radial_load", self.radial_load, low=0.0, high=1e7, unit="N")
         check_real("load_angle", self.load_angle, low=-2 * math.pi, high=2 * math.pi, unit="rad")
         check_real("cage_slip", self.cage_slip, low=0.0, high=0.5)
@@ -355,8 +384,8 @@ class OperatingCondition:
     def from_rpm(
         cls, rpm: float, radial_load: float = 500.0, **kwargs: float
     ) -> OperatingCondition:
-        """Build from a shaft speed in revolutions per minute."""
-        check_real("rpm", rpm, low=0.0, high=120000.0, unit="rpm")
+        """Build from a shaft speed in revolutions per minute (0 to 120 000, standing allowed)."""
+        check_shaft_speed_rpm("rpm", rpm, standing=True)
         return cls(shaft_frequency=float(rpm) / 60.0, radial_load=radial_load, **kwargs)
 
     @property

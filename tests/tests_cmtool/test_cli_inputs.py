@@ -180,3 +180,52 @@ def test_an_output_larger_than_the_free_disk_is_refused_before_the_run(
     message = _one_line_error(capsys)
     assert "writes about 43.13 GB" in message and "0.00 GB free" in message
     assert not out.exists()
+
+
+def test_the_command_line_starts_without_the_numerical_stack():
+    """``cmtool --help`` and argument errors load no numpy, scipy, numba or matplotlib."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, cmtool.cli as c\n"
+        "try:\n    c.main(['--help'])\nexcept SystemExit:\n    pass\n"
+        "heavy = ('numpy', 'scipy', 'numba', 'matplotlib', 'pandas')\n"
+        "heavy = [m for m in heavy if m in sys.modules]\n"
+        "print(','.join(heavy))"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stdout.splitlines()[-1] == ""  # the list of heavy modules loaded: none
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["frequencies", "--rpm", "{rpm}"],
+        ["simulate", "--rpm", "{rpm}", "--duration", "0.01"],
+        ["diagnose", "{recording}", "--rpm", "{rpm}", "--bearing", "6205", "--fs", "12000"],
+    ],
+)
+def test_one_shaft_speed_range_in_rpm_for_every_command(argv, tmp_path, capsys):
+    recording = tmp_path / "x.npy"
+    np.save(recording, np.random.default_rng(0).standard_normal(24000))
+    argv = [a.format(rpm="130000", recording=recording) for a in argv]
+    assert main(argv) == 2
+    message = _one_line_error(capsys)
+    assert "--rpm = 130000 rpm is outside the allowed range" in message
+    assert "120000] rpm" in message
+
+
+def test_recipes_take_the_same_shaft_speed_range(tmp_path):
+    import tomllib
+
+    from generators import ParameterError
+    from generators.dataset import validate_recipe
+    from generators.params import MAX_SHAFT_SPEED_RPM
+
+    recipe = tomllib.loads((REPO / "datasets" / "small.toml").read_text())
+    recipe["operating"]["rpm"] = [MAX_SHAFT_SPEED_RPM]
+    validate_recipe(recipe)
+    recipe["operating"]["rpm"] = [MAX_SHAFT_SPEED_RPM + 1]
+    with pytest.raises(ParameterError, match=r"in \(0, 120000\] rpm"):
+        validate_recipe(recipe)

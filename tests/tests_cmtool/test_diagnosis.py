@@ -183,8 +183,12 @@ def test_diagnose_synthetic_impulses_and_noise(rng):
 def test_diagnose_bad_input(rng):
     with pytest.raises(ValueError, match="constant"):
         diagnose_signal(np.ones(5000), 12000.0, 1800.0)
-    with pytest.raises(ValueError, match="rpm = 99999"):
-        diagnose_signal(rng.standard_normal(5000), 12000.0, 99999.0)
+    with pytest.raises(
+        ValueError, match=r"rpm = 150000 rpm is outside the allowed range \(0, 120000\]"
+    ):
+        diagnose_signal(rng.standard_normal(5000), 12000.0, 150000.0)
+    fast = diagnose_signal(rng.standard_normal(48000), 48000.0, 20000.0, "6205")
+    assert any("above the catalogue limiting speed" in w for w in fast.warnings)
     clipped = np.clip(rng.standard_normal(24000), -1.5, 1.5)
     assert any("clipped" in w for w in diagnose_signal(clipped, 12000.0, 1800.0).warnings)
 
