@@ -371,6 +371,8 @@ def read_recording(
             if x.ndim == 2 and min(x.shape) > 1:
                 col = _pick(min(x.shape), channel, path)
                 x = x[:, col] if x.shape[0] > x.shape[1] else x[col]
+            else:
+                _pick(1, channel, path)  # one channel: only 0 (or none) can be asked for
             x = x.ravel()
             prefix = variable.split("_")[0]
             rpm_key = f"{prefix}RPM"
@@ -390,6 +392,8 @@ def read_recording(
         data = np.asarray(data)
         if data.ndim == 2:
             data = data[:, _pick(data.shape[1], channel, path)]
+        else:
+            _pick(1, channel, path)  # one channel: only 0 (or none) can be asked for
         if np.issubdtype(data.dtype, np.integer):
             data = data / float(np.iinfo(data.dtype).max)
         x = data.astype(float)
@@ -406,6 +410,8 @@ def read_recording(
         x = np.asarray(loaded, dtype=float)
         if x.ndim == 2:
             x = x[:, _pick(x.shape[1], channel, path)]
+        else:
+            _pick(1, channel, path)
     elif suffix in (".csv", ".parquet"):
         if suffix == ".csv":
             frame = pd.read_csv(path)

@@ -229,3 +229,36 @@ def test_recipes_take_the_same_shaft_speed_range(tmp_path):
     recipe["operating"]["rpm"] = [MAX_SHAFT_SPEED_RPM + 1]
     with pytest.raises(ParameterError, match=r"in \(0, 120000\] rpm"):
         validate_recipe(recipe)
+
+
+def test_recording_readers_wav_npy_npz_parquet(tmp_path):
+    """Every format reads back the samples written, the asked channel, and refuses others."""
+    from scipy.io import wavfile
+
+    from cmtool.io import RecordingError, read_recording
+
+    rng = np.random.default_rng(1)
+    stereo = rng.uniform(-0.5, 0.5, (4000, 2))
+    wavfile.write(tmp_path / "s.wav", 8000, stereo.astype(np.float32))
+    x, meta = read_recording(tmp_path / "s.wav", channel=1)
+    np.testing.assert_allclose(x, stereo[:, 1], rtol=1e-6)
+    assert meta["fs_hz"] == 8000.0
+    pcm = (stereo[:, 0] * 32767).astype(np.int16)
+    wavfile.write(tmp_path / "m.wav", 8000, pcm)
+    x, _ = read_recording(tmp_path / "m.wav")
+    np.testing.assert_allclose(x, pcm / 32767.0)  # integer PCM scaled to [-1, 1]
+    np.save(tmp_path / "a.npy", stereo)
+    np.testing.assert_array_equal(read_recording(tmp_path / "a.npy", channel=1)[0], stereo[:, 1])
+    np.savez(tmp_path / "b.npz", accel=stereo[:, 0], other=stereo[:, 1])
+    x, meta = read_recording(tmp_path / "b.npz", variable="other")
+    np.testing.assert_array_equal(x, stereo[:, 1])
+    assert meta["variable"] == "other"
+    with pytest.raises(RecordingError, match="choose a variable"):
+        read_recording(tmp_path / "b.npz")
+    frame = pd.DataFrame({"time": np.arange(4000) / 8000.0, "accel": stereo[:, 0]})
+    frame.to_parquet(tmp_path / "c.parquet")
+    np.testing.assert_array_equal(read_recording(tmp_path / "c.parquet")[0], stereo[:, 0])
+    for name in ("m.wav", "a.npy"):
+        channel = 5 if name == "a.npy" else 1
+        with pytest.raises(RecordingError, match=f"channel {channel} is outside"):
+            read_recording(tmp_path / name, channel=channel)
