@@ -125,13 +125,15 @@ def remove_harmonics(x: np.ndarray, fs: float, fundamentals: Sequence[float]) ->
     if not families:
         return y
     weights = np.hanning(n)
+    weights = weights / weights.sum()
+    transforms = [_HarmonicTransforms(n, f0, count, fs) for f0, count in families]
     fits = [np.zeros(n) for _ in families]
     total = np.zeros(n)
     scale = float(np.std(y)) or 1.0
     for _ in range(MAX_PASSES if len(families) > 1 else 1):
         change = 0.0
-        for i, (f0, count) in enumerate(families):
-            new = _harmonic_fit(y - (total - fits[i]), weights, f0, count, fs)
+        for i in range(len(families)):
+            new = transforms[i].fit(y - (total - fits[i]), weights)
             change = max(change, float(np.max(np.abs(new - fits[i]))) / scale)
             total += new - fits[i]
             fits[i] = new
@@ -140,18 +142,26 @@ def remove_harmonics(x: np.ndarray, fs: float, fundamentals: Sequence[float]) ->
     return y - total
 
 
-def _harmonic_fit(y: np.ndarray, weights: np.ndarray, f0: float, count: int, fs: float):
-    """Hann-weighted amplitudes of harmonics 1 .. count of f0 in y, and their sum in time.
+class _HarmonicTransforms:
+    """The two chirp-z transforms of one harmonic family, set up once for every pass.
 
-    Both by chirp-z transforms: the analysis evaluates the weighted signal's transform at
-    k f0 (k = 1 .. count), the synthesis the harmonic series at every sample, each in
-    O((n + count) log(n + count)).
+    :meth:`fit` gives the Hann-weighted amplitudes of harmonics 1 .. count of f0 in y and
+    their sum in time: the analysis evaluates the weighted signal's transform at k f0
+    (k = 1 .. count), the synthesis the harmonic series at every sample, each in
+    O((n + count) log(n + count)). Setting a transform up (its chirp and the filter's FFT)
+    costs as much as applying it, so the passes of :func:`remove_harmonics` share them.
     """
-    n = y.size
-    step = np.exp(2j * np.pi * f0 / fs)
-    coefficients = 2.0 * sp_signal.czt(weights * y / weights.sum(), m=count, w=1 / step, a=step)
-    series = sp_signal.czt(coefficients, m=n, w=step, a=1.0)
-    return np.real(series * step ** np.arange(n))
+
+    def __init__(self, n: int, f0: float, count: int, fs: float) -> None:
+        step = np.exp(2j * np.pi * f0 / fs)
+        self.analysis = sp_signal.CZT(n, m=count, w=1 / step, a=step)
+        self.synthesis = sp_signal.CZT(count, m=n, w=step, a=1.0)
+        self.ramp = step ** np.arange(n)
+
+    def fit(self, y: np.ndarray, weights: np.ndarray) -> np.ndarray:
+        """The fitted harmonic series of ``y`` (``weights``: the Hann window, unit sum)."""
+        coefficients = 2.0 * self.analysis(weights * y)
+        return np.real(self.synthesis(coefficients) * self.ramp)
 
 
 def separate_discrete(
