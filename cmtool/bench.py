@@ -1,47 +1,125 @@
-"""``cmtool bench``: run detectors over a labelled dataset and report how well they do.
+"""``cmtool bench``: detectors over a labelled dataset, scored as a detection study is.
 
 Datasets: a ``cmtool generate`` folder (``data/*.parquet``), or a folder of recordings with a
 ``MANIFEST.csv`` (columns ``file``, ``sampling_rate_hz``, ``shaft_rpm``, ``fault_location``, and
 ``bearing`` or ``dataset``; ``channel_variable`` is used when present: the layout of
 ``../shared/data``).
 
-Detectors: ``envelope`` (the rule-based detector of ``cmtool diagnose``), ``model`` (a trained
-model) and ``combined`` (both pooled: the verdict of ``diagnose --model``), and any user
-callable ``module:function`` with signature ``f(x, fs, rpm, bearing) -> label`` (labels
-``healthy``, ``inner race``, ``outer race``, ``ball``).
+Detectors (:data:`BUILTIN_DETECTORS`), each giving a label and a continuous score per fault
+(``outer race``, ``inner race``, ``ball``; larger means more evidence):
 
-Metrics per detector: detection rate (faulty signals called faulty), false-alarm rate (healthy
-signals called faulty), correct-fault-first rate (faulty signals whose first verdict is their
-fault) and accuracy; and the same by SNR, waviness amplitude, speed and load where the
-dataset has them.
+- ``envelope``: the rule detector of ``cmtool diagnose``: envelope analysis of the random
+  part in the band it selects (score: each fault's envelope line over the detection threshold
+  [dB]; the name it has had since the first ``cmtool bench``);
+- ``fixed_band_ses``: the squared envelope spectrum of a fixed band, fs/8 to 3 fs/8 (score:
+  the mean power of the fault rate's first three lines over the local floor [dB]);
+- ``cpw_ses``: cepstral pre-whitening, then the squared envelope spectrum of the whole band;
+- ``spectral_kurtosis``: the fast kurtogram's largest spectral kurtosis (one score for every
+  fault: it tells impulsive from not, not which fault);
+- ``kurtosis``, ``crest_factor``: time statistics of the raw signal (likewise);
+- ``model`` and ``combined`` with ``--model``: the model's class probabilities and the
+  verdict of ``diagnose --model`` (pooled probabilities).
+
+User plug-ins ``module:function`` are called as ``f(x, fs, rpm, bearing)`` with the signal
+(1-D array), its sample rate [Hz], the shaft speed [rpm] and the catalog bearing's name, and
+return either a label (``healthy``, ``outer race``, ``inner race``, ``ball``; the score is then
+1 for the named fault, 0 otherwise) or a mapping ``{"label": ..., "scores": {"outer race":
+s1, "inner race": s2, "ball": s3}}``.
+
+Metrics (never on a model's own training signals unless ``--allow-training-data``, and then
+every output says in-sample): per detector and fault, the ROC of that fault's signals against
+the healthy ones and its area; the detection probability at false-alarm rates 1e-2 and 1e-3,
+thresholds set on the healthy signals alone (NaN when fewer than 1 / rate of them: such a
+rate cannot be measured); the detection probability at 1e-2 against the fault SNR and every
+other factor the dataset varies, in ordered bins with Wilson 95 % intervals.
 """
 
 from __future__ import annotations
 
 import importlib
-from collections.abc import Callable
+import math
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 from generators import bearing as catalog_bearing
+from generators import characteristic_frequencies
 
-from .diagnose import CANONICAL, diagnose_signal
+from .diagnose import CANONICAL, FAULTS, diagnose_signal
 from .io import read_recording
 
-__all__ = ["run_bench", "summarise", "CANONICAL", "load_callable", "plot_bench"]
+__all__ = [
+    "BUILTIN_DETECTORS",
+    "FAULT_CLASSES",
+    "PFA_LEVELS",
+    "CANONICAL",
+    "DetectorOutput",
+    "load_callable",
+    "run_bench",
+    "summarise",
+    "score_summary",
+    "by_factor",
+    "wilson_interval",
+    "threshold_at_pfa",
+    "plot_roc",
+    "plot_pd_vs_snr",
+    "write_report",
+]
 
 MANIFEST_BEARINGS = {"CWRU": "6205", "MFPT": "mfpt"}
-GROUP_COLUMNS = (
-    "snr_db",
-    "fault_snr_db",
-    "waviness_amplitude_m",
-    "defect_length_m",
-    "defect_depth_m",
-    "rpm",
-    "radial_load_n",
+#: The faults every detector scores, in the order of the outputs.
+FAULT_CLASSES = tuple(FAULTS)  # outer race, inner race, ball
+#: Built-in detectors, in the order of the outputs.
+BUILTIN_DETECTORS = (
+    "envelope",
+    "fixed_band_ses",
+    "cpw_ses",
+    "spectral_kurtosis",
+    "kurtosis",
+    "crest_factor",
 )
+#: False-alarm rates at which detection probabilities are reported.
+PFA_LEVELS = (1e-2, 1e-3)
+#: Nominal labels of the fault-blind statistics (the ROC and Pd use the scores, not these):
+#: spectral kurtosis above 1, kurtosis above 4 (Gaussian: 0 and 3), crest factor above 6.
+BLIND_LIMITS = {"spectral_kurtosis": 1.0, "kurtosis": 4.0, "crest_factor": 6.0}
+#: Nominal line threshold of the envelope detectors' labels [dB] (as the rule detector's).
+ENVELOPE_LABEL_DB = 10.0
+#: Factors reported by bin when the dataset varies them: column -> (name, unit, scale).
+FACTORS = {
+    "fault_snr_db": ("fault SNR", "dB", 1.0),
+    "snr_db": ("SNR", "dB", 1.0),
+    "rpm": ("speed", "rpm", 1.0),
+    "radial_load_n": ("load", "N", 1.0),
+    "defect_length_m": ("pit length", "mm", 1e3),
+    "defect_depth_m": ("pit depth", "um", 1e6),
+    "waviness_amplitude_m": ("waviness amplitude", "um", 1e6),
+    "fs_hz": ("sample rate", "kHz", 1e-3),
+    "bearing": ("bearing", "", None),
+}
+#: Width of the SNR bins [dB], from SNR_BIN_ORIGIN_DB up (the benchmark recipe's sweep is
+#: -20 to +10 dB: ten bins); fault SNRs below the origin (pits the balls barely touch, whose
+#: signature the chain cannot raise to the drawn SNR) are pooled in one bin below it.
+SNR_BIN_DB = 3.0
+SNR_BIN_ORIGIN_DB = -20.0
+
+
+def _score_column(fault: str) -> str:
+    return "score_" + fault.replace(" ", "_")
+
+
+SCORE_COLUMNS = tuple(_score_column(f) for f in FAULT_CLASSES)
+
+
+@dataclass(frozen=True)
+class DetectorOutput:
+    """A detector's answer on one signal: a label and one score per fault (larger: likelier)."""
+
+    label: str
+    scores: dict[str, float]
 
 
 def load_callable(spec: str) -> Callable:
@@ -49,10 +127,78 @@ def load_callable(spec: str) -> Callable:
     if ":" not in spec:
         raise ValueError(f"--detector {spec!r}: expected module:function")
     module, name = spec.split(":", 1)
-    fn = getattr(importlib.import_module(module), name, None)
+    try:
+        imported = importlib.import_module(module)
+    except ImportError as err:
+        raise ValueError(f"--detector {spec!r}: cannot import {module!r} ({err})") from None
+    fn = getattr(imported, name, None)
     if not callable(fn):
         raise ValueError(f"--detector {spec!r}: {name!r} is not a callable of {module!r}")
     return fn
+
+
+def _as_output(value: object, spec: str) -> DetectorOutput:
+    """A plug-in's return value as a DetectorOutput (the contract in the module docstring)."""
+    if isinstance(value, DetectorOutput):
+        return value
+    if isinstance(value, Mapping):
+        if "label" not in value or "scores" not in value:
+            raise ValueError(f"detector {spec}: a mapping must hold 'label' and 'scores'")
+        label = CANONICAL.get(str(value["label"]).lower(), str(value["label"]))
+        scores = {
+            CANONICAL.get(str(k).lower(), str(k)): float(v) for k, v in value["scores"].items()
+        }
+        missing = [f for f in FAULT_CLASSES if f not in scores]
+        if missing:
+            raise ValueError(f"detector {spec}: scores miss {', '.join(missing)}")
+        return DetectorOutput(label, scores)
+    label = CANONICAL.get(str(value).lower(), str(value))
+    return DetectorOutput(label, {f: float(f == label) for f in FAULT_CLASSES})
+
+
+def _labelled(scores: dict[str, float], limit: float) -> DetectorOutput:
+    best = max(scores, key=scores.get)
+    return DetectorOutput(best if scores[best] > limit else "healthy", scores)
+
+
+def builtin_outputs(
+    x: np.ndarray, fs: float, rpm: float, bearing: str, *, model=None
+) -> dict[str, DetectorOutput]:
+    """Every built-in detector on one signal (``model``/``combined`` when a model is given)."""
+    from features.detectors import (
+        cpw_envelope_scores,
+        envelope_scores,
+        spectral_kurtosis_score,
+        time_scores,
+    )
+
+    geometry = catalog_bearing(bearing)
+    freqs = characteristic_frequencies(geometry, rpm / 60.0)
+    rates = {fault: getattr(freqs, key) for fault, key in FAULTS.items()}
+    d = diagnose_signal(x, fs, rpm, geometry, model=model)
+    margins = {c["fault"]: c["envelope_snr_db"][0] - d.threshold_db for c in d.candidates}
+    out = {"envelope": DetectorOutput(d.rule_verdict["label"], margins)}
+    ses = envelope_scores(x, fs, rates)
+    out["fixed_band_ses"] = _labelled(ses, ENVELOPE_LABEL_DB)
+    out["cpw_ses"] = _labelled(cpw_envelope_scores(x, fs, rates), ENVELOPE_LABEL_DB)
+    blind = {"spectral_kurtosis": spectral_kurtosis_score(x, fs), **time_scores(x)}
+    for name, value in blind.items():
+        label = "fault" if value > BLIND_LIMITS[name] else "healthy"
+        out[name] = DetectorOutput(label, dict.fromkeys(FAULT_CLASSES, value))
+    if model is not None:
+        probabilities = {
+            CANONICAL.get(str(k), str(k)): float(v)
+            for k, v in (d.model_verdict.get("probabilities") or {}).items()
+        }
+        label = CANONICAL.get(d.model_verdict["label"], d.model_verdict["label"])
+        out["model"] = DetectorOutput(
+            label, {f: probabilities.get(f, float(f == label)) for f in FAULT_CLASSES}
+        )
+        pooled = getattr(d, "probabilities", None) or {}
+        out["combined"] = DetectorOutput(
+            d.verdict, {f: float(pooled.get(f, float(f == d.verdict))) for f in FAULT_CLASSES}
+        )
+    return out
 
 
 def _records(path: Path, bearing_default: str, allow_incomplete: bool = False):
@@ -69,6 +215,7 @@ def _records(path: Path, bearing_default: str, allow_incomplete: bool = False):
                 if isinstance(row.get("bearing"), str)
                 else MANIFEST_BEARINGS.get(str(row.get("dataset")), bearing_default)
             )
+            meta = {"bearing": brg, "fs_hz": float(row["sampling_rate_hz"])}
             yield (
                 str(row["file"]),
                 x,
@@ -76,14 +223,14 @@ def _records(path: Path, bearing_default: str, allow_incomplete: bool = False):
                 float(row["shaft_rpm"]),
                 brg,
                 CANONICAL.get(str(row["fault_location"]).lower(), "unknown"),
-                {},
+                meta,
             )
         return
     from .datasets import read_dataset
 
     frame = read_dataset(path, allow_incomplete=allow_incomplete)
     for _, row in frame.iterrows():
-        meta = {c: row[c] for c in GROUP_COLUMNS if c in row and pd.notna(row[c])}
+        meta = {c: row[c] for c in FACTORS if c in row and pd.notna(row[c])}
         yield (
             row["id"],
             np.asarray(row["signal"], dtype=float),
@@ -95,33 +242,265 @@ def _records(path: Path, bearing_default: str, allow_incomplete: bool = False):
         )
 
 
+# one worker process's state (set by _init_worker)
+_WORKER: dict = {}
+
+
+def _init_worker(model, specs: tuple[str, ...]) -> None:
+    _WORKER["model"] = model
+    _WORKER["detectors"] = {spec: load_callable(spec) for spec in specs}
+
+
+def _signal_rows(record) -> list[dict]:
+    sid, x, fs, rpm, brg, label, meta = record
+    outputs = builtin_outputs(x, fs, rpm, brg, model=_WORKER.get("model"))
+    for spec, fn in _WORKER.get("detectors", {}).items():
+        outputs[spec] = _as_output(fn(x, fs, rpm, brg), spec)
+    rows = []
+    for name, output in outputs.items():
+        row = {"id": sid, "detector": name, "label": label, "verdict": output.label, **meta}
+        row.update({_score_column(f): float(output.scores[f]) for f in FAULT_CLASSES})
+        rows.append(row)
+    return rows
+
+
 def run_bench(
     path: str | Path,
     *,
     model=None,
-    detectors: dict[str, Callable] | None = None,
+    detectors: Mapping[str, Callable] | Iterable[str] | None = None,
     bearing: str = "6205",
     progress=None,
     allow_incomplete: bool = False,
+    workers: int = 1,
 ) -> pd.DataFrame:
-    """One row per (signal, detector): true label, verdict and the grouping columns."""
+    """Every detector on every signal: one row per (signal, detector).
+
+    Parameters
+    ----------
+    path : str or Path
+        A dataset folder or a folder of recordings with ``MANIFEST.csv``.
+    model : Pipeline, optional
+        A trained model (adds the ``model`` and ``combined`` detectors).
+    detectors : mapping of name to callable, or iterable of ``module:function``, optional
+        User detectors (the contract in the module docstring); with ``workers > 1`` give
+        ``module:function`` strings (each worker imports them).
+    bearing : str
+        Bearing of manifest rows that do not say.
+    progress : callable, optional
+        Called with (signals done, signals in all).
+    allow_incomplete : bool
+        Read a dataset whose generation did not finish.
+    workers : int
+        Processes (each runs whole signals).
+
+    Returns
+    -------
+    DataFrame
+        Columns ``id``, ``detector``, ``label``, ``verdict``, ``score_outer_race``,
+        ``score_inner_race``, ``score_ball`` and the dataset's factors (``fault_snr_db``,
+        ``rpm``, ``radial_load_n``, ``defect_length_m``, ..., ``bearing``, ``fs_hz``).
+    """
     path = Path(path)
-    detectors = dict(detectors or {})
-    rows = []
     records = list(_records(path, bearing, allow_incomplete))
-    for i, (sid, x, fs, rpm, brg, label, meta) in enumerate(records):
-        geometry = catalog_bearing(brg)
-        d = diagnose_signal(x, fs, rpm, geometry, model=model)
-        verdicts = {"envelope": d.rule_verdict["label"]}
-        if model is not None:
-            verdicts["model"] = CANONICAL.get(d.model_verdict["label"], d.model_verdict["label"])
-            verdicts["combined"] = d.verdict
-        for name, fn in detectors.items():
-            verdicts[name] = CANONICAL.get(str(fn(x, fs, rpm, brg)), str(fn(x, fs, rpm, brg)))
-        for name, verdict in verdicts.items():
-            rows.append({"id": sid, "detector": name, "label": label, "verdict": verdict, **meta})
-        if progress:
-            progress(i + 1, len(records))
+    specs: tuple[str, ...] = ()
+    if isinstance(detectors, Mapping):
+        callables = dict(detectors)
+    else:
+        specs = tuple(detectors or ())
+        callables = {}
+    rows: list[dict] = []
+    if workers > 1 and not callables:
+        from concurrent.futures import ProcessPoolExecutor
+
+        with ProcessPoolExecutor(
+            max_workers=workers, initializer=_init_worker, initargs=(model, specs)
+        ) as pool:
+            chunk = max(1, min(32, len(records) // (8 * workers) or 1))
+            for i, signal_rows in enumerate(pool.map(_signal_rows, records, chunksize=chunk)):
+                rows.extend(signal_rows)
+                if progress:
+                    progress(i + 1, len(records))
+    else:
+        _init_worker(model, specs)
+        _WORKER["detectors"].update(callables)
+        try:
+            for i, record in enumerate(records):
+                rows.extend(_signal_rows(record))
+                if progress:
+                    progress(i + 1, len(records))
+        finally:
+            _WORKER.clear()
+    return pd.DataFrame(rows)
+
+
+# ------------------------------------------------------------------------------- metrics
+
+
+def wilson_interval(successes: int, trials: int, z: float = 1.959964) -> tuple[float, float]:
+    """Wilson score interval of a binomial proportion (95 % by default).
+
+    Examples
+    --------
+    >>> [round(v, 4) for v in wilson_interval(9, 10)]
+    [0.5958, 0.9821]
+    """
+    if trials <= 0:
+        return (math.nan, math.nan)
+    p = successes / trials
+    denominator = 1 + z * z / trials
+    centre = (p + z * z / (2 * trials)) / denominator
+    half = z * math.sqrt(p * (1 - p) / trials + z * z / (4 * trials * trials)) / denominator
+    return (max(0.0, centre - half), min(1.0, centre + half))
+
+
+def threshold_at_pfa(healthy_scores: np.ndarray, pfa: float) -> float:
+    """The smallest threshold whose false-alarm rate on these healthy scores is at most ``pfa``.
+
+    A signal is called faulty when its score exceeds the threshold. NaN when there are fewer
+    than ``1 / pfa`` healthy scores (the rate cannot be measured on them).
+
+    Examples
+    --------
+    >>> threshold_at_pfa(np.arange(100.0), 0.01)
+    98.0
+    """
+    scores = np.sort(np.asarray(healthy_scores, dtype=float))[::-1]
+    if scores.size < math.ceil(1.0 / pfa - 1e-9):
+        return math.nan
+    allowed = int(math.floor(pfa * scores.size + 1e-9))  # false alarms allowed
+    return float(scores[allowed])
+
+
+def _fault_rows(results: pd.DataFrame) -> pd.DataFrame:
+    return results[results["label"].isin(FAULT_CLASSES)]
+
+
+def _own_score(frame: pd.DataFrame) -> np.ndarray:
+    """Each faulty signal's score for its own fault."""
+    columns = frame["label"].map(_score_column)
+    return np.array([frame.at[i, c] for i, c in zip(frame.index, columns, strict=True)])
+
+
+def score_summary(results: pd.DataFrame) -> tuple[pd.DataFrame, dict]:
+    """AUC and detection probability at each false-alarm rate, per detector and fault.
+
+    Returns the table (``detector``, ``fault``, ``auc``, ``pd_at_pfa_0.01``,
+    ``pd_at_pfa_0.001``, ``signals``, ``healthy_signals``) and the ROC curves
+    ``{(detector, fault): (fpr, tpr)}``.
+    """
+    from sklearn.metrics import roc_auc_score, roc_curve
+
+    rows, curves = [], {}
+    for detector, group in results.groupby("detector", sort=False):
+        healthy = group[group["label"] == "healthy"]
+        for fault in FAULT_CLASSES:
+            column = _score_column(fault)
+            positive = group[group["label"] == fault]
+            row = {
+                "detector": detector,
+                "fault": fault,
+                "auc": math.nan,
+                **{f"pd_at_pfa_{p:g}": math.nan for p in PFA_LEVELS},
+                "signals": len(positive),
+                "healthy_signals": len(healthy),
+            }
+            if len(positive) and len(healthy):
+                y = np.r_[np.ones(len(positive)), np.zeros(len(healthy))]
+                s = np.r_[positive[column].to_numpy(), healthy[column].to_numpy()]
+                row["auc"] = float(roc_auc_score(y, s))
+                fpr, tpr, _ = roc_curve(y, s)
+                curves[(detector, fault)] = (fpr, tpr)
+                for p in PFA_LEVELS:
+                    tau = threshold_at_pfa(healthy[column].to_numpy(), p)
+                    if math.isfinite(tau):
+                        row[f"pd_at_pfa_{p:g}"] = float((positive[column] > tau).mean())
+            rows.append(row)
+    return pd.DataFrame(rows), curves
+
+
+def _detected_at_pfa(group: pd.DataFrame, pfa: float) -> pd.Series:
+    """Per faulty signal of one detector: its own fault's score over that fault's threshold."""
+    healthy = group[group["label"] == "healthy"]
+    faulty = _fault_rows(group)
+    thresholds = {
+        f: threshold_at_pfa(healthy[_score_column(f)].to_numpy(), pfa) for f in FAULT_CLASSES
+    }
+    tau = faulty["label"].map(thresholds).to_numpy(dtype=float)
+    detected = _own_score(faulty) > tau
+    return pd.Series(np.where(np.isfinite(tau), detected, np.nan), index=faulty.index)
+
+
+def _bins(values: pd.Series, column: str) -> tuple[pd.Series, pd.Series]:
+    """Ordered bins of a factor: (numeric centre or category, readable label)."""
+    name, unit, scale = FACTORS[column]
+    if scale is None:
+        return values.astype(str), values.astype(str)
+    v = values.astype(float) * scale
+    if column in ("fault_snr_db", "snr_db"):
+        low = SNR_BIN_ORIGIN_DB + np.floor((v - SNR_BIN_ORIGIN_DB) / SNR_BIN_DB) * SNR_BIN_DB
+        below = v < SNR_BIN_ORIGIN_DB
+        low = np.where(below, SNR_BIN_ORIGIN_DB - SNR_BIN_DB, low)
+        centre = low + SNR_BIN_DB / 2
+        label = [
+            f"below {SNR_BIN_ORIGIN_DB:+.0f} {unit}"
+            if b
+            else f"{a:+.0f} to {a + SNR_BIN_DB:+.0f} {unit}"
+            for a, b in zip(low, below, strict=True)
+        ]
+        return pd.Series(centre, index=values.index), pd.Series(label, index=values.index)
+    distinct = np.unique(v)
+    if distinct.size <= 6:
+        return v, pd.Series([f"{a:.4g} {unit}".strip() for a in v], index=values.index)
+    edges = np.unique(np.quantile(v, np.linspace(0, 1, 5)))
+    index = np.clip(np.searchsorted(edges, v, side="right") - 1, 0, edges.size - 2)
+    centre = (edges[index] + edges[index + 1]) / 2
+    label = [f"{_number(edges[i])}-{_number(edges[i + 1])} {unit}".strip() for i in index]
+    return pd.Series(centre, index=values.index), pd.Series(label, index=values.index)
+
+
+def _number(value: float) -> str:
+    """A bin edge as people write it: 1797, 0.25, 12.8."""
+    return f"{value:.0f}" if abs(value) >= 100 else f"{value:.3g}"
+
+
+def by_factor(
+    results: pd.DataFrame, column: str, pfa: float = 1e-2, *, fault: str | None = None
+) -> pd.DataFrame:
+    """Detection probability at ``pfa`` against one factor, per detector, bins in order.
+
+    Thresholds are set per detector and fault on all the healthy signals; each faulty signal
+    (of ``fault`` only, when given) counts in the bin of its factor value. Columns:
+    ``detector``, ``bin`` (readable), ``value`` (the bin's centre, numeric where the factor
+    is), ``pd_at_pfa_<pfa>``, ``ci_low``, ``ci_high`` (Wilson 95 %), ``signals``.
+    """
+    rows = []
+    key = f"pd_at_pfa_{pfa:g}"
+    for detector, group in results.groupby("detector", sort=False):
+        detected = _detected_at_pfa(group, pfa)
+        faulty = _fault_rows(group)
+        if fault is not None:
+            detected = detected[faulty["label"] == fault]
+            faulty = faulty[faulty["label"] == fault]
+        if column not in faulty or faulty[column].isna().all():
+            continue
+        keep = faulty[column].notna()
+        centre, label = _bins(faulty.loc[keep, column], column)
+        frame = pd.DataFrame({"value": centre, "bin": label, "detected": detected[keep.to_numpy()]})
+        for (value, text), part in frame.groupby(["value", "bin"], sort=True):
+            hits = part["detected"].dropna()
+            ci = wilson_interval(int(hits.sum()), len(hits))
+            rows.append(
+                {
+                    "detector": detector,
+                    "bin": text,
+                    "value": value,
+                    key: float(hits.mean()) if len(hits) else math.nan,
+                    "ci_low": ci[0],
+                    "ci_high": ci[1],
+                    "signals": len(part),
+                }
+            )
     return pd.DataFrame(rows)
 
 
@@ -142,40 +521,167 @@ def _rates(group: pd.DataFrame) -> pd.Series:
     )
 
 
-def summarise(results: pd.DataFrame, *, bins: int = 3) -> dict[str, pd.DataFrame]:
-    """Rates per detector, and per detector and binned group column."""
-    out = {"overall": results.groupby("detector")[["label", "verdict"]].apply(_rates)}
-    for col in GROUP_COLUMNS:
-        if col not in results.columns or results[col].nunique() < 2:
+def summarise(results: pd.DataFrame) -> dict[str, pd.DataFrame]:
+    """The detectors' own labels: rates per detector (``overall``) and by each factor."""
+    out = {"overall": results.groupby("detector", sort=False)[["label", "verdict"]].apply(_rates)}
+    for column in FACTORS:
+        if column not in results.columns or results[column].nunique() < 2:
             continue
-        values = results[col]
-        binned = (
-            pd.qcut(values, q=min(bins, values.nunique()), duplicates="drop")
-            if values.nunique() > bins
-            else values
-        )
-        frame = results.assign(**{f"{col}_bin": binned.astype(str)})
-        out[col] = frame.groupby(["detector", f"{col}_bin"])[["label", "verdict"]].apply(_rates)
+        centre, label = _bins(results[column].dropna(), column)
+        frame = results.loc[centre.index].assign(_value=centre, _bin=label)
+        table = frame.groupby(["detector", "_value", "_bin"], sort=True)[
+            ["label", "verdict"]
+        ].apply(_rates)
+        out[column] = table.droplevel("_value").rename_axis(["detector", "bin"])
     return out
 
 
-def plot_bench(summary: dict[str, pd.DataFrame], out: Path) -> list[Path]:
-    """Bar plots of the rates per detector, overall and by each group column."""
+# ------------------------------------------------------------------------------- outputs
+
+
+def plot_roc(curves: dict, path: Path, *, title: str = "") -> Path:
+    """ROC curves, one panel per fault, one line per detector (log false-alarm axis)."""
     from .plots import plt
 
-    out.mkdir(parents=True, exist_ok=True)
-    paths = []
-    for name, table in summary.items():
-        fig, ax = plt.subplots(figsize=(9, 4), dpi=110)
-        table[["detection_rate", "false_alarm_rate", "correct_fault_first_rate"]].plot.bar(
-            ax=ax, rot=30
-        )
-        ax.set_ylim(0, 1.05)
-        ax.set_title(f"detector benchmark: {name}")
-        ax.grid(alpha=0.3, axis="y")
-        fig.tight_layout()
-        path = out / f"bench_{name}.png"
-        fig.savefig(path)
-        plt.close(fig)
-        paths.append(path)
-    return paths
+    fig, axes = plt.subplots(1, len(FAULT_CLASSES), figsize=(13, 4.2), dpi=110, sharey=True)
+    detectors = list(dict.fromkeys(d for d, _ in curves))
+    for ax, fault in zip(axes, FAULT_CLASSES, strict=True):
+        for detector in detectors:
+            if (detector, fault) not in curves:
+                continue
+            fpr, tpr = curves[(detector, fault)]
+            ax.step(np.maximum(fpr, 1e-4), tpr, where="post", label=detector)
+        ax.set_xscale("log")
+        ax.set_xlim(1e-3, 1)
+        ax.set_ylim(0, 1.02)
+        ax.set_xlabel("false-alarm probability")
+        ax.set_title(fault)
+        ax.grid(alpha=0.3, which="both")
+    axes[0].set_ylabel("detection probability")
+    axes[-1].legend(fontsize=8, loc="lower right")
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+    return path
+
+
+def plot_pd_vs_snr(table: pd.DataFrame, path: Path, *, pfa: float = 1e-2, title: str = "") -> Path:
+    """Detection probability at ``pfa`` against the fault SNR with Wilson 95 % bands.
+
+    One panel for every fault together, and one per fault when ``table`` has a ``fault``
+    column (rows with ``fault`` = ``all`` make the first panel).
+    """
+    from .plots import plt
+
+    faults = list(dict.fromkeys(table["fault"])) if "fault" in table else ["all"]
+    fig, axes = plt.subplots(
+        1, len(faults), figsize=(4.2 * len(faults) + 1, 4.4), dpi=110, sharey=True, squeeze=False
+    )
+    key = f"pd_at_pfa_{pfa:g}"
+    for ax, fault in zip(axes[0], faults, strict=True):
+        part_fault = table[table["fault"] == fault] if "fault" in table else table
+        for detector, part in part_fault.groupby("detector", sort=False):
+            part = part.sort_values("snr_db")
+            line = ax.plot(part["snr_db"], part[key], marker="o", ms=3, label=detector)[0]
+            ax.fill_between(
+                part["snr_db"], part["ci_low"], part["ci_high"], color=line.get_color(), alpha=0.1
+            )
+        ax.set_xlabel("fault SNR where the impacts ring [dB]")
+        ax.set_ylim(-0.02, 1.02)
+        ax.grid(alpha=0.3)
+        ax.set_title("every fault" if fault == "all" else fault)
+    axes[0][0].set_ylabel(f"detection probability at false alarm {pfa:g}")
+    axes[0][-1].legend(fontsize=7, loc="upper left")
+    fig.suptitle(title or "detection against SNR")
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+    return path
+
+
+def _markdown(frame: pd.DataFrame, digits: int = 3) -> str:
+    columns = list(frame.columns)
+    lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    for _, row in frame.iterrows():
+        cells = []
+        for c in columns:
+            v = row[c]
+            if isinstance(v, float):
+                cells.append("n/a" if math.isnan(v) else f"{v:.{digits}f}")
+            else:
+                cells.append(str(v))
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def _pivot(table: pd.DataFrame, label: str, order: str, pfa: float = 1e-2) -> str:
+    """A markdown table: one row per bin (in order), one column per detector."""
+    key = f"pd_at_pfa_{pfa:g}"
+    detectors = list(dict.fromkeys(table["detector"]))
+    bins = table.drop_duplicates(label).sort_values(order)[label].tolist()
+    lines = [
+        "| " + " | ".join(["bin", *detectors, "signals"]) + " |",
+        "|" + "---|" * (len(detectors) + 2),
+    ]
+    for b in bins:
+        part = table[table[label] == b].set_index("detector")
+        cells = []
+        for d in detectors:
+            if d not in part.index or not math.isfinite(part.at[d, key]):
+                cells.append("n/a")
+            else:
+                r = part.loc[d]
+                cells.append(f"{r[key]:.2f} [{r['ci_low']:.2f}, {r['ci_high']:.2f}]")
+        lines.append(f"| {b} | " + " | ".join(cells) + f" | {int(part['signals'].iloc[0])} |")
+    return "\n".join(lines)
+
+
+def write_report(
+    path: Path,
+    dataset: str,
+    summary: pd.DataFrame,
+    by_snr: pd.DataFrame,
+    factors: dict[str, pd.DataFrame],
+    *,
+    in_sample: float = 0.0,
+) -> Path:
+    """``report.md``: the tables, the plots, and what the figures rest on."""
+    healthy = int(summary["healthy_signals"].max()) if len(summary) else 0
+    lines = [f"# Detector benchmark: {dataset}", ""]
+    if in_sample:
+        lines += [
+            f"**IN-SAMPLE**: {in_sample:.0%} of these signals trained the model; its figures "
+            "are not a measure of accuracy.",
+            "",
+        ]
+    lines += [
+        f"Healthy signals: {healthy} (detection at a false-alarm rate p needs at least 1/p of "
+        "them; n/a otherwise). Thresholds are set per detector and fault on the healthy "
+        "signals only.",
+        "",
+        "## ROC area and detection at fixed false-alarm rates",
+        "",
+        _markdown(summary),
+        "",
+        "![ROC](roc.png)",
+        "",
+    ]
+    if len(by_snr):
+        lines += [
+            "## Detection at false alarm 0.01 against the fault SNR",
+            "",
+            "Every fault together; each cell: detection probability [Wilson 95 % interval] "
+            "(signals in the bin in the last column).",
+            "",
+            _pivot(by_snr, "bin", "snr_db"),
+            "",
+            "![Pd against SNR](pd_vs_snr.png)",
+            "",
+        ]
+    for column, table in factors.items():
+        name, unit, _ = FACTORS[column]
+        lines += [f"## By {name}", "", _pivot(table, "bin", "value"), ""]
+    path.write_text("\n".join(lines))
+    return path

@@ -874,10 +874,18 @@ def cmd_realism(args: argparse.Namespace) -> int:
 
 
 def cmd_bench(args: argparse.Namespace) -> int:
-    """Run detectors over a labelled dataset; print, write and plot the rates."""
-    from .bench import load_callable, plot_bench, run_bench, summarise
+    """Run detectors over a labelled dataset; print and write the scores, curves and report."""
+    import pandas as pd
 
+    from . import bench
+
+    out = Path(args.out) if args.out else None
+    if out is not None and out.exists() and not out.is_dir():
+        raise CliError(f"--out {args.out!r} is a file; give a folder for the tables and plots")
+    for spec in args.detector:
+        bench.load_callable(spec)  # a wrong plug-in is refused before any work
     model = None
+    in_sample = 0.0
     if args.model:
         from .classifier import load_model
 
@@ -897,7 +905,6 @@ def cmd_bench(args: argparse.Namespace) -> int:
                     f"IN-SAMPLE: {in_sample:.0%} of these signals trained the model; its rates "
                     "below are not a measure of accuracy"
                 )
-    detectors = {spec: load_callable(spec) for spec in args.detector}
     bar = None
 
     def progress(done: int, total: int) -> None:
@@ -908,27 +915,86 @@ def cmd_bench(args: argparse.Namespace) -> int:
             bar = tqdm(total=total, desc="bench", unit="signal", disable=None, file=sys.stderr)
         bar.update(done - bar.n)
 
-    results = run_bench(
+    results = bench.run_bench(
         args.dataset,
         model=model,
-        detectors=detectors,
+        detectors=args.detector,
         bearing=args.bearing,
         progress=progress,
         allow_incomplete=args.allow_incomplete,
+        workers=args.workers,
     )
     if bar is not None:
         bar.close()
-    summary = summarise(results)
-    for name, table in summary.items():
-        print(f"== {name}")
-        print(table.to_string(float_format=lambda v: f"{v:.3f}"))
-    if args.out:
-        out = Path(args.out)
+    if in_sample:
+        results["in_sample"] = True
+    summary, curves = bench.score_summary(results)
+    snr_column = next((c for c in ("fault_snr_db", "snr_db") if c in results), None)
+    by_snr = by_snr_fault = None
+    if snr_column is not None:
+        columns = ["detector", "snr_db", "pd_at_pfa_0.01", "ci_low", "ci_high", "signals", "bin"]
+        snr_table = bench.by_factor(results, snr_column)
+        if len(snr_table):
+            by_snr = snr_table.rename(columns={"value": "snr_db"})[columns]
+            by_snr_fault = pd.concat(
+                [by_snr.assign(fault="all")]
+                + [
+                    bench.by_factor(results, snr_column, fault=f)
+                    .rename(columns={"value": "snr_db"})[columns]
+                    .assign(fault=f)
+                    for f in bench.FAULT_CLASSES
+                ],
+                ignore_index=True,
+            )
+    factors = {
+        c: bench.by_factor(results, c)
+        for c in bench.FACTORS
+        if c not in ("fault_snr_db", "snr_db") and c in results and results[c].nunique() > 1
+    }
+    tag = " [IN-SAMPLE]" if in_sample else ""
+    print(f"== ROC area and detection at fixed false-alarm rates{tag}")
+    print(summary.to_string(index=False, float_format=lambda v: f"{v:.3f}"))
+    if by_snr is not None:
+        print(f"== detection at false alarm 0.01 against {snr_column}{tag}")
+        print(by_snr.drop(columns=["bin"]).to_string(index=False, float_format="{:.3f}".format))
+    labels = bench.summarise(results)["overall"]
+    print(f"== the detectors' own labels{tag}")
+    print(labels.to_string(float_format=lambda v: f"{v:.3f}"))
+    if out is not None:
         out.mkdir(parents=True, exist_ok=True)
-        results.to_csv(out / "bench_results.csv", index=False)
-        for name, table in summary.items():
-            table.to_csv(out / f"bench_{name}.csv")
-        for path in plot_bench(summary, out):
+        if in_sample:
+            for frame in (summary, labels):
+                frame["in_sample"] = True
+        results.to_csv(out / "results.csv", index=False)
+        summary.to_csv(out / "summary.csv", index=False)
+        labels.to_csv(out / "labels.csv")
+        if by_snr is not None:
+            if in_sample:
+                by_snr = by_snr.assign(in_sample=True)
+            by_snr.drop(columns=["bin"]).to_csv(out / "by_snr.csv", index=False)
+            by_snr_fault.drop(columns=["bin"]).to_csv(out / "by_snr_fault.csv", index=False)
+        if factors:
+            table = pd.concat([t.assign(factor=c) for c, t in factors.items()], ignore_index=True)
+            table.to_csv(out / "by_factor.csv", index=False)
+        title = f"{Path(args.dataset).name}{tag}"
+        written = [bench.plot_roc(curves, out / "roc.png", title=f"ROC: {title}")]
+        if by_snr is not None:
+            written.append(
+                bench.plot_pd_vs_snr(
+                    by_snr_fault, out / "pd_vs_snr.png", title=f"detection against SNR: {title}"
+                )
+            )
+        written.append(
+            bench.write_report(
+                out / "report.md",
+                Path(args.dataset).name,
+                summary,
+                by_snr if by_snr is not None else summary.iloc[0:0],
+                factors,
+                in_sample=in_sample,
+            )
+        )
+        for path in written:
             print(f"wrote {path}")
     return 0
 
@@ -1108,7 +1174,14 @@ def build_parser() -> argparse.ArgumentParser:
         action="append",
         default=[],
         metavar="MODULE:FUNCTION",
-        help="user detector f(x, fs, rpm, bearing) -> label; repeatable",
+        help="user detector f(x, fs, rpm, bearing) -> label, or {'label': ..., 'scores': "
+        "{'outer race': s, 'inner race': s, 'ball': s}}; repeatable",
+    )
+    p.add_argument(
+        "--workers",
+        type=_positive_int,
+        default=1,
+        help="processes, each running whole signals through every detector",
     )
     p.add_argument(
         "--bearing",

@@ -20,6 +20,12 @@ from .catalog import (
     feature_names,
     feature_units,
 )
+from .detectors import (
+    cpw_envelope_scores,
+    envelope_scores,
+    spectral_kurtosis_score,
+    time_scores,
+)
 from .envelope import KurtogramResult, envelope, envelope_spectrum, kurtogram, prewhiten
 from .evidence import EVIDENCE_NAMES, Evidence, fault_evidence, slip_line
 from .separation import (
@@ -43,6 +49,10 @@ from .stats import TIME_STATISTICS, time_statistics
 from .transformer import CONTEXT_COLUMNS, FEATURE_SETS, FeatureExtractor
 
 __all__ = [
+    "cpw_envelope_scores",
+    "envelope_scores",
+    "spectral_kurtosis_score",
+    "time_scores",
     "BAND_METRIC_COLUMNS",
     "EVIDENCE_NAMES",
     "Evidence",

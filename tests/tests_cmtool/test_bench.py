@@ -1,11 +1,22 @@
-"""Detector benchmark over labelled datasets (synthetic folder and measured manifest)."""
+"""Detector benchmark: scores, ROC, detection at fixed false-alarm rates, SNR curves (issue 20)."""
 
+import math
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 
-from cmtool.bench import load_callable, run_bench, summarise
+from cmtool.bench import (
+    BUILTIN_DETECTORS,
+    by_factor,
+    load_callable,
+    run_bench,
+    score_summary,
+    summarise,
+    threshold_at_pfa,
+    wilson_interval,
+)
 from cmtool.cli import main
 
 SMALL = Path(__file__).resolve().parents[2] / "datasets" / "small"
@@ -15,15 +26,98 @@ def always_healthy(x, fs, rpm, bearing):
     return "healthy"
 
 
-def test_user_detector_rates():
-    results = run_bench(SMALL, detectors={"null": always_healthy})
+def rms_detector(x, fs, rpm, bearing):
+    """A plug-in with scores: the RMS for every fault (the documented mapping form)."""
+    value = float(np.sqrt(np.mean(np.square(x))))
+    return {"label": "outer race", "scores": {"outer": value, "inner race": value, "ball": value}}
+
+
+def test_every_detector_scores_every_fault_and_plugins_follow_the_contract():
+    results = run_bench(SMALL, detectors={"null": always_healthy, "rms": rms_detector})
+    assert list(dict.fromkeys(results["detector"])) == [*BUILTIN_DETECTORS, "null", "rms"]
+    scores = results[["score_outer_race", "score_inner_race", "score_ball"]].to_numpy()
+    assert np.isfinite(scores).all()
+    null = results[results["detector"] == "null"]
+    assert (null[["score_outer_race", "score_inner_race", "score_ball"]] == 0).all().all()
+    rms = results[results["detector"] == "rms"]
+    assert (rms["score_outer_race"] == rms["score_ball"]).all() and (
+        rms["verdict"] == "outer race"
+    ).all()
     summary = summarise(results)
-    null = summary["overall"].loc["null"]
-    assert null["detection_rate"] == 0.0 and null["false_alarm_rate"] == 0.0
-    assert null["accuracy"] == pytest.approx(12 / 48)
-    assert {"rpm", "radial_load_n", "waviness_amplitude_m"} <= set(summary)
-    env = summary["overall"].loc["envelope"]
-    assert 0.0 <= env["correct_fault_first_rate"] <= env["detection_rate"] <= 1.0
+    assert summary["overall"].loc["null", "detection_rate"] == 0.0
+    assert summary["overall"].loc["null", "accuracy"] == pytest.approx(12 / 48)
+    # factors in numeric order with readable units
+    bins = list(summary["rpm"].loc["envelope"].index)
+    assert bins == sorted(bins, key=lambda b: float(b.split()[0])) and bins[0].endswith("rpm")
+
+
+def test_wilson_interval_and_thresholds():
+    # Wilson (1927): 9 of 10, z = 1.96 -> [0.5958, 0.9821]; 0 of 20 -> [0, 0.1611]
+    assert wilson_interval(9, 10) == pytest.approx((0.5958, 0.9821), abs=1e-4)
+    assert wilson_interval(0, 20) == pytest.approx((0.0, 0.1611), abs=1e-4)
+    assert all(math.isnan(v) for v in wilson_interval(0, 0))
+    healthy = np.arange(1000.0)  # scores 0 .. 999
+    assert threshold_at_pfa(healthy, 1e-2) == 989.0  # 10 of 1000 above it
+    assert threshold_at_pfa(healthy, 1e-3) == 998.0  # 1 of 1000 above it
+    assert math.isnan(threshold_at_pfa(healthy[:999], 1e-3))  # 999 cannot measure 1e-3
+
+
+def _synthetic_results(rng, n_healthy=1000, n_fault=200, shift=2.0):
+    """One detector: healthy scores N(0, 1), each fault's own score N(shift, 1)."""
+    rows = []
+    for i in range(n_healthy):
+        rows.append({"id": f"h{i}", "label": "healthy", "fault_snr_db": np.nan})
+    for fault in ("outer race", "inner race", "ball"):
+        for i in range(n_fault):
+            rows.append(
+                {"id": f"{fault}{i}", "label": fault, "fault_snr_db": -20 + 30 * i / n_fault}
+            )
+    frame = pd.DataFrame(rows)
+    frame["detector"] = "gauss"
+    frame["verdict"] = "healthy"
+    for fault in ("outer race", "inner race", "ball"):
+        column = "score_" + fault.replace(" ", "_")
+        own = frame["label"] == fault
+        frame[column] = rng.standard_normal(len(frame)) + shift * own
+    return frame
+
+
+def test_auc_and_detection_at_fixed_false_alarm_match_the_gaussian_theory(rng):
+    from scipy.stats import norm
+
+    shift = 2.0
+    frame = _synthetic_results(rng, n_healthy=4000, n_fault=2000, shift=shift)
+    summary, curves = score_summary(frame)
+    assert set(summary.columns) >= {"detector", "fault", "auc", "pd_at_pfa_0.01", "pd_at_pfa_0.001"}
+    # binormal ROC: AUC = Phi(d / sqrt 2), Pd at Pfa = Phi(d - z_(1 - Pfa))
+    auc = norm.cdf(shift / math.sqrt(2))  # 0.921
+    pd2 = norm.cdf(shift - norm.ppf(1 - 1e-2))  # 0.372
+    pd3 = norm.cdf(shift - norm.ppf(1 - 1e-3))  # 0.116
+    # sampling errors: AUC ~ 0.004, Pd ~ 0.011 (binomial, 2000) plus the threshold's own
+    # error (4000 healthy; the 1e-3 quantile rests on 4 exceedances: ~0.05 in Pd)
+    assert summary["auc"].to_numpy() == pytest.approx(auc, abs=0.02)
+    assert summary["pd_at_pfa_0.01"].to_numpy() == pytest.approx(pd2, abs=0.05)
+    assert summary["pd_at_pfa_0.001"].to_numpy() == pytest.approx(pd3, abs=0.08)
+    assert set(curves) == {("gauss", f) for f in ("outer race", "inner race", "ball")}
+
+
+def test_detection_against_snr_bins_in_order_with_intervals(rng):
+    frame = _synthetic_results(rng)
+    # make the own score grow with the SNR: an S-curve by construction
+    faulty = frame["label"] != "healthy"
+    for fault in ("outer race", "inner race", "ball"):
+        column = "score_" + fault.replace(" ", "_")
+        own = frame["label"] == fault
+        frame.loc[own, column] = (
+            rng.standard_normal(own.sum()) + (frame.loc[own, "fault_snr_db"] + 20) / 5
+        )
+    table = by_factor(frame, "fault_snr_db")
+    assert list(table["value"]) == sorted(table["value"])  # bins in order
+    assert table["bin"].iloc[0] == "-20 to -17 dB"
+    assert table["signals"].sum() == faulty.sum()
+    assert (table["ci_low"] <= table["pd_at_pfa_0.01"]).all()
+    assert (table["pd_at_pfa_0.01"] <= table["ci_high"]).all()
+    assert table["pd_at_pfa_0.01"].iloc[0] < 0.2 and table["pd_at_pfa_0.01"].iloc[-1] > 0.95
 
 
 def test_load_callable_errors():
@@ -34,22 +128,70 @@ def test_load_callable_errors():
         load_callable("math:pi")
 
 
-def test_cli_bench_writes_tables_and_plots(tmp_path, capsys):
-    rc = main(
-        ["bench", str(SMALL), "--detector", "test_bench:always_healthy", "--out", str(tmp_path)]
-    )
-    assert rc == 0
-    assert "detection_rate" in capsys.readouterr().out
-    overall = pd.read_csv(tmp_path / "bench_overall.csv", index_col=0)
-    assert set(overall.index) == {"envelope", "test_bench:always_healthy"}
-    assert (tmp_path / "bench_rpm.png").stat().st_size > 5000
+def test_cli_bench_writes_the_named_outputs(tmp_path, capsys):
+    out = tmp_path / "bench"
+    argv = ["bench", str(SMALL), "--detector", "test_bench:rms_detector", "--out", str(out)]
+    assert main([*argv, "--workers", "2"]) == 0
+    printed = capsys.readouterr().out
+    assert "pd_at_pfa_0.01" in printed and "detection_rate" in printed
+    summary = pd.read_csv(out / "summary.csv")
+    assert list(summary.columns[:6]) == [
+        "detector",
+        "fault",
+        "auc",
+        "pd_at_pfa_0.01",
+        "pd_at_pfa_0.001",
+        "signals",
+    ]
+    assert set(summary["detector"]) == {*BUILTIN_DETECTORS, "test_bench:rms_detector"}
+    # 48 healthy signals: a 1e-2 threshold cannot be measured on them
+    assert summary["pd_at_pfa_0.01"].isna().all()
+    by_snr = pd.read_csv(out / "by_snr.csv")
+    assert list(by_snr.columns) == [
+        "detector",
+        "snr_db",
+        "pd_at_pfa_0.01",
+        "ci_low",
+        "ci_high",
+        "signals",
+    ]
+    for name in ("roc.png", "pd_vs_snr.png"):
+        assert (out / name).stat().st_size > 10000
+    report = (out / "report.md").read_text()
+    assert "Healthy signals: 48" in report and "![ROC](roc.png)" in report
+    assert main(["bench", str(SMALL), "--detector", "nosuch:module"]) == 2
 
 
 @pytest.mark.realdata
 def test_bench_on_measured_recordings(shared_data):
-    summary = summarise(run_bench(shared_data))
-    env = summary["overall"].loc["envelope"]
-    assert env["signals"] == 6
-    assert env["detection_rate"] == 1.0
-    assert env["false_alarm_rate"] == 0.0
-    assert env["correct_fault_first_rate"] == 1.0
+    results = run_bench(shared_data)
+    summary = summarise(results)
+    rule = summary["overall"].loc["envelope"]
+    assert rule["signals"] == 6
+    assert rule["detection_rate"] == 1.0
+    assert rule["false_alarm_rate"] == 0.0
+    assert rule["correct_fault_first_rate"] == 1.0
+    scores, _ = score_summary(results)
+    # one healthy record: every AUC is measured against it; no false-alarm rate can be
+    assert scores["healthy_signals"].eq(1).all() and scores["pd_at_pfa_0.01"].isna().all()
+
+
+def test_the_benchmark_recipe_can_set_a_1e3_threshold_and_sweeps_the_snr():
+    import tomllib
+
+    from generators.dataset import validate_recipe
+
+    path = Path(__file__).resolve().parents[2] / "datasets" / "detector-bench.toml"
+    recipe = validate_recipe(tomllib.loads(path.read_text()))
+    counts = {c["label"]: c["count"] for c in recipe["conditions"]}
+    assert counts["healthy"] >= 1000  # a 1e-3 false-alarm threshold on healthy signals alone
+    assert {"inner", "outer", "ball"} <= set(counts)
+    assert recipe["sensor"]["fault_snr_db"] == {"range": (-20.0, 10.0)}
+    assert len(recipe["bearings"]) >= 3
+
+
+def test_snr_below_the_sweep_is_pooled_in_one_bin_first(rng):
+    frame = _synthetic_results(rng, n_healthy=200, n_fault=30)
+    frame.loc[frame["id"].isin(["ball0", "ball1"]), "fault_snr_db"] = [-150.0, -45.0]
+    table = by_factor(frame, "fault_snr_db")
+    assert table["bin"].iloc[0] == "below -20 dB" and table["signals"].iloc[0] == 2
