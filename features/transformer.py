@@ -161,7 +161,9 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
         """Feature matrix, shape (n_signals, n_features)."""
         check_is_fitted(self, "feature_names_out_")
         if not isinstance(X, pd.DataFrame):
-            X = validate_data(self, X, dtype=np.float64, reset=False, ensure_min_features=2)
+            # the count of samples per signal is checked against fit's first (any count, even
+            # one, gets scikit-learn's "X has n features, but ... is expecting m" error)
+            X = validate_data(self, X, dtype=np.float64, reset=False, ensure_min_features=1)
         names = list(self.feature_names_out_)
         items = list(self._rows(X))
         if self.n_jobs in (None, 1) or len(items) < 2:
