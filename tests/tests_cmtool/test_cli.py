@@ -224,3 +224,100 @@ def test_frequencies_json(capsys):
     assert main(["frequencies", "--bearing", "6205", "--rpm", "1797", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["frequencies_hz"]["bpfo"] == pytest.approx(107.36, abs=0.01)
+
+
+# every model flag of `simulate` (and of `fidelity`, which shares them), the value given and
+# where it must land: (flag, value, object, field, expected)
+MODEL_FLAGS = [
+    ("--bearing", "6203", "geometry", "name", "6203"),
+    ("--clearance", "2.5e-05", "geometry", "radial_internal_clearance", 2.5e-05),
+    ("--rpm", "2400", "operating", "shaft_frequency", 40.0),
+    ("--load", "750", "operating", "radial_load", 750.0),
+    ("--load-angle", "-1.25", "operating", "load_angle", -1.25),
+    ("--cage-slip", "0.015", "operating", "cage_slip", 0.015),
+    ("--random-slip", "0.012", "operating", "random_slip", 0.012),
+    ("--ball-jitter", "0.004", "operating", "ball_jitter", 0.004),
+    ("--scene", "full", "scene", "level", "full"),
+    ("--no-ehl", None, "scene", "ehl", False),
+    ("--auto-error-bound", "0.02", "scene", "auto_error_bound", 0.02),
+    ("--shaft-mass", "1.7", "rig", "shaft_mass", 1.7),
+    ("--housing-mass", "3.3", "rig", "housing_mass", 3.3),
+    ("--pedestal-stiffness", "6.5e7", "rig", "pedestal_stiffness", 6.5e7),
+    ("--pedestal-damping", "950", "rig", "pedestal_damping", 950.0),
+    ("--shaft-damping", "450", "rig", "shaft_damping", 450.0),
+    ("--contact-damping-time", "3e-7", "rig", "contact_damping_time", 3e-7),
+    ("--film-damping-factor", "0.4", "rig", "film_damping_factor", 0.4),
+    ("--loading-stiffness", "1.5e6", "rig", "loading_stiffness", 1.5e6),
+    ("--unbalance", "2e-5", "rig", "unbalance", 2e-5),
+    ("--no-gravity", None, "rig", "gravity", False),
+    ("--fs", "20480", "settings", "fs", 20480.0),
+    ("--duration", "0.25", "settings", "duration", 0.25),
+    ("--settle", "0.03", "settings", "settle_time", 0.03),
+    ("--integrator", "dopri5", "settings", "integrator", "dopri5"),
+    ("--step", "7e-6", "settings", "step", 7e-6),
+    ("--rtol", "1e-7", "settings", "rtol", 1e-7),
+    ("--atol", "3e-13", "settings", "atol_displacement", 3e-13),
+    ("--oversample", "3", "settings", "oversample", 3),
+    ("--cage-angle", "0.2", "settings", "cage_angle", 0.2),
+    ("--contact-loads", None, "settings", "record_contact_loads", True),
+    (
+        "--channels",
+        "housing_velocity_y,shaft_displacement_x",
+        "settings",
+        "channels",
+        ("housing_velocity_y", "shaft_displacement_x"),
+    ),
+]
+
+
+@pytest.mark.parametrize("flag, value, target, field, expected", MODEL_FLAGS)
+def test_every_model_flag_lands_in_its_parameter_object(flag, value, target, field, expected):
+    """One flag at a time: the parameter object gets the value, and nothing else changes."""
+    from cmtool.cli import _model_inputs, build_parser
+
+    parser = build_parser()
+    default = dict(
+        zip(
+            ("geometry", "operating", "defects", "scene", "rig", "settings"),
+            _model_inputs(parser.parse_args(["simulate"])),
+            strict=True,
+        )
+    )
+    argv = ["simulate", flag] + ([] if value is None else [value])
+    given = dict(zip(default, _model_inputs(parser.parse_args(argv)), strict=True))
+    got = getattr(given[target], field)
+    assert got == (pytest.approx(expected) if isinstance(expected, float) else expected)
+    assert getattr(default[target], field) != got  # the test value is not the default
+    for name in ("operating", "scene", "rig", "settings"):
+        if name != target and not (flag == "--bearing" and name == "operating"):
+            assert given[name] == default[name], name
+
+
+def test_every_simulate_flag_is_in_the_table():
+    from cmtool.cli import build_parser
+
+    parser = build_parser()
+    simulate = parser._subparsers._group_actions[0].choices["simulate"]
+    flags = {s for a in simulate._actions for s in a.option_strings if s.startswith("--")}
+    outputs = {
+        "--help",
+        "--out",
+        "--plot",
+        "--envelope-plot",
+        "--seed",
+        "--ehl",
+        "--lubricant",
+        "--waviness",
+        "--defect",
+    }
+    tested = {row[0] for row in MODEL_FLAGS}
+    assert flags - outputs - tested == set()
+
+
+def test_version_flag(capsys):
+    from cmtool import __version__
+
+    with pytest.raises(SystemExit) as stop:
+        main(["--version"])
+    assert stop.value.code == 0
+    assert capsys.readouterr().out.strip() == f"cmtool {__version__}"
