@@ -262,3 +262,15 @@ def test_recording_readers_wav_npy_npz_parquet(tmp_path):
         channel = 5 if name == "a.npy" else 1
         with pytest.raises(RecordingError, match=f"channel {channel} is outside"):
             read_recording(tmp_path / name, channel=channel)
+
+
+def test_diagnose_reads_the_asked_variable_of_an_npz(outer_race_csv, tmp_path, capsys):
+    """--variable picks the array of an .npz (and is refused when it names none)."""
+    x = np.loadtxt(outer_race_csv, delimiter=",")[:, 1]
+    archive = tmp_path / "two.npz"
+    np.savez(archive, noise=np.random.default_rng(2).standard_normal(x.size), accel=x)
+    base = ["diagnose", str(archive), "--rpm", "1797", "--bearing", "6205", "--fs", "12000"]
+    assert main([*base, "--variable", "accel", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["verdict"] == "outer race"
+    assert main([*base, "--variable", "nosuch"]) == 2
+    assert "choose a variable" in _one_line_error(capsys)

@@ -146,9 +146,10 @@ def test_evaluate_metrics(bundle, small):
 
 def test_cli_train_evaluate(tmp_path, capsys):
     model = tmp_path / "model.skops"
-    assert main(["train", str(SMALL), "--out", str(model)]) == 0
+    assert main(["train", str(SMALL), "--out", str(model), "--feature-set", "envelope"]) == 0
     out = capsys.readouterr().out
     assert "grouped" in out and "<- kept" in out
+    assert load_model(model)["feature_set"] == "envelope"  # --feature-set reached the bundle
     # scoring a model on its own training signals is refused ...
     assert main(["evaluate", str(model), str(SMALL)]) == 2
     assert "100% of the signals" in capsys.readouterr().err
@@ -161,6 +162,11 @@ def test_cli_train_evaluate(tmp_path, capsys):
     assert "confusion matrix" in out and "precision" in out and "IN-SAMPLE" in out
     assert json.loads((tmp_path / "ev" / "evaluation.json").read_text())["in_sample_fraction"] == 1
     assert (tmp_path / "ev" / "confusion.png").stat().st_size > 5000
+    bench = ["bench", str(SMALL), "--model", str(model), "--out", str(tmp_path / "b")]
+    assert main([*bench, "--allow-training-data", "--workers", "2"]) == 0
+    assert "IN-SAMPLE" in capsys.readouterr().out
+    summary = pd.read_csv(tmp_path / "b" / "summary.csv")
+    assert {"model", "combined"} <= set(summary["detector"]) and summary["in_sample"].all()
 
 
 def test_diagnose_synthetic_impulses_and_noise(rng):

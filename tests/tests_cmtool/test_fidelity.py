@@ -96,6 +96,10 @@ def test_cli_writes_csv_and_plot(tmp_path, capsys):
             "0.02",
             "--fs",
             "10240",
+            "--f-max",
+            "2000",
+            "--error-bound",
+            "0.2",
             "--out",
             str(out),
             "--plot",
@@ -107,5 +111,6 @@ def test_cli_writes_csv_and_plot(tmp_path, capsys):
     assert list(written.columns) == list(FIDELITY_COLUMNS)
     assert plot.stat().st_size > 10_000
     text = capsys.readouterr().out
-    assert "recommended" in text or "no stable setting" in text
+    assert "spectrum error up to 2000 Hz" in text  # --f-max reached the study
+    assert "under a 0.2 band-amplitude error bound" in text or "error bound 0.2" in text
     assert all(math.isfinite(v) for v in written.wall_s_per_simulated_s)
