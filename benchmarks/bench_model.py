@@ -2,7 +2,7 @@
 
 Run: ``make bench`` or ``.venv/bin/python benchmarks/bench_model.py [--quick]``.
 
-Scene: 6205, 1800 rpm, 500 N, outer-race waviness N_w = 9, A = 1 um, MODEL.md 6.3 rig, output
+Scene: 6205, 1800 rpm, 500 N, outer-race waviness N_w = 9, A = 1 um, docs/model.md 6.3 rig, output
 25.6 kHz. Accuracy measure: the BPFO amplitude of the housing velocity (y).
 
 1. Every compiled scene (shaft, shaft+housing, full; dry and EHL) at its default RK4 step:

@@ -193,7 +193,7 @@ def _add_model_arguments(p: argparse.ArgumentParser) -> None:
     )
     s.add_argument("--no-ehl", dest="ehl", action="store_false", help="dry contacts")
     s.add_argument("--auto-error-bound", type=float, default=0.05)
-    r = p.add_argument_group("rig (MODEL.md 6.3 defaults)")
+    r = p.add_argument_group("rig (docs/model.md 6.3 defaults)")
     d = Rig()
     r.add_argument("--shaft-mass", type=float, default=d.shaft_mass, help="[kg]")
     r.add_argument("--housing-mass", type=float, default=d.housing_mass, help="[kg]")

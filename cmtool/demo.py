@@ -1,6 +1,6 @@
 """``cmtool demo``: the main job on the embedded default.
 
-1. Simulates the default 6205 scene (1800 rpm, 500 N, MODEL.md 6.3 rig) healthy and with
+1. Simulates the default 6205 scene (1800 rpm, 500 N, docs/model.md 6.3 rig) healthy and with
    outer-race waviness N_w = 9 and plots the housing-velocity spectra.
 2. Generates the small dataset (``datasets/small.toml``), trains the classifiers with
    grouped cross-validation and plots the confusion matrix of the held-out operating points.

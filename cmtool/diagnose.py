@@ -114,7 +114,7 @@ def check_signal_quality(x: np.ndarray) -> list[str]:
 
 
 def _waviness_hint(spectra, freqs: BearingFrequencies, geometry: BearingGeometry) -> dict | None:
-    """Waviness order suggested by the plain spectrum (MODEL.md 2.1 rules), if a line stands out."""
+    """Waviness order suggested by the plain spectrum (docs/model.md 2.1), if a line stands out."""
     f, a = spectra.frequencies, spectra.amplitude
     z = geometry.ball_count
     best = None
@@ -135,7 +135,7 @@ def _waviness_hint(spectra, freqs: BearingFrequencies, geometry: BearingGeometry
         "line_hz": round(best[3], 3),
         "snr_db": round(best[0], 2),
         "note": (
-            "a discrete line consistent with waviness of this order (MODEL.md 2.1; "
+            "a discrete line consistent with waviness of this order (docs/model.md 2.1; "
             + (
                 "orders qZ and qZ +/- 1 share the line"
                 if best[1] == "outer"

@@ -16,7 +16,7 @@ Feature names and units (U = unit of the signal, dB = 20 log10 of a ratio):
   the fundamental (spacing: shaft frequency for ``bpfi``, cage frequency for ``two_bsf``);
 * ``spectrum_<fault>_h<k>_sideband_snr`` [dB]: largest SNR in the amplitude spectrum among the
   sidebands k x fault +/- m x spacing, m = 1 .. ``SPECTRUM_SIDEBANDS`` (waviness of the inner
-  race puts its lines at q BPFI + (N_w - qZ) f_s, of the balls at 2p BSF +/- FTF: MODEL.md
+  race puts its lines at q BPFI + (N_w - qZ) f_s, of the balls at 2p BSF +/- FTF: docs/model.md
   2.1);
 * the kurtogram band is at least ``MIN_BAND_FACTOR`` times the fastest fault rate wide;
 * ``spectrum_<fault>_max_snr`` [dB]: the largest of the fault's spectrum SNRs above (its
@@ -26,7 +26,7 @@ Feature names and units (U = unit of the signal, dB = 20 log10 of a ratio):
 * ``shaft_frequency`` [Hz]: the context's shaft frequency (0 when not given). A classifier
   needs it to know what a healthy bearing looks like at that speed: the varying-compliance
   lines at q x BPFO, which outer-race waviness also excites, change with speed through the
-  housing's transfer function (MODEL.md 2.1).
+  housing's transfer function (docs/model.md 2.1).
 """
 
 from __future__ import annotations

@@ -19,7 +19,7 @@ Conventions (the Python side, :mod:`generators.model`, packs and unpacks):
 * Time-only terms (cage angle, waviness per ball) are computed once per distinct stage time
   (:func:`_time_terms`), outside the right-hand side.
 
-Scenes (MODEL.md 1.3-1.5): ``SCENE_SHAFT`` 2-DOF shaft on massless balls with a rigid housing
+Scenes (docs/model.md 1.3-1.5): ``SCENE_SHAFT`` 2-DOF shaft on massless balls with a rigid housing
 (the housing is integrated one-way, driven by the transmitted bearing force, as an output
 estimate); ``SCENE_SHAFT_HOUSING`` 4 DOF; ``SCENE_FULL`` 4 + Z DOF.
 Only numpy, numba and math are imported here (checked by import-linter).
@@ -86,9 +86,10 @@ import numpy as np
 # P_TABLE_NODES nodes each, every node [d, dd/ds]: the elastic approach d solving
 # d = delta + h(K d^1.5) on a grid uniform in s = sqrt(delta + h_max) (delta >= -h_max).
 TABLE_INNER, TABLE_OUTER, TABLE_SERIES = 0, 1, 2
-# P_FILM_*: h_c = P_FILM_* * (Q + floor)^FILM_EXPONENT [m] (Hamrock-Dowson, MODEL.md 4.2).
+# P_FILM_*: h_c = P_FILM_* * (Q + floor)^FILM_EXPONENT [m] (Hamrock-Dowson, docs/model.md 4.2).
 # P_SQUEEZE_*: squeeze-film damping c = P_SQUEEZE_* * (Q + floor)^-FILM_EXPONENT [N s/m]
-# (MODEL.md 4.5 with h_c inserted); P_SQUEEZE_SERIES is the series combination for massless balls.
+# (docs/model.md 4.5 with h_c inserted); P_SQUEEZE_SERIES is the series combination for
+# massless balls.
 
 FILM_EXPONENT = -0.067
 FILM_ITERATIONS = 2  # Newton steps on d = delta + h(K d^1.5): error 1e-5 (tests/reference.py)
@@ -257,7 +258,7 @@ def _static_newton(cos_t, sin_t, gap, k, fx, fy, x, y, length_scale, force_scale
 
 @numba.njit(**_JIT)
 def _hertz_dry(delta, delta_rate, k_hertz, damping_time):
-    """Q = [K d^1.5 + tau * 1.5 K d^0.5 * d']_+ (damping vanishes at onset, MODEL.md 1.2)."""
+    """Q = [K d^1.5 + tau * 1.5 K d^0.5 * d']_+ (damping vanishes at onset, docs/model.md 1.2)."""
     if delta <= 0.0:
         return 0.0
     root = math.sqrt(delta)
@@ -267,10 +268,10 @@ def _hertz_dry(delta, delta_rate, k_hertz, damping_time):
 
 @numba.njit(**_JIT)
 def _hertz_ehl(delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max):
-    """Hertz contact in series with the EHL film (MODEL.md 4.3-4.4).
+    """Hertz contact in series with the EHL film (docs/model.md 4.3-4.4).
 
     Solves d = delta + h(K d^1.5) for the elastic approach d, with the film
-    h(Q) = film * (Q + floor)^-0.067: a smooth form of MODEL.md's floor max(Q, floor) (0.013 %
+    h(Q) = film * (Q + floor)^-0.067: a smooth form of docs/model.md's floor max(Q, floor) (0.013 %
     thinner at 500 N with a 1 N floor), smooth so that RK4 keeps its order. ``FILM_ITERATIONS``
     Newton steps from d = delta + h_ref (the film at the reference load); dh/dd =
     -0.1005 h/d Q/(Q + floor). Then adds the dry (stiffness-proportional) and squeeze-film

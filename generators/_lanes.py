@@ -340,7 +340,7 @@ def _contact(ehl, j, b, f, tt, c, p, z, pc, ps):
             TABLE_SERIES,
         )
     else:
-        # dry Hertz contact without a branch (MODEL.md 1.2): K d^1.5 + 1.5 tau K
+        # dry Hertz contact without a branch (docs/model.md 1.2): K d^1.5 + 1.5 tau K
         # d^0.5 d', zero when d <= 0 and clipped at zero (no tension)
         dp = d if d > 0.0 else 0.0
         q = c[C_K, b] * math.sqrt(dp) * (dp + c[C_TAU15, b] * dd)

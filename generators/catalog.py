@@ -1,8 +1,8 @@
 """Catalog of real deep groove ball bearings (presets are data, not subclasses).
 
 Each entry carries a ``source``. Groove conformities are not published by manufacturers;
-0.52/0.52 is used throughout (MODEL.md 6.1, [A]). The radial internal clearance default is
-10 um (ISO CN group for 24-30 mm bores spans 5-20 um, MODEL.md 6.1).
+0.52/0.52 is used throughout (docs/model.md 6.1, [A]). The radial internal clearance default is
+10 um (ISO CN group for 24-30 mm bores spans 5-20 um, docs/model.md 6.1).
 """
 
 from __future__ import annotations
@@ -18,8 +18,8 @@ _INCH = 0.0254  # [m]
 
 BEARINGS: dict[str, BearingGeometry] = {
     # CWRU drive-end bearing SKF 6205-2RS JEM: 9 balls, d = 0.3126 in, D = 1.537 in (CWRU Bearing
-    # Data Center; ../shared/data/README.md). Ratings and limiting speed: NSK 6205 list (MODEL.md
-    # source 8): C0r = 7.85 kN, grease limiting speed 13 000 rpm.
+    # Data Center; ../shared/data/README.md). Ratings and limiting speed: NSK 6205 list
+    # (docs/model.md source 8): C0r = 7.85 kN, grease limiting speed 13 000 rpm.
     "6205": BearingGeometry(
         name="6205",
         ball_count=9,
@@ -27,7 +27,7 @@ BEARINGS: dict[str, BearingGeometry] = {
         pitch_diameter=1.537 * _INCH,
         static_load_rating=7850.0,
         limiting_speed_rpm=13000.0,
-        source="CWRU drive-end SKF 6205-2RS JEM geometry; NSK ratings (MODEL.md 6.1)",
+        source="CWRU drive-end SKF 6205-2RS JEM geometry; NSK ratings (docs/model.md 6.1)",
     ),
     # CWRU fan-end bearing SKF 6203-2RS JEM: 8 balls, d = 0.2656 in, D = 1.122 in (CWRU Bearing
     # Data Center; ../shared/data/README.md). 17x40x12 mm; C0r = 4.75 kN, limiting speed

@@ -1,15 +1,15 @@
 """Hertzian point contact and elastohydrodynamic film of a deep groove ball bearing.
 
-Sources (MODEL.md sections 3-4):
+Sources (docs/model.md sections 3-4):
 
 * [1] Hertz point contact in Hamrock's notation: curvature sum 1/R = 1/R_x + 1/R_y, ellipticity
   kappa = a/b from the exact elliptic-integral equation (3.1), load-deflection constant (3.3)
   K = pi kappa E' sqrt(R E / (4.5 K^3)).
 * [2] Hamrock & Brewe (1983) closed-form approximations (3.2) of kappa and the elliptic integrals
-  (coefficients recalled in MODEL.md; accuracy verified there to 2 % in K).
+  (coefficients recalled in docs/model.md; accuracy verified there to 2 % in K).
 * [3] Hamrock & Dowson (1977) isothermal central and minimum film thickness (4.2), (4.3).
 * [4] Film stiffness k_f = Q / (0.067 h_c) (4.4) and the squeeze-film damping of a flooded
-  ellipsoidal gap (4.5), both derived in MODEL.md.
+  ellipsoidal gap (4.5), both derived in docs/model.md.
 """
 
 from __future__ import annotations
@@ -85,7 +85,7 @@ class ContactGeometry:
 
 
 def contact_geometry(geometry: BearingGeometry, race: Race) -> ContactGeometry:
-    """Principal radii of the ball-inner or ball-outer groove contact (MODEL.md 3.1).
+    """Principal radii of the ball-inner or ball-outer groove contact (docs/model.md 3.1).
 
     Parameters
     ----------
@@ -120,7 +120,7 @@ def _curvature_difference_of_kappa(kappa: float) -> float:
 
 
 def ellipticity_exact(cg: ContactGeometry) -> tuple[float, float, float]:
-    """Ellipticity and elliptic integrals from the exact Hertz equation (MODEL.md 3.1).
+    """Ellipticity and elliptic integrals from the exact Hertz equation (docs/model.md 3.1).
 
     Solves F(rho) = [(kappa^2 + 1) E(m) - 2 K(m)] / [(kappa^2 - 1) E(m)], m = 1 - 1/kappa^2.
 
@@ -152,7 +152,7 @@ def ellipticity_exact(cg: ContactGeometry) -> tuple[float, float, float]:
 
 
 def ellipticity_hamrock_brewe(cg: ContactGeometry) -> tuple[float, float, float]:
-    """Hamrock-Brewe closed-form ellipticity and elliptic integrals (MODEL.md 3.2).
+    """Hamrock-Brewe closed-form ellipticity and elliptic integrals (docs/model.md 3.2).
 
     kappa = 1.0339 alpha_r^0.6360, E = 1.0003 + 0.5968 / alpha_r, K = 1.5277 + 0.6023 ln alpha_r.
 
@@ -227,7 +227,7 @@ class HertzContact:
 def hertz_contact(
     geometry: BearingGeometry, race: Race, *, method: Method = "exact"
 ) -> HertzContact:
-    """Hertz point contact of the ball with the inner or outer groove (MODEL.md 3.3).
+    """Hertz point contact of the ball with the inner or outer groove (docs/model.md 3.3).
 
     Parameters
     ----------
@@ -260,7 +260,7 @@ def hertz_contact(
 
 
 def series_constant(k_inner: float, k_outer: float) -> float:
-    """Load-deflection constant of a ball between both races (MODEL.md 3.4) [N/m^1.5].
+    """Load-deflection constant of a ball between both races (docs/model.md 3.4) [N/m^1.5].
 
     K_tot = (K_i^(-2/3) + K_o^(-2/3))^(-3/2).
     """
@@ -320,7 +320,7 @@ def contact_static_capacity(geometry: BearingGeometry, *, max_pressure: float = 
 def entrainment_speed(geometry: BearingGeometry, shaft_frequency_hz: float) -> float:
     """Mean rolling (entrainment) speed of both contacts, u = omega_s (D^2 - d^2) / (4 D) [m/s].
 
-    For alpha = 0 and a stationary outer ring (MODEL.md section 2).
+    For alpha = 0 and a stationary outer ring (docs/model.md section 2).
     """
     fs = check_real("shaft_frequency_hz", shaft_frequency_hz, low=0.0, high=2000.0, unit="Hz")
     d, pd = geometry.ball_diameter * math.cos(geometry.contact_angle), geometry.pitch_diameter
@@ -336,7 +336,7 @@ def film_thickness(
     kind: Literal["central", "minimum"] = "central",
     load_floor: float = 1.0,
 ) -> float | np.ndarray:
-    """Hamrock-Dowson isothermal EHL film thickness of a point contact (MODEL.md 4.1) [m].
+    """Hamrock-Dowson isothermal EHL film thickness of a point contact (docs/model.md 4.1) [m].
 
     h_c = 2.69 R_x U^0.67 G^0.53 W^-0.067 (1 - 0.61 exp(-0.73 k_e)),
     h_min = 3.63 R_x U^0.68 G^0.49 W^-0.073 (1 - exp(-0.68 k_e)),
@@ -388,7 +388,7 @@ def film_thickness(
 
 
 def film_stiffness(load: float, central_film_thickness: float) -> float:
-    """Film stiffness k_f = |dQ/dh_c| = Q / (0.067 h_c) (MODEL.md 4.4) [N/m]."""
+    """Film stiffness k_f = |dQ/dh_c| = Q / (0.067 h_c) (docs/model.md 4.4) [N/m]."""
     q = check_real("load", load, low=0.0, unit="N")
     h = check_real(
         "central_film_thickness", central_film_thickness, low=0.0, low_inclusive=False, unit="m"
@@ -397,7 +397,7 @@ def film_stiffness(load: float, central_film_thickness: float) -> float:
 
 
 def squeeze_film_shape_factor(epsilon: float) -> float:
-    """f(eps) ~ 2 - eps^0.75 of the squeeze-film damping (MODEL.md 4.5, +/- 5 %) [-]."""
+    """f(eps) ~ 2 - eps^0.75 of the squeeze-film damping (docs/model.md 4.5, +/- 5 %) [-]."""
     e = check_real("epsilon", epsilon, low=0.0, high=1.0)
     return 2.0 - e**0.75
 
@@ -405,7 +405,7 @@ def squeeze_film_shape_factor(epsilon: float) -> float:
 def squeeze_film_damping(
     contact: HertzContact, lubricant: Lubricant, central_film_thickness: float | np.ndarray
 ) -> float | np.ndarray:
-    """Squeeze-film damping of an ellipsoidal flooded gap (MODEL.md 4.5, option D2) [N s/m].
+    """Squeeze-film damping of an ellipsoidal flooded gap (docs/model.md 4.5, option D2) [N s/m].
 
     c_sq = 6 pi eta_0 R_x^1.5 R_y^0.5 f(R_x/R_y) / h_c. An order-of-magnitude estimate (no
     piezo-viscosity, cavitation, starvation or elastic flattening).

@@ -6,7 +6,7 @@ sagitta of its curvature over the distance ``e`` to the nearer edge,
     s(e) = R_x - sqrt(R_x^2 - e^2),
 
 R_x the reduced radius of the contact in the rolling direction (1 / R_x = 1 / r_ball +/-
-1 / r_race; the same radius that sets the Hertz contact, MODEL.md 3.1), until it touches the
+1 / r_race; the same radius that sets the Hertz contact, docs/model.md 3.1), until it touches the
 pit's floor at ``depth``, and pivots out over the exit edge. The largest sink is
 min(depth, s(L / 2)) for a pit of length L: a narrow, deep pit is bridged (the ball-geometry
 limit; for a 6205 the 0.18 mm CWRU pits sink the ball by only ~0.8 um at the outer race); a wide

@@ -1,6 +1,6 @@
 """Bearing kinematics: characteristic frequencies and waviness passage frequencies.
 
-Pure rolling, outer ring stationary, inner ring turning at f_s (MODEL.md section 2):
+Pure rolling, outer ring stationary, inner ring turning at f_s (docs/model.md section 2):
 
 * FTF  f_c = f_s (1 - gamma) / 2                      (cage)
 * BPFO     = Z f_c                                     (ball pass, outer race)
@@ -9,7 +9,7 @@ Pure rolling, outer ring stationary, inner ring turning at f_s (MODEL.md section
 * 2xBSF    = 2 f_b                                     (a ball defect strikes both races)
 
 with gamma = d cos(alpha) / D. Waviness passage frequencies follow the exact rules of
-MODEL.md 2.1 for this planar model (which orders excite which frequencies).
+docs/model.md 2.1 for this planar model (which orders excite which frequencies).
 """
 
 from __future__ import annotations
@@ -155,7 +155,7 @@ def waviness_passage_frequencies(
 ) -> list[WavinessLine]:
     """Frequencies at which a waviness of order ``order`` on ``surface`` forces the shaft.
 
-    Rules of MODEL.md 2.1 (planar model, Z balls, load-zone Fourier harmonics m):
+    Rules of docs/model.md 2.1 (planar model, Z balls, load-zone Fourier harmonics m):
 
     * outer race, order k: lines at q BPFO; ``radial`` when k = qZ +/- 1, ``load`` when k = qZ,
       otherwise ``weak``;

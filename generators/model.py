@@ -1,14 +1,14 @@
 """The dynamic model: validate, pack, find the static start, integrate, decimate, wrap.
 
 ``simulate`` is the public entry point; the numba kernels in :mod:`generators._kernels` do the
-time stepping on plain arrays. Model (MODEL.md sections 1-5):
+time stepping on plain arrays. Model (docs/model.md sections 1-5):
 
 * contact: Hertz Q = K delta^1.5 with stiffness-proportional damping c = tau dQ/d delta (D1),
-  optional EHL film in series (Hamrock-Dowson central film, MODEL.md 4.3) and squeeze-film
+  optional EHL film in series (Hamrock-Dowson central film, docs/model.md 4.3) and squeeze-film
   damping (D2, times ``Rig.film_damping_factor``);
 * scenes ``shaft`` (2 DOF + one-way housing estimate), ``shaft+housing`` (4 DOF, massless
   balls, series contact constant), ``full`` (4 + Z DOF, one radial DOF per ball);
-* waviness on the outer race, inner race and balls (MODEL.md 5), any harmonics;
+* waviness on the outer race, inner race and balls (docs/model.md 5), any harmonics;
 * start at the static equilibrium (loads, gravity, film and waviness at t = 0), settle, record at
   ``oversample * fs`` and decimate with a zero-phase FIR anti-alias filter.
 """
@@ -71,7 +71,7 @@ logger = logging.getLogger(__name__)
 
 SCENE_CODES = {"shaft": K.SCENE_SHAFT, "shaft+housing": K.SCENE_SHAFT_HOUSING, "full": K.SCENE_FULL}
 
-#: Default fixed RK4 step of the massless-ball scenes [s] (MODEL.md 7.2: converged to 4 digits
+#: Default fixed RK4 step of the massless-ball scenes [s] (docs/model.md 7.2: converged to 4 digits
 #: at <= 2e-5 s; 5-10 us recommended). See ``cmtool fidelity`` for the measured trade.
 DEFAULT_STEP_MASSLESS = 2e-5
 #: Safety factor on the RK4 stability limit of the linearised scene (dynamic overloads stiffen
@@ -223,7 +223,7 @@ def _waviness_table(
                     raise ParameterError(
                         f"ball = {j} is outside the allowed range [0, {ball_count - 1}]"
                     )
-                # each ball its own waviness phase and initial spin angle (MODEL.md 5, [A])
+                # each ball its own waviness phase and initial spin angle (docs/model.md 5, [A])
                 phase = rng.uniform(0, 2 * np.pi) if w.phase is None else w.phase
                 spin0 = rng.uniform(0, 2 * np.pi)
                 rows.append(
@@ -418,7 +418,7 @@ def _pack(
     p[K.P_UNBALANCE] = rig.unbalance
     wc = p[K.P_CAGE_SPEED]
     centrifugal = geometry.ball_mass * wc**2 * geometry.pitch_diameter / 2
-    p[K.P_FILM_LOAD_FLOOR] = max(1.0, centrifugal)  # MODEL.md 4.1: Q_floor = max(1 N, F_c)
+    p[K.P_FILM_LOAD_FLOOR] = max(1.0, centrifugal)  # docs/model.md 4.1: Q_floor = max(1 N, F_c)
     p[K.P_FILM_REFERENCE_LOAD] = max(operating.radial_load / max(z / 4.37, 1.0), 1.0)
     if ehl and (u := entrainment_speed(geometry, fs)) > 0.0:
         lub = rig.lubricant
@@ -436,8 +436,8 @@ def _pack(
         cso = rig.film_damping_factor * squeeze_film_damping(co, lub, 1.0)
         p[K.P_SQUEEZE_INNER] = csi / hi
         p[K.P_SQUEEZE_OUTER] = cso / ho
-        # two Kelvin-Voigt contacts in series (MODEL.md 1.4): c_eff = c_i r_o^2 + c_o r_i^2 with
-        # r = k / (k_i + k_o); k_i / k_o = (K_i / K_o)^(2/3) at equal load
+        # two Kelvin-Voigt contacts in series (docs/model.md 1.4): c_eff = c_i r_o^2 + c_o r_i^2
+        # with r = k / (k_i + k_o); k_i / k_o = (K_i / K_o)^(2/3) at equal load
         kri, kro = ki ** (2 / 3), ko ** (2 / 3)
         ri, ro = kri / (kri + kro), kro / (kri + kro)
         p[K.P_SQUEEZE_SERIES] = p[K.P_SQUEEZE_INNER] * ro**2 + p[K.P_SQUEEZE_OUTER] * ri**2
@@ -651,7 +651,7 @@ def _static_state(
 def _jacobian(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray) -> np.ndarray:
     """Jacobian of the first-order right-hand side at ``y0``, t = 0, by central differences.
 
-    Displacements are perturbed by 1e-11 m, velocities by 1e-7 m/s (MODEL.md 7.5).
+    Displacements are perturbed by 1e-11 m, velocities by 1e-7 m/s (docs/model.md 7.5).
     """
     n = y0.size
     nd = n // 2
@@ -1154,7 +1154,7 @@ def simulate(
     scene : Scene, optional
         Model level and EHL switch; default ``Scene()`` (``shaft+housing`` with EHL).
     rig : Rig, optional
-        Masses, pedestal, damping, lubricant; default ``Rig()`` (MODEL.md 6.3).
+        Masses, pedestal, damping, lubricant; default ``Rig()`` (docs/model.md 6.3).
     settings : SimulationSettings, optional
         Sample rate [Hz], duration [s], settling [s], integrator and step.
     random_state : int or numpy Generator, optional
@@ -1358,7 +1358,7 @@ def natural_frequencies(
 ) -> np.ndarray:
     """Natural frequencies of the model linearised about its static equilibrium [Hz].
 
-    MODEL.md 7.5: the cage is frozen (no rotation, no centrifugal force), the Jacobian of the
+    docs/model.md 7.5: the cage is frozen (no rotation, no centrifugal force), the Jacobian of the
     first-order right-hand side is built by central differences (displacements perturbed by
     1e-11 m, velocities by 1e-7 m/s) and its eigenvalues are taken. Returns the damped
     frequencies |Im lambda| / 2 pi of the oscillatory modes, highest first (balls out of contact

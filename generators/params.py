@@ -68,7 +68,7 @@ class Material:
         check_real("density", self.density, low=100.0, high=30000.0, unit="kg/m^3")
 
 
-#: AISI 52100 bearing steel (MODEL.md 6.1: E = 2.08e11 Pa, nu = 0.3, 7850 kg/m^3).
+#: AISI 52100 bearing steel (docs/model.md 6.1: E = 2.08e11 Pa, nu = 0.3, 7850 kg/m^3).
 STEEL_52100 = Material(name="AISI 52100", youngs_modulus=2.08e11, poisson_ratio=0.3, density=7850.0)
 
 
@@ -239,7 +239,7 @@ class Lubricant:
         check_real("film_factor", self.film_factor, low=0.0, high=2.0, low_inclusive=False)
 
 
-#: Lubricant presets of MODEL.md 4.2 (values recalled from the literature, [R]).
+#: Lubricant presets of docs/model.md 4.2 (values recalled from the literature, [R]).
 LUBRICANTS: dict[str, Lubricant] = {
     "VG68": Lubricant(
         name="ISO VG 68 mineral oil, 40 C", viscosity=0.059, pressure_viscosity_coefficient=2.0e-8
@@ -258,7 +258,7 @@ LUBRICANTS: dict[str, Lubricant] = {
 
 @dataclass(frozen=True, slots=True, kw_only=True)
 class Rig:
-    """Test-rig structure around the bearing (MODEL.md 6.3 defaults, [A]).
+    """Test-rig structure around the bearing (docs/model.md 6.3 defaults, [A]).
 
     Attributes
     ----------
@@ -274,14 +274,14 @@ class Rig:
         Viscous damping of the shaft motion c_s [N s/m].
     contact_damping_time : float
         Dry contact (material) damping as a time constant tau [s]: c = tau * dQ/ddelta, so the
-        damping vanishes continuously at contact onset (MODEL.md 1.2, option D1).
+        damping vanishes continuously at contact onset (docs/model.md 1.2, option D1).
     film_damping_factor : float
-        Multiplier on the squeeze-film damping of MODEL.md (4.5) (option D2) [-].
+        Multiplier on the squeeze-film damping of docs/model.md (4.5) (option D2) [-].
     lubricant : Lubricant
         Lubricant (used when the scene has the EHL film).
     loading_stiffness : float
         0 for a constant (dead-weight) radial load; > 0 for a loading spring between shaft and
-        ground preloaded to the radial load at static equilibrium (MODEL.md 1.3) [N/m].
+        ground preloaded to the radial load at static equilibrium (docs/model.md 1.3) [N/m].
     gravity : bool
         Apply gravity (-y) to shaft, housing and balls.
     unbalance : float
@@ -401,7 +401,7 @@ SURFACES = ("outer", "inner", "ball")
 class Waviness:
     """One harmonic of surface waviness, w(psi) = amplitude * cos(order * psi + phase).
 
-    Positive w means material protruding toward the contact (MODEL.md section 5).
+    Positive w means material protruding toward the contact (docs/model.md section 5).
 
     Attributes
     ----------

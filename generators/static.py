@@ -5,7 +5,7 @@ theta_j has the approach delta_j = x cos(theta_j) + y sin(theta_j) - c_r + e_j, 
 is the per-ball gap and e_j an optional extra approach (EHL film, uniform waviness). Its load
 is Q_j = K_tot [delta_j]_+^1.5 and the equilibrium is sum_j Q_j (cos theta_j, sin theta_j) = F.
 Checks: Q_max Z / F_r = 4.37 at zero clearance for large Z (Stribeck; catalogue constant),
-~5 with clearance; ISO/TS 16281 reference deflections (MODEL.md 7.6 T2-T4).
+~5 with clearance; ISO/TS 16281 reference deflections (docs/model.md 7.6 T2-T4).
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Slow, obviously-correct reference implementations (stumpy's ``naive.py`` idea).
 
-``reference_rhs`` writes the equations of motion of MODEL.md (1.3)-(1.5) again in plain numpy,
+``reference_rhs`` writes the equations of motion of docs/model.md (1.3)-(1.5) again in plain numpy,
 from the parameter objects (not from the kernel's packed vector), with the EHL film solved
 exactly (``scipy.optimize.brentq`` on Q = K (delta + h(Q))^1.5 with the Hamrock-Dowson film of
 ``generators.contact``). ``reference_solution`` integrates it with ``solve_ivp`` (DOP853, tight

@@ -56,7 +56,7 @@ def test_accuracy_ordering(table):
     assert err("full", True, "dopri5", 1e-6) < 1e-4
     # shaft+housing with EHL drops only the ball masses: close to the reference
     assert err("shaft+housing", True, "rk4", 2e-5) < 1e-3
-    # dropping the film costs about 1 % at BPFO (MODEL.md 8.2 values are for the dry model)
+    # dropping the film costs about 1 % at BPFO (docs/model.md 8.2 values are for the dry model)
     assert 1e-3 < err("shaft+housing", False, "rk4", 2e-5) < 0.03
 
 

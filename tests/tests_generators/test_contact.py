@@ -1,11 +1,11 @@
-"""Hertz contact and EHL film against MODEL.md's published/verified values.
+"""Hertz contact and EHL film against docs/model.md's published/verified values.
 
 Sources and tolerances:
-* MODEL.md 3.5 table (6205, exact Hertz, 4 significant digits) -> TABLE_RTOL = 1e-3.
-* MODEL.md 7.6 T1: Hamrock-Brewe vs exact within 2 % in K and kappa.
+* docs/model.md 3.5 table (6205, exact Hertz, 4 significant digits) -> TABLE_RTOL = 1e-3.
+* docs/model.md 7.6 T1: Hamrock-Brewe vs exact within 2 % in K and kappa.
 * Harris's chart form K = 2.15e5 (sum rho)^-1/2 (delta*)^-3/2 N/mm^1.5 (E = 2.075e11, nu = 0.3):
   its constant has 3 significant digits -> HARRIS_RTOL = 5e-3.
-* MODEL.md 4.2 EHL table (3 significant digits) -> T12 says +/- 0.5 %: EHL_RTOL = 5e-3.
+* docs/model.md 4.2 EHL table (3 significant digits) -> T12 says +/- 0.5 %: EHL_RTOL = 5e-3.
 * An independent solution of (3.1) with the elliptic integrals by quadrature -> 1e-9.
 """
 
@@ -38,7 +38,7 @@ HARRIS_RTOL = 5e-3
 EHL_RTOL = 5e-3
 QUADRATURE_RTOL = 1e-9
 
-# MODEL.md 3.5 (6205: d = 7.94 mm, D = 39.04 mm, f = 0.52, E = 2.08e11, nu = 0.3)
+# docs/model.md 3.5 (6205: d = 7.94 mm, D = 39.04 mm, f = 0.52, E = 2.08e11, nu = 0.3)
 TABLE = {
     "inner": {
         "rx": 3.1626e-3,
@@ -81,7 +81,7 @@ def test_series_constant_6205():
 
 @pytest.mark.parametrize("race", ["inner", "outer"])
 def test_hamrock_brewe_within_two_percent(race):
-    # MODEL.md 7.6 T1
+    # docs/model.md 7.6 T1
     g = bearing("6205")
     exact = hertz_contact(g, race)
     hb = hertz_contact(g, race, method="hamrock-brewe")
@@ -118,7 +118,7 @@ def test_exact_ellipticity_against_quadrature(name, race):
 
 
 def test_harris_chart_form():
-    # MODEL.md 3.3: Harris's K = 2.15e5 (sum rho)^-1/2 (delta*)^-3/2 N/mm^1.5 for E = 2.075e11
+    # docs/model.md 3.3: Harris's K = 2.15e5 (sum rho)^-1/2 (delta*)^-3/2 N/mm^1.5 for E = 2.075e11
     steel = Material(name="Harris steel", youngs_modulus=2.075e11, poisson_ratio=0.3, density=7850)
     g = dataclasses.replace(bearing("6205"), ball_material=steel, ring_material=steel)
     c = hertz_contact(g, "inner")
@@ -152,7 +152,7 @@ def test_bad_geometry_for_contact():
         contact_geometry(bearing("6205"), "middle")  # type: ignore[arg-type]
 
 
-# MODEL.md 4.2: 6205, VG 68 at 40 C (rpm, ball load) -> h_c inner/outer, h_min inner/outer [um]
+# docs/model.md 4.2: 6205, VG 68 at 40 C (rpm, ball load) -> h_c inner/outer, h_min inner/outer [um]
 EHL_TABLE = [
     (600, 50, 0.186, 0.224, 0.150, 0.181),
     (1800, 5, 0.452, 0.546, 0.375, 0.452),
@@ -177,7 +177,7 @@ def test_film_thickness_table(rpm, load, hci, hco, hmi, hmo):
 
 
 def test_entrainment_speed():
-    # MODEL.md section 2: 1.764 m/s for a 6205 at 1800 rpm
+    # docs/model.md section 2: 1.764 m/s for a 6205 at 1800 rpm
     assert entrainment_speed(bearing("6205"), 30.0) == pytest.approx(1.764, abs=5e-4)
 
 
@@ -196,8 +196,8 @@ def test_film_load_floor_and_monotonicity():
     [(1800, "inner", 0.88), (1800, "outer", 0.86), (3600, "outer", 0.79)],
 )
 def test_film_series_stiffness_at_light_load(rpm, race, expected):
-    # MODEL.md 4.3: k_series / k_H = 0.88 (inner), 0.86 (outer) at 5 N, 1800 rpm; 0.79 at 3600 rpm
-    # (two significant digits -> abs 0.01)
+    # docs/model.md 4.3: k_series / k_H = 0.88 (inner), 0.86 (outer) at 5 N, 1800 rpm; 0.79 at
+    # 3600 rpm (two significant digits -> abs 0.01)
     g, lub = bearing("6205"), LUBRICANTS["VG68"]
     u = entrainment_speed(g, rpm / 60)
     c = hertz_contact(g, race)
@@ -207,7 +207,7 @@ def test_film_series_stiffness_at_light_load(rpm, race, expected):
 
 
 def test_film_negligible_at_heavy_load():
-    # MODEL.md 4.3: at 500 N the film is two orders stiffer than the Hertz contact
+    # docs/model.md 4.3: at 500 N the film is two orders stiffer than the Hertz contact
     g, lub = bearing("6205"), LUBRICANTS["VG68"]
     u = entrainment_speed(g, 30.0)
     for race in ("inner", "outer"):
@@ -218,7 +218,7 @@ def test_film_negligible_at_heavy_load():
 
 
 def test_squeeze_film_damping_values():
-    # MODEL.md 4.4 D2: c_i ~ 370, c_o ~ 560 N s/m (6205, VG 68, 1800 rpm, 500 N)
+    # docs/model.md 4.4 D2: c_i ~ 370, c_o ~ 560 N s/m (6205, VG 68, 1800 rpm, 500 N)
     g, lub = bearing("6205"), LUBRICANTS["VG68"]
     u = entrainment_speed(g, 30.0)
     ci, co = hertz_contact(g, "inner"), hertz_contact(g, "outer")

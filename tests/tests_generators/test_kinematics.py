@@ -37,7 +37,7 @@ def test_published_multipliers(name):
 
 
 def test_cwru_bpfo_at_1797_rpm():
-    # CWRU: BPFO 107.36 Hz at 1797 rpm (MODEL.md section 2)
+    # CWRU: BPFO 107.36 Hz at 1797 rpm (docs/model.md section 2)
     f = characteristic_frequencies(bearing("6205"), 1797 / 60)
     assert f.bpfo == pytest.approx(107.36, abs=0.005)
     assert f.ftf == pytest.approx(11.93, abs=0.005)
@@ -79,7 +79,7 @@ def test_bad_speed():
 
 
 def test_wpf_outer_rules():
-    # MODEL.md 2.1: outer order k excites q BPFO; k = qZ +- 1 radial, k = qZ load only
+    # docs/model.md 2.1: outer order k excites q BPFO; k = qZ +- 1 radial, k = qZ load only
     g = bearing("6205")
     f = characteristic_frequencies(g, 30.0)
     for k, direction in ((8, "radial"), (9, "load"), (10, "radial")):
@@ -92,9 +92,10 @@ def test_wpf_outer_rules():
 
 
 def test_wpf_inner_matches_model_md_table():
-    # MODEL.md 2.1: 6205 at 1800 rpm, k = 8, 9, 10, 17, 18, 19 -> 132.4, 162.4, 192.4, 294.8,
-    # 324.8, 354.8 Hz (the q with |k - qZ| <= 1). MODEL.md's values are built from a BPFI rounded
-    # to 162.4 Hz; T8 asks for "within one frequency bin" of a 1 s record (1 Hz): abs = 0.5 Hz.
+    # docs/model.md 2.1: 6205 at 1800 rpm, k = 8, 9, 10, 17, 18, 19 -> 132.4, 162.4, 192.4, 294.8,
+    # 324.8, 354.8 Hz (the q with |k - qZ| <= 1). docs/model.md's values are built from a BPFI
+    # rounded to 162.4 Hz; T8 asks for "within one frequency bin" of a 1 s record (1 Hz):
+    # abs = 0.5 Hz.
     # The exact rule (2.1), f = k f_s - q Z f_c, is checked to machine precision.
     g = bearing("6205")
     expected = {8: 132.4, 9: 162.4, 10: 192.4, 17: 294.8, 18: 324.8, 19: 354.8}

@@ -54,12 +54,12 @@ def test_negative_clearance_is_a_preload_not_an_error():
 
 
 def test_clearance_convention():
-    # ISO radial internal clearance P_d is total play; per-ball gap is P_d / 2 (MODEL.md 1.1)
+    # ISO radial internal clearance P_d is total play; per-ball gap is P_d / 2 (docs/model.md 1.1)
     assert bearing("6205", radial_internal_clearance=10e-6).radial_gap == pytest.approx(5e-6)
 
 
 def test_ball_mass_6205():
-    # MODEL.md 6.1: m_b = 2.058e-3 kg
+    # docs/model.md 6.1: m_b = 2.058e-3 kg
     assert G.ball_mass == pytest.approx(2.058e-3, rel=1e-3)
 
 

@@ -1,7 +1,8 @@
-"""Static load distribution (MODEL.md 7.6 T2-T4, 6.4; Stribeck 4.37).
+"""Static load distribution (docs/model.md 7.6 T2-T4, 6.4; Stribeck 4.37).
 
-Tolerances: T2 ISO/TS 16281 reference 15.1101 um and 21.223 um (MODEL.md: exact-integral K gives
-15.1102) -> ISO_RTOL = 1e-4; T4 "within 0.1 %" -> TABLE_RTOL = 1e-3; T3 Stribeck 4.37 +/- 0.05.
+Tolerances: T2 ISO/TS 16281 reference 15.1101 um and 21.223 um (docs/model.md: exact-integral K
+gives 15.1102) -> ISO_RTOL = 1e-4; T4 "within 0.1 %" -> TABLE_RTOL = 1e-3; T3 Stribeck
+4.37 +/- 0.05.
 """
 
 import dataclasses
@@ -43,7 +44,7 @@ def test_iso_16281_with_clearance():
     assert s.deflection == pytest.approx(21.223e-6, rel=ISO_RTOL)
 
 
-# MODEL.md 6.4 (K_tot = 9.30e9, ball on the load line)
+# docs/model.md 6.4 (K_tot = 9.30e9, ball on the load line)
 TABLE = [
     (0.0, 100.0, 3.016, 48.7, 5, 4.97e7),
     (0.0, 500.0, 8.818, 243.6, 5, 8.51e7),
@@ -65,7 +66,7 @@ def test_6205_static_table(pd, fr, dr, qmax, nloaded, kr):
 
 
 def test_cage_rotated_by_half_pitch():
-    # MODEL.md 6.4: cage rotated by pi/Z at zero clearance, 1000 N: 13.938 um, ratio 3.969, 4 balls
+    # docs/model.md 6.4: cage turned by pi/Z at zero clearance, 1000 N: 13.938 um, 3.969, 4 balls
     g = bearing("6205", radial_internal_clearance=0.0)
     s = static_load_distribution(
         g, 1000.0, cage_angle=DOWN + math.pi / 9, stiffness_constant=9.30e9

@@ -132,7 +132,7 @@ def test_dopri5_step_budget_stops_instead_of_hanging():
 
 @pytest.mark.parametrize(("rpm", "newton"), [(1800, 0.23), (3600, 0.91), (10000, 7.0)])
 def test_centrifugal_ball_force_loads_the_outer_race(rpm, newton):
-    # MODEL.md 2: F_c = m_b w_c^2 D / 2 = 0.23 / 0.91 / 7.0 N for a 6205 at 1800 / 3600 / 10000
+    # docs/model.md 2: F_c = m_b w_c^2 D / 2 = 0.23 / 0.91 / 7.0 N for a 6205 at 1800 / 3600 / 10000
     # rpm. Balls outside the load zone press on the outer race with F_c alone.
     settings = dataclasses.replace(SHORT, record_contact_loads=True, duration=0.02)
     r = simulate(

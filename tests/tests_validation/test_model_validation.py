@@ -1,11 +1,11 @@
-"""The dynamic model against MODEL.md 7.1, 7.6 (T5-T14) and 8.2 (6205, section 6.3 defaults).
+"""The dynamic model against docs/model.md 7.1, 7.6 (T5-T14) and 8.2 (6205, section 6.3 defaults).
 
 Sources and tolerances (each named once):
-* MODEL82_RTOL = 0.10: MODEL.md 8.2 quotes its independent implementation to two significant
+* MODEL82_RTOL = 0.10: docs/model.md 8.2 quotes its independent implementation to two significant
   digits (a rounding band of up to +/-6 % at 0.0087) and does not state its contact damping;
   observed here: within 3 % at BPFO/BPFI, 9 % at 2 x BPFO.
 * FREQ_RULE_BINS = 1: T8 "peak within one frequency bin".
-* MODAL_RTOL = 0.01: T5 "<= 1 %" (MODEL.md 7.1 table values are quoted to 3 digits).
+* MODAL_RTOL = 0.01: T5 "<= 1 %" (docs/model.md 7.1 table values are quoted to 3 digits).
 * LINEARITY_RTOL = 0.10: T10 "x5 +/- 10 %".
 * SCENE_RTOL = 0.02: T11 "within 2 %".
 * PRELOAD_RATIO = 0.01: T9 "< 1 % of the N_w = Z +/- 1 case".
@@ -62,7 +62,7 @@ def run(defect, *, scene=DRY, operating=OP, settings=ONE_SECOND, geometry=G, rig
     return simulate(geometry, operating, defect, scene=scene, settings=settings, rig=rig)
 
 
-# ------------------------------------------------------------------------------ MODEL.md 8.2
+# ------------------------------------------------------------------------------ docs/model.md 8.2
 
 
 @pytest.mark.parametrize(
@@ -111,7 +111,7 @@ def test_non_special_order_gives_nothing_above_healthy():
     order5 = run(Waviness(surface="outer", order=5, amplitude=1e-6))
     bpfo = healthy.frequencies.bpfo
     assert peak(order5, "housing_velocity_y", bpfo) < 2 * peak(healthy, "housing_velocity_y", bpfo)
-    assert 1e-4 < peak(healthy, "housing_velocity_y", bpfo) < 6e-4  # MODEL.md 8.2 healthy range
+    assert 1e-4 < peak(healthy, "housing_velocity_y", bpfo) < 6e-4  # docs/model.md 8.2, healthy
 
 
 def test_speed_trend():
@@ -145,7 +145,7 @@ def test_load_trend_is_weak_increase():
     assert 1.0 < a_hi / a_lo < 1.2
 
 
-# ------------------------------------------------------------------------- MODEL.md 7.6 T8
+# ------------------------------------------------------------------------- docs/model.md 7.6 T8
 
 
 def dominant_frequency(result, channel, near, window=20.0):
@@ -188,7 +188,7 @@ def test_frequency_rules(surface, order, expected):
 
 
 def test_single_ball_wave_passage_frequency_absent():
-    # MODEL.md 2.1: N_w = 8 on the outer race peaks at BPFO, nothing at 8 f_c
+    # docs/model.md 2.1: N_w = 8 on the outer race peaks at BPFO, nothing at 8 f_c
     r = run(Waviness(surface="outer", order=8, amplitude=1e-6))
     f = r.frequencies
     assert peak(r, "housing_velocity_y", 8 * f.ftf) < 0.05 * peak(r, "housing_velocity_y", f.bpfo)
@@ -299,7 +299,7 @@ def test_linearised_frequencies_match_model_table(level, load, expected_khz):
 
 
 def test_ball_radial_mode_in_full_scene():
-    # MODEL.md 7.1: 45 kHz at 500 N, 57 kHz at 2000 N (undamped, by hand 50.7 kHz at 1 kN)
+    # docs/model.md 7.1: 45 kHz at 500 N, 57 kHz at 2000 N (undamped, by hand 50.7 kHz at 1 kN)
     for load, khz in ((500.0, 45.0), (2000.0, 57.0)):
         fn = natural_frequencies(
             G,
@@ -357,7 +357,7 @@ def energy_drift(dt):
 
 def test_energy_drift_shrinks_at_fifth_order():
     drifts = [energy_drift(dt) for dt in (20e-6, 10e-6, 5e-6)]
-    # MODEL.md T7: 1.6e-3, 4.5e-5, 1.1e-6 relative drift; ratio ~32 per halving
+    # docs/model.md T7: 1.6e-3, 4.5e-5, 1.1e-6 relative drift; ratio ~32 per halving
     assert drifts[0] < 1e-2
     for a, b in zip(drifts, drifts[1:], strict=False):
         assert 16 < a / b < 64
