@@ -1,10 +1,18 @@
 """Slow, obviously-correct reference implementations (stumpy's ``naive.py`` idea).
 
-``reference_rhs`` writes the equations of motion of docs/model.md (1.3)-(1.5) again in plain numpy,
-from the parameter objects (not from the kernel's packed vector), with the EHL film solved
-exactly (``scipy.optimize.brentq`` on Q = K (delta + h(Q))^1.5 with the Hamrock-Dowson film of
-``generators.contact``). ``reference_solution`` integrates it with ``solve_ivp`` (DOP853, tight
-tolerances).
+``ReferenceModel`` writes the equations of motion of docs/model.md (1.3)-(1.5) again in plain
+numpy from the equations of that page and the parameter objects alone: the Hertz constants
+from 3.1-3.3 (the ellipticity solved from (3.1) with scipy's elliptic integrals), the central
+film of Hamrock and Dowson (4.1)-(4.2) with the load floor of 4.1, the squeeze-film damping
+(4.5), the entrainment speed and the frequencies of section 2, the waviness of section 5 from
+the ``Waviness`` objects (only the random per-ball phases of ball waviness, drawn by
+``prepare``, are read from its table, after checking the table's orders and amplitudes
+against the objects). Both integrations start from ``prepare``'s static state (a shared initial
+condition); that it is an equilibrium is checked against this model's own equations
+(``frozen_accelerations``). Nothing of ``generators.contact``,
+``generators.kinematics`` or the kernel is used, so a wrong constant, film, damping or cage
+speed in the package makes the two disagree. ``reference_solution`` integrates it with
+``solve_ivp`` (DOP853, tight tolerances).
 """
 
 from __future__ import annotations
@@ -12,16 +20,68 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import integrate, optimize
+from scipy import integrate, optimize, special
 
-from generators.contact import (
-    entrainment_speed,
-    film_thickness,
-    hertz_contact,
-    squeeze_film_damping,
-)
+from generators import Waviness
 
-SURF_OUTER, SURF_INNER, SURF_BALL = 0, 1, 2
+SURF_OUTER, SURF_INNER, SURF_BALL = 0, 1, 2  # the kernel table's surface codes (ball rows)
+GRAVITY = 9.81  # docs/model.md 1.1 [m/s^2]
+
+
+def _radii(geometry, which):
+    """R_x, R_y of the inner or outer contact [m] (docs/model.md 3.1)."""
+    d, dm = geometry.ball_diameter, geometry.pitch_diameter
+    c = d * math.cos(geometry.contact_angle)
+    if which == "inner":
+        f = geometry.inner_groove_curvature
+        return d * (dm - c) / (2 * dm), f * d / (2 * f - 1)
+    f = geometry.outer_groove_curvature
+    return d * (dm + c) / (2 * dm), f * d / (2 * f - 1)
+
+
+def _effective_modulus(geometry):
+    """E' [Pa] (docs/model.md 3.1)."""
+    a, b = geometry.ball_material, geometry.ring_material
+    return 2.0 / (
+        (1 - a.poisson_ratio**2) / a.youngs_modulus + (1 - b.poisson_ratio**2) / b.youngs_modulus
+    )
+
+
+def hertz_constant(geometry, which):
+    """K [N/m^1.5] from (3.1) solved for kappa and (3.3)."""
+    rx, ry = _radii(geometry, which)
+    r = 1.0 / (1.0 / rx + 1.0 / ry)
+    big_f = (ry - rx) / (ry + rx)
+
+    def residual(kappa):
+        m = 1.0 - 1.0 / kappa**2
+        e, k = special.ellipe(m), special.ellipk(m)
+        return ((kappa**2 + 1) * e - 2 * k) / ((kappa**2 - 1) * e) - big_f
+
+    kappa = optimize.brentq(residual, 1.0 + 1e-9, 100.0, xtol=1e-14)
+    m = 1.0 - 1.0 / kappa**2
+    e, k = special.ellipe(m), special.ellipk(m)
+    return math.pi * kappa * _effective_modulus(geometry) * math.sqrt(r * e / (4.5 * k**3))
+
+
+def central_film(geometry, which, lubricant, speed, load):
+    """h_c [m] of (4.1)-(4.2) (times the lubricant's film factor), at ``load`` [N]."""
+    rx, ry = _radii(geometry, which)
+    e = _effective_modulus(geometry)
+    u = lubricant.viscosity * speed / (e * rx)
+    g = lubricant.pressure_viscosity_coefficient * e
+    w = load / (e * rx**2)
+    ke = 1.03 * (ry / rx) ** 0.64
+    h = 2.69 * rx * u**0.67 * g**0.53 * w**-0.067 * (1 - 0.61 * math.exp(-0.73 * ke))
+    return lubricant.film_factor * h
+
+
+def squeeze_damping(geometry, which, lubricant, film):
+    """c_sq [N s/m] of (4.5) for a film ``film`` [m]."""
+    rx, ry = _radii(geometry, which)
+    eps = min(rx / ry, 1.0)
+    shape = 2.0 - eps**0.75
+    return 6 * math.pi * lubricant.viscosity * rx**1.5 * ry**0.5 * shape / film
 
 
 class ReferenceModel:
@@ -29,31 +89,69 @@ class ReferenceModel:
 
     def __init__(self, prep):
         g, op, rig = prep.geometry, prep.operating, prep.rig
+        self.geometry = g
         self.level, self.ehl = prep.level, prep.ehl
         self.z = g.ball_count
-        self.ci, self.co = hertz_contact(g, "inner"), hertz_contact(g, "outer")
-        self.ki, self.ko = self.ci.stiffness_constant, self.co.stiffness_constant
-        self.kt = (self.ki ** (-2 / 3) + self.ko ** (-2 / 3)) ** -1.5
-        self.gap = g.radial_internal_clearance / 2
-        self.ms, self.mh, self.mb = rig.shaft_mass, rig.housing_mass, g.ball_mass
+        self.ki, self.ko = hertz_constant(g, "inner"), hertz_constant(g, "outer")
+        self.kt = (self.ki ** (-2 / 3) + self.ko ** (-2 / 3)) ** -1.5  # (3.4)
+        self.gap = g.radial_internal_clearance / 2  # c_r = P_d / 2 (1.1)
+        density = g.ball_material.density
+        self.ms, self.mh = rig.shaft_mass, rig.housing_mass
+        self.mb = density * math.pi * g.ball_diameter**3 / 6
         self.kh, self.ch, self.cs = rig.pedestal_stiffness, rig.pedestal_damping, rig.shaft_damping
         self.tau = rig.contact_damping_time
-        self.grav = 9.81 if rig.gravity else 0.0
+        self.grav = GRAVITY if rig.gravity else 0.0
         self.load = op.radial_load * np.array([math.cos(op.load_angle), math.sin(op.load_angle)])
         self.kl = rig.loading_stiffness
-        self.anchor = prep.y0[:2].copy()
-        f = prep.freqs
+        # section 2: cage, ball spin (rolling on the standing outer race), entrainment
+        gamma = g.ball_diameter * math.cos(g.contact_angle) / g.pitch_diameter
         self.ws = 2 * math.pi * op.shaft_frequency
-        self.wc = 2 * math.pi * f.ftf
-        self.wb = 2 * math.pi * f.bsf
+        self.wc = 0.5 * self.ws * (1 - gamma) * (1 - op.cage_slip)
+        self.wb = (g.pitch_diameter / g.ball_diameter) * (1 + gamma) * self.wc
+        self.u = self.ws * (g.pitch_diameter**2 - g.ball_diameter**2) / (4 * g.pitch_diameter)
         self.theta0 = prep.settings.cage_angle
         self.radius = g.pitch_diameter / 2
-        self.wav = prep.wav
         self.lub = rig.lubricant
-        self.u = entrainment_speed(g, op.shaft_frequency)
-        self.floor = max(1.0, self.mb * self.wc**2 * self.radius)
+        self.floor = max(1.0, self.mb * self.wc**2 * self.radius)  # Q_floor (4.1)
         self.film_factor = rig.film_damping_factor
         self.nd = 4 + self.z if self.level == "full" else 4
+        self.rows = self._waviness_rows(prep)
+        self.anchor = prep.y0[:2].copy()  # the loading spring's rest point: the start
+
+    def _waviness_rows(self, prep):
+        """(surface, ball, order, amplitude, phase) from the Waviness objects (section 5)."""
+        rows, table = [], prep.wav[prep.wav[:, 0] == SURF_BALL]
+        used = 0
+        for w in prep.defects:
+            assert isinstance(w, Waviness), "the reference models waviness only"
+            if w.amplitude == 0.0:
+                continue
+            if w.surface in ("outer", "inner"):
+                assert w.phase is not None, "give race waviness an explicit phase"
+                code = SURF_OUTER if w.surface == "outer" else SURF_INNER
+                rows.append((code, -1, w.order, w.amplitude, w.phase))
+                continue
+            balls = range(self.z) if w.ball is None else (w.ball,)
+            for j in balls:
+                # the drawn phase (waviness phase plus order x initial spin angle) is the one
+                # thing taken from prepare's table; its order and amplitude must be the object's
+                surf, ball, order, amplitude, phase = table[used, :5]
+                assert (int(ball), order, amplitude) == (j, w.order, w.amplitude)
+                rows.append((SURF_BALL, j, w.order, w.amplitude, phase))
+                used += 1
+        return rows
+
+    def frozen_accelerations(self, y):
+        """Accelerations at ``y`` with the cage frozen at t = 0 and no damping (the static
+        problem of docs/model.md 7.3; the full scene keeps its centrifugal ball term)."""
+        saved = (self.ws, self.wc, self.wb, self.tau, self.film_factor, self.cs, self.ch)
+        self.ws = self.wb = self.tau = self.film_factor = self.cs = self.ch = 0.0
+        if self.level != "full":
+            self.wc = 0.0
+        try:
+            return self.rhs(0.0, np.r_[y[: self.nd], np.zeros(self.nd)])[self.nd :]
+        finally:
+            self.ws, self.wc, self.wb, self.tau, self.film_factor, self.cs, self.ch = saved
 
     # waviness -------------------------------------------------------------------------
     def waviness(self, t):
@@ -61,7 +159,7 @@ class ReferenceModel:
         theta = self.theta0 + self.wc * t + 2 * np.pi * np.arange(z) / z
         phi_s = self.ws * t
         w = np.zeros((8, z))
-        for surf, ball, k, a, ph in self.wav[:, :5]:
+        for surf, ball, k, a, ph in self.rows:
             if surf == SURF_OUTER:
                 w[0] += a * np.cos(k * theta + ph)
                 w[1] += -a * k * self.wc * np.sin(k * theta + ph)
@@ -79,9 +177,9 @@ class ReferenceModel:
         return theta, w
 
     # contact laws ---------------------------------------------------------------------
-    def _film(self, contact, q):
-        # the kernel's smooth load floor: h(Q + Q_floor)
-        return film_thickness(contact, self.lub, self.u, q + self.floor, load_floor=1e-30)
+    def _film(self, which, q):
+        # the load floor of docs/model.md 4.1: h(Q + Q_floor)
+        return central_film(self.geometry, which, self.lub, self.u, q + self.floor)
 
     def contact(self, delta, rate, which):
         if which == "series":
@@ -91,17 +189,17 @@ class ReferenceModel:
         if not self.ehl:
             if delta <= 0:
                 return 0.0
-            q = kc * delta**1.5 + self.tau * 1.5 * kc * math.sqrt(delta) * rate
+            q = kc * delta**1.5 + self.tau * 1.5 * kc * math.sqrt(delta) * rate  # (1.2)
             return max(q, 0.0)
 
         def film(q):
             if which == "series":
-                return self._film(self.ci, q) + self._film(self.co, q)
-            return self._film(self.ci if which == "inner" else self.co, q)
+                return self._film("inner", q) + self._film("outer", q)
+            return self._film(which, q)
 
         if delta + film(0.0) <= 0:
             return 0.0
-        # exact solution of Q = K (delta + h(Q))^1.5
+        # exact solution of Q = K (delta + h(Q))^1.5 (docs/model.md 4.3)
         q_hi = kc * (delta + film(0.0)) ** 1.5
         q = (
             optimize.brentq(
@@ -115,17 +213,18 @@ class ReferenceModel:
             else 0.0
         )
         d_el = delta + film(q)
-        blend = q / (q + self.floor)
+        blend = q / (q + self.floor)  # docs/model.md 4.4: continuous at onset
         if which == "series":
-            hi, ho = self._film(self.ci, q), self._film(self.co, q)
-            c_i = squeeze_film_damping(self.ci, self.lub, hi) * self.film_factor
-            c_o = squeeze_film_damping(self.co, self.lub, ho) * self.film_factor
+            g = self.geometry
+            c_i = squeeze_damping(g, "inner", self.lub, self._film("inner", q))
+            c_o = squeeze_damping(g, "outer", self.lub, self._film("outer", q))
+            # two contacts in series (docs/model.md 1.4), k_i : k_o = K_i^(2/3) : K_o^(2/3)
             kri, kro = self.ki ** (2 / 3), self.ko ** (2 / 3)
-            ri, ro = kri / (kri + kro), kro / (kri + kro)
-            c_sq = c_i * ro**2 + c_o * ri**2
+            k_i, k_o = kri / (kri + kro), kro / (kri + kro)
+            c_sq = (c_i * k_o**2 + c_o * k_i**2) * self.film_factor
         else:
-            con = self.ci if which == "inner" else self.co
-            c_sq = squeeze_film_damping(con, self.lub, self._film(con, q)) * self.film_factor
+            c_sq = squeeze_damping(self.geometry, which, self.lub, self._film(which, q))
+            c_sq *= self.film_factor
         c = self.tau * 1.5 * kc * math.sqrt(d_el) + blend * c_sq
         return max(q + c * rate, 0.0)
 

@@ -107,6 +107,20 @@ def test_static_start_is_an_equilibrium(level, ehl):
         assert np.abs(dydt[nd + 4 :]).max() < 1e3 * STATIC_ACCEL  # ball: 2 g, forces of 1e2 N
 
 
+@pytest.mark.parametrize("level", ["shaft", "shaft+housing", "full"])
+@pytest.mark.parametrize("ehl", [False, True])
+def test_static_start_is_an_equilibrium_of_the_reference_equations(level, ehl):
+    """The start the package computes, checked against docs/model.md's equations written
+    independently (tests/reference.py): a wrong contact constant or film moves it off."""
+    from reference import ReferenceModel
+
+    prep = prepare(G6205, OP, scene=Scene(level=level, ehl=ehl))
+    acc = ReferenceModel(prep).frozen_accelerations(prep.y0)
+    assert np.abs(acc[:4]).max() < STATIC_ACCEL  # 1e-3 of Q / M_s
+    if level == "full":
+        assert np.abs(acc[4:]).max() < 1e3 * STATIC_ACCEL
+
+
 def test_static_start_equals_static_load_distribution():
     rig = Rig(gravity=False)
     prep = prepare(G6205, OP, scene=Scene(level="shaft+housing", ehl=False), rig=rig)
