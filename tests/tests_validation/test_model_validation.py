@@ -7,9 +7,17 @@ Sources and tolerances (each named once):
 * FREQ_RULE_BINS = 1: T8 "peak within one frequency bin".
 * MODAL_RTOL = 0.01: T5 "<= 1 %" (docs/model.md 7.1 table values are quoted to 3 digits).
 * LINEARITY_RTOL = 0.10: T10 "x5 +/- 10 %".
-* SCENE_RTOL = 0.02: T11 "within 2 %".
+* SCENE_RTOL = 1e-3: docs/model.md 1.4, the two scenes give the same BPFO peak "to three
+  significant digits" (T11 allows 2 %; measured here 4.6e-5).
 * PRELOAD_RATIO = 0.01: T9 "< 1 % of the N_w = Z +/- 1 case".
-* SYMMETRY_RTOL = 1e-6: T13 is an exact symmetry of the equations; only round-off differs.
+* SYMMETRY_RTOL = 1e-9: T13 is an exact symmetry of the equations; only round-off of the
+  static solve and 2,400 steps differs (measured 2e-12 of the signal's peak).
+* DOPRI5_RTOL = 1e-5: DOPRI5 at rtol 1e-7 against RK4 at its default step (measured 2.2e-6
+  on the BPFO line: each integrator's own error, well below either's tolerance).
+* T7_FACTOR = 4: the energy drift of T7 against docs/model.md's values, whose normalisation
+  the source does not state; here the drift over 0.2 s is divided by the range of the kinetic
+  energy, which gives 2.5-3.5 times the quoted values at every step (the ratio per halving,
+  the property T7 is about, is asserted on its own).
 """
 
 import dataclasses
@@ -43,9 +51,11 @@ MODEL82_RTOL = 0.10
 FREQ_RULE_BINS = 1
 MODAL_RTOL = 0.01
 LINEARITY_RTOL = 0.10
-SCENE_RTOL = 0.02
+SCENE_RTOL = 1e-3
 PRELOAD_RATIO = 0.01
-SYMMETRY_RTOL = 1e-6
+SYMMETRY_RTOL = 1e-9
+DOPRI5_RTOL = 1e-5
+T7_FACTOR = 4.0
 
 G = bearing("6205")
 OP = OperatingCondition.from_rpm(1800, 500.0)
@@ -263,8 +273,8 @@ def test_rotating_the_load_rotates_the_response():
     x0, y0 = base["housing_velocity_x"], base["housing_velocity_y"]
     x1, y1 = turned["housing_velocity_x"], turned["housing_velocity_y"]
     scale = np.abs(np.r_[x0, y0]).max()
-    np.testing.assert_allclose(x1, c * x0 - s * y0, atol=SYMMETRY_RTOL * scale * 100)
-    np.testing.assert_allclose(y1, s * x0 + c * y0, atol=SYMMETRY_RTOL * scale * 100)
+    np.testing.assert_allclose(x1, c * x0 - s * y0, atol=SYMMETRY_RTOL * scale)
+    np.testing.assert_allclose(y1, s * x0 + c * y0, atol=SYMMETRY_RTOL * scale)
 
 
 def test_perfect_bearing_peaks_only_at_ball_pass_harmonics():
@@ -358,9 +368,11 @@ def energy_drift(dt):
 def test_energy_drift_shrinks_at_fifth_order():
     drifts = [energy_drift(dt) for dt in (20e-6, 10e-6, 5e-6)]
     # docs/model.md T7: 1.6e-3, 4.5e-5, 1.1e-6 relative drift; ratio ~32 per halving
-    assert drifts[0] < 1e-2
+    # (measured 3.96e-3, 1.16e-4, 3.89e-6: ratios 34 and 30)
+    for drift, quoted in zip(drifts, (1.6e-3, 4.5e-5, 1.1e-6), strict=True):
+        assert quoted / T7_FACTOR < drift < quoted * T7_FACTOR
     for a, b in zip(drifts, drifts[1:], strict=False):
-        assert 16 < a / b < 64
+        assert 24 < a / b < 44  # 32 for a fifth-order energy error
 
 
 @pytest.mark.parametrize("ehl", [False, True])
@@ -400,6 +412,6 @@ def test_dopri5_agrees_with_rk4():
     dp = run(defect, settings=dataclasses.replace(ONE_SECOND, integrator="dopri5", rtol=1e-7))
     bpfo = rk.frequencies.bpfo
     assert peak(dp, "housing_velocity_y", bpfo) == pytest.approx(
-        peak(rk, "housing_velocity_y", bpfo), rel=0.01
+        peak(rk, "housing_velocity_y", bpfo), rel=DOPRI5_RTOL
     )
     assert dp.parameters["integrator_stats"]["accepted_steps"] > 0
