@@ -1,10 +1,13 @@
-"""Numerical stability at the extremes (issue: speed against accuracy).
+"""Numerical stability at the extremes (docs/model.md 7.4).
 
-Every case runs each scene/integrator where it applies and must either give finite,
-physically bounded output (displacements below the divergence limit, housing velocity below
-1 m/s) or stop with a SimulationDivergedError naming scene and time: never NaN, never a hang
-(DOPRI5 has a step budget). The cases that are expected to run through are asserted to run
-through; observed outcomes are listed in ``EXPECT``.
+Every case runs in each scene and integrator, and its outcome is fixed: ``DIVERGES`` names
+the cases that must stop with a SimulationDivergedError naming scene and time (one ball off
+its load line: nothing holds the shaft), every other case must run through with finite output,
+displacements below the divergence limit and a housing velocity below
+``MAX_HOUSING_VELOCITY``. Never NaN, never a hang (DOPRI5 has a step budget). Measured peaks
+of the housing y velocity (mm/s; shaft+housing/full/DOPRI5/shaft): C5 clearance 0.14-0.31,
+no load with gravity 0.07-0.12, 13000 rpm 6.2 (36.6 in the shaft scene), 20 um waviness
+5.7-9.5, order 100 3.1-4.0, soft pedestal 0.28-3.4, every other case below 0.05.
 """
 
 import dataclasses
@@ -30,7 +33,9 @@ SHORT = SimulationSettings(fs=10240.0, duration=0.05, settle_time=0.02)
 G = bearing("6205")
 OP = OperatingCondition.from_rpm(1800, 500.0)
 OUTER9 = Waviness(surface="outer", order=9, amplitude=1e-6)
-MAX_HOUSING_VELOCITY = 1.0  # m/s: far above any bearing vibration (mm/s range)
+# m/s: beyond any running machine (ISO 10816-3's zone D, damage, starts at 11 mm/s RMS for the
+# largest machines) and 2.7 times the largest peak measured here (36.6 mm/s at 13000 rpm)
+MAX_HOUSING_VELOCITY = 0.1
 
 RUNS = [
     ("shaft+housing", "rk4"),
@@ -96,23 +101,26 @@ def run_case(case, level, integrator):
 @pytest.mark.parametrize(("level", "integrator"), RUNS)
 @pytest.mark.parametrize("case", list(CASES))
 def test_extreme_case_is_finite_bounded_or_reported(case, level, integrator):
-    try:
-        r = run_case(case, level, integrator)
-    except SimulationDivergedError as err:
-        assert err.scene == level and err.time >= 0.0
-        assert case in MAY_DIVERGE, f"{case} ({level}, {integrator}) diverged: {err}"
+    if case in DIVERGES:
+        with pytest.raises(SimulationDivergedError, match="runaway") as stop:
+            run_case(case, level, integrator)
+        assert stop.value.scene == level and 0.0 < stop.value.time < 0.07
         return
+    r = run_case(case, level, integrator)
     for name, x in r.signals.items():
         assert np.all(np.isfinite(x)), name
     assert np.abs(r["housing_velocity_y"]).max() < MAX_HOUSING_VELOCITY
     limit = r.parameters["settings"]["max_displacement"]
     if limit is not None:
         assert np.abs(r["shaft_displacement_y"]).max() < limit
+    if case == "no load, no gravity":
+        # nothing loads the balls (clearance, no force): no contact, no vibration at all
+        assert np.abs(r["housing_velocity_y"]).max() < 1e-15
 
 
-# cases where stopping with a clear error is an acceptable outcome (impacts beyond what the
-# default step resolves)
-MAY_DIVERGE = {"waviness 20 um > clearance", "one ball"}
+# the cases that must stop with a clear error: one ball leaves the load line as the cage turns
+# and nothing holds the shaft (a runaway); every other case must run through
+DIVERGES = {"one ball"}
 
 
 def test_one_ball_off_the_load_line_has_no_static_equilibrium():
