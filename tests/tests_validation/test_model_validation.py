@@ -1,9 +1,13 @@
 """The dynamic model against docs/model.md 7.1, 7.6 (T5-T14) and 8.2 (6205, section 6.3 defaults).
 
 Sources and tolerances (each named once):
-* MODEL82_RTOL = 0.10: docs/model.md 8.2 quotes its independent implementation to two significant
-  digits (a rounding band of up to +/-6 % at 0.0087) and does not state its contact damping;
-  observed here: within 3 % at BPFO/BPFI, 9 % at 2 x BPFO.
+* MODEL82_RTOL = 0.03: docs/model.md 8.2 quotes its independent implementation to two
+  significant digits (0.6-1.5 % of rounding) and reads the lines as the largest bin of a 1 s
+  Hann spectrum (its BPFO values equal that reading of this model's signal to 0.4 %, while
+  the line's true amplitude is 13 % higher: the picket-fence loss at 0.54 bin); the other
+  2-3 % is the spread of such readings. The outer-race lines at 2 x BPFO (N_w = 17, 18, 19) are
+  8-9.5 % above the quoted values: a strict expected failure, the discrepancy is written up in
+  docs/model.md 8.2.
 * FREQ_RULE_BINS = 1: T8 "peak within one frequency bin".
 * MODAL_RTOL = 0.01: T5 "<= 1 %" (docs/model.md 7.1 table values are quoted to 3 digits).
 * LINEARITY_RTOL = 0.10: T10 "x5 +/- 10 %".
@@ -47,7 +51,7 @@ from reference import rk4_records  # noqa: E402
 
 pytestmark = pytest.mark.validation
 
-MODEL82_RTOL = 0.10
+MODEL82_RTOL = 0.03
 FREQ_RULE_BINS = 1
 MODAL_RTOL = 0.01
 LINEARITY_RTOL = 0.10
@@ -81,9 +85,20 @@ def run(defect, *, scene=DRY, operating=OP, settings=ONE_SECOND, geometry=G, rig
         (8, 1, 0.0080, 0.0104),
         (9, 1, 0.0087, 0.0027),
         (10, 1, 0.0068, 0.0104),
-        (17, 2, 0.057, None),
-        (18, 2, 0.065, None),
-        (19, 2, 0.057, None),
+        *[
+            pytest.param(
+                order,
+                2,
+                level,
+                None,
+                marks=pytest.mark.xfail(
+                    strict=True,
+                    reason="docs/model.md 8.2: this model's 2 x BPFO lines are 8-9.5 % above "
+                    "the quoted ones, unchanged by damping, step, EHL and ball masses",
+                ),
+            )
+            for order, level in ((17, 0.057), (18, 0.065), (19, 0.057))
+        ],
     ],
 )
 def test_outer_waviness_levels(order, harmonic, y_mm_s, x_mm_s):
@@ -92,6 +107,19 @@ def test_outer_waviness_levels(order, harmonic, y_mm_s, x_mm_s):
     assert peak(r, "housing_velocity_y", f) == pytest.approx(y_mm_s, rel=MODEL82_RTOL)
     if x_mm_s is not None:
         assert peak(r, "housing_velocity_x", f) == pytest.approx(x_mm_s, rel=MODEL82_RTOL)
+
+
+def test_outer_2bpfo_lines_keep_the_documented_discrepancy_and_the_quoted_shape():
+    """The 2 x BPFO lines of N_w = 17, 18, 19 (docs/model.md 8.2): 8-9.5 % above the quoted
+    levels, no more (12 %), and in the quoted proportions (18 over 17 and 19: 1.140 quoted)."""
+    lines = {}
+    for order in (17, 18, 19):
+        r = run(Waviness(surface="outer", order=order, amplitude=1e-6))
+        lines[order] = peak(r, "housing_velocity_y", 2 * r.frequencies.bpfo)
+    for order, quoted in ((17, 0.057), (18, 0.065), (19, 0.057)):
+        assert 1.0 < lines[order] / quoted < 1.12
+    assert lines[18] / lines[17] == pytest.approx(0.065 / 0.057, rel=0.03)
+    assert lines[17] == pytest.approx(lines[19], rel=0.01)
 
 
 @pytest.mark.parametrize(
