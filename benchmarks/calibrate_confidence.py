@@ -1,0 +1,137 @@
+"""Calibrate the rule detector's confidence on simulated data (issue 18: a calibrated confidence).
+
+Each fault's line confidence is c = 1 / (1 + exp(-(margin - offset) / scale)), margin the
+fault line over the detection threshold [dB]. Read as "the probability that the signal has
+this fault", (scale, offset) are fitted by logistic regression of [the signal has fault i] on
+margin_i over every (signal, fault) pair of a calibration dataset: the detector-bench recipe
+(``datasets/detector-bench.toml``) with another seed and half the signals, simulated only.
+The fit is checked on the benchmark dataset itself (held out: another seed) by the expected
+calibration error (ECE, 10 bins) of the verdict's confidence against its correctness,
+before and after.
+
+The probabilities are those of the recipe's population (45 % healthy, pits of every kind and
+size at fault SNRs of -20 to +10 dB): another population (a fleet where 1 % of the bearings
+are faulty) shifts them, as any calibration depends on its prior.
+
+Run: python benchmarks/calibrate_confidence.py [calibration-dir] [benchmark-dir]
+(generates the calibration set if missing; the benchmark set is ``make detector-bench``'s
+``out/detector-bench``, generated if missing).
+"""
+
+from __future__ import annotations
+
+import re
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+FAULTS = ("outer race", "inner race", "ball")
+
+
+def _dataset(path: Path, *, seed: int | None, half: bool) -> Path:
+    from cmtool.datasets import generate_dataset
+
+    if (path / "_dataset.json").is_file():
+        return path
+    text = (ROOT / "datasets" / "detector-bench.toml").read_text()
+    if seed is not None:
+        text = re.sub(r"^seed = \d+", f"seed = {seed}", text, flags=re.MULTILINE)
+    if half:
+        text = text.replace("count = 1000", "count = 500").replace("count = 400", "count = 200")
+    with tempfile.TemporaryDirectory() as tmp:
+        recipe = Path(tmp) / "recipe.toml"
+        recipe.write_text(text)
+        generate_dataset(recipe, path, workers=2, resume=True)
+    return path
+
+
+def _margins(path: Path):
+    """Per signal: the true label and the rule detector's margin per fault [dB]."""
+    from cmtool.bench import run_bench
+
+    results = run_bench(path, workers=2)
+    rule = results[results["detector"] == "envelope"]
+    margins = rule[["score_outer_race", "score_inner_race", "score_ball"]].to_numpy()
+    return rule["label"].to_numpy(), margins
+
+
+def _confidence(margins: np.ndarray, scale: float, offset: float) -> np.ndarray:
+    return 1.0 / (1.0 + np.exp(-(margins - offset) / scale))
+
+
+def _verdicts(margins: np.ndarray, healthy: tuple[float, float], fault: tuple[float, float]):
+    """The rule verdict (top line detected at margin >= 0) and its confidence, as diagnose:
+    logistic in the top margin, one (scale, offset) for fault verdicts, one for healthy."""
+    top = np.argmax(margins, axis=1)
+    m = margins[np.arange(len(top)), top]
+    detected = m >= 0.0
+    verdict = np.where(detected, np.array(FAULTS)[top], "healthy")
+    c_fault = _confidence(m, *fault)
+    c_healthy = 1.0 - _confidence(m, *healthy)
+    return verdict, np.where(detected, c_fault, c_healthy)
+
+
+def _fit(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
+    """(scale, offset) [dB] of P(y) = 1 / (1 + exp(-(x - offset) / scale))."""
+    from sklearn.linear_model import LogisticRegression
+
+    fit = LogisticRegression(C=1e6).fit(x.reshape(-1, 1), y)
+    slope, intercept = float(fit.coef_[0, 0]), float(fit.intercept_[0])
+    return 1.0 / slope, -intercept / slope
+
+
+def expected_calibration_error(confidence: np.ndarray, correct: np.ndarray, bins: int = 10):
+    """Mean |accuracy - confidence| over equal-width confidence bins, weighted by count."""
+    edges = np.linspace(0.0, 1.0, bins + 1)
+    index = np.clip(np.digitize(confidence, edges) - 1, 0, bins - 1)
+    total = 0.0
+    for b in range(bins):
+        inside = index == b
+        if inside.any():
+            total += inside.mean() * abs(correct[inside].mean() - confidence[inside].mean())
+    return total
+
+
+def main() -> None:
+    from cmtool import diagnose as D
+
+    calibration = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "out" / "calibration"
+    benchmark = Path(sys.argv[2]) if len(sys.argv) > 2 else ROOT / "out" / "detector-bench"
+    labels, margins = _margins(_dataset(calibration, seed=9173, half=True))
+    # each fault's line: P(the signal has this fault | its margin)
+    line = _fit(margins.reshape(-1), (labels[:, None] == np.array(FAULTS)[None, :]).reshape(-1))
+    # the verdict: P(right | top margin), fault verdicts and healthy verdicts apart
+    top = margins.max(axis=1)
+    called = np.array(FAULTS)[np.argmax(margins, axis=1)]
+    detected = top >= 0.0
+    fault = _fit(top[detected], (called == labels)[detected])
+    healthy = _fit(top[~detected], (labels != "healthy")[~detected])
+    print(f"calibration set {calibration.name}: {len(labels)} signals")
+    print(
+        f"fitted: line (scale, offset) = ({line[0]:.2f}, {line[1]:.2f}) dB; fault verdicts "
+        f"({fault[0]:.2f}, {fault[1]:.2f}) dB; healthy verdicts ({healthy[0]:.2f}, "
+        f"{healthy[1]:.2f}) dB"
+    )
+    test_labels, test_margins = _margins(_dataset(benchmark, seed=None, half=False))
+    before = (D.CONFIDENCE_SCALE_DB, D.CONFIDENCE_OFFSET_DB)
+    in_use = (
+        ("uncalibrated (3 dB, 0 dB: the previous constants)", (3.0, 0.0), (3.0, 0.0)),
+        ("in use (cmtool.diagnose)", D.HEALTHY_CONFIDENCE, D.FAULT_CONFIDENCE),
+        ("fitted now", healthy, fault),
+    )
+    for name, h, f in in_use:
+        verdict, confidence = _verdicts(test_margins, h, f)
+        correct = verdict == test_labels
+        ece = expected_calibration_error(confidence, correct)
+        print(
+            f"{name} on {benchmark.name} ({len(test_labels)} signals): accuracy "
+            f"{correct.mean():.3f}, mean confidence {confidence.mean():.3f}, ECE {ece:.3f}"
+        )
+    del before
+
+
+if __name__ == "__main__":
+    main()
