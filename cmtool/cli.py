@@ -326,22 +326,6 @@ def _check_outputs(args: argparse.Namespace) -> None:
             )
 
 
-def waviness_markers(result, defects) -> dict[str, float]:
-    """Fault-frequency markers for a plot: characteristic frequencies plus waviness lines."""
-    from generators import waviness_passage_frequencies
-
-    f = result.frequencies
-    markers = {"shaft": f.shaft, "bpfo": f.bpfo, "bpfi": f.bpfi, "two_bsf": f.two_bsf}
-    geometry = bearing(result.parameters["bearing"]["name"])
-    for w in defects:
-        if not isinstance(w, Waviness) or w.order < 1:
-            continue
-        lines = waviness_passage_frequencies(geometry, f.shaft, w.surface, w.order, max_harmonic=1)
-        for line in lines[:1]:
-            markers[f"wpf:{w.surface} N_w={w.order}"] = line.frequency
-    return markers
-
-
 #: Runs with more output samples than this stream to disk in blocks (bounded memory): about
 #: 41 s at 51.2 kHz; an in-memory run of this length holds about 0.4 GB.
 STREAM_ABOVE_SAMPLES = 1 << 21
@@ -394,7 +378,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     from generators.model import EHL_MIN_SHAFT_FREQUENCY
 
     from .io import write_signal
-    from .plots import plot_spectrum
+    from .plots import plot_spectrum, waviness_markers
 
     _check_outputs(args)
     geometry, operating, defects, scene, rig, settings = _model_inputs(args)

@@ -28,9 +28,8 @@ from generators import (
     simulate,
 )
 
-from .cli import waviness_markers
 from .io import write_signal
-from .plots import plot_confusion, plot_spectrum
+from .plots import plot_confusion, plot_spectrum, waviness_markers
 
 __all__ = ["run_demo", "SMALL_RECIPE"]
 

@@ -15,7 +15,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-__all__ = ["plot_spectrum", "plot_kurtogram", "plot_confusion"]
+__all__ = ["plot_spectrum", "plot_kurtogram", "plot_confusion", "waviness_markers"]
 
 _COLORS = {
     "bpfo": "tab:red",
@@ -167,3 +167,19 @@ def plot_confusion(matrix, labels, path: str | Path, *, title: str) -> Path:
     fig.savefig(path)
     plt.close(fig)
     return path
+
+
+def waviness_markers(result, defects) -> dict[str, float]:
+    """Fault-frequency markers for a plot: characteristic frequencies plus waviness lines."""
+    from generators import Waviness, bearing, waviness_passage_frequencies
+
+    f = result.frequencies
+    markers = {"shaft": f.shaft, "bpfo": f.bpfo, "bpfi": f.bpfi, "two_bsf": f.two_bsf}
+    geometry = bearing(result.parameters["bearing"]["name"])
+    for w in defects:
+        if not isinstance(w, Waviness) or w.order < 1:
+            continue
+        lines = waviness_passage_frequencies(geometry, f.shaft, w.surface, w.order, max_harmonic=1)
+        for line in lines[:1]:
+            markers[f"wpf:{w.surface} N_w={w.order}"] = line.frequency
+    return markers
