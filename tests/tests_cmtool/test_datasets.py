@@ -176,7 +176,9 @@ def test_a_failing_worker_stops_the_run_and_resume_finishes_it(monkeypatch, tiny
     assert sorted(read_dataset(out)["id"]) == [f"tiny-{i:06d}" for i in range(6)]
 
 
-def test_resume_after_a_killed_run_gives_every_signal_once(tiny, tmp_path):
+def test_resume_after_a_killed_run_gives_every_signal_once(tmp_path):
+    tiny = tmp_path / "twenty.toml"  # 10 parts of 2 signals: the kill lands long before the end
+    tiny.write_text(TINY.replace("count = 3", "count = 10"))
     out = tmp_path / "ds"
     env = {**os.environ, "PYTHONUNBUFFERED": "1"}
     proc = subprocess.Popen(
@@ -200,6 +202,7 @@ def test_resume_after_a_killed_run_gives_every_signal_once(tiny, tmp_path):
         time.sleep(0.05)
     proc.send_signal(signal.SIGKILL)
     proc.wait()
+    assert proc.returncode == -signal.SIGKILL and not (out / "_dataset.json").exists()
     assert (out / "data" / "part-00000.parquet").exists()
     # a part being written when the process died is a hidden temporary file, never a
     # truncated .parquet: every visible part reads whole
@@ -208,8 +211,8 @@ def test_resume_after_a_killed_run_gives_every_signal_once(tiny, tmp_path):
     summary = generate_dataset(tiny, out, resume=True)
     assert not list(out.rglob("*.tmp"))  # the resumed run removed what the killed one left
     frame = read_dataset(out)
-    assert sorted(frame["id"]) == [f"tiny-{i:06d}" for i in range(6)]
-    assert summary["skipped_existing"] >= 2
+    assert sorted(frame["id"]) == [f"tiny-{i:06d}" for i in range(20)]
+    assert summary["skipped_existing"] >= 2 and summary["written"] >= 2
     # the resumed dataset equals an uninterrupted one
     ref = tmp_path / "ref"
     generate_dataset(tiny, ref)
@@ -293,11 +296,12 @@ def test_dask_cluster_with_a_worker_killed_mid_run(tiny, tmp_path):
             and len(list((out / "data").glob("*.parquet")) if (out / "data").exists() else []) < 2
         ):
             time.sleep(0.05)
-        # kill one worker process outright (as a crash would)
+        # kill one worker process outright (as a crash would), while parts are still missing
         with distributed.Client(cluster.scheduler_address) as client:
             pids = client.run(os.getpid)
             victim = sorted(pids.values())[0]
         os.kill(victim, signal.SIGKILL)
+        assert len(list((out / "data").glob("*.parquet"))) < 16  # the kill landed mid-run
         thread.join(timeout=300)
         assert not thread.is_alive()
     frame = read_dataset(out)
