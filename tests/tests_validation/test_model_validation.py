@@ -72,8 +72,11 @@ def peak(result, channel, freq, half_width=1.5):
     return F.band_amplitude(f, a, freq, half_width=half_width) * 1e3  # mm/s
 
 
-def run(defect, *, scene=DRY, operating=OP, settings=ONE_SECOND, geometry=G, rig=None):
-    return simulate(geometry, operating, defect, scene=scene, settings=settings, rig=rig)
+def run(defect, *, scene=DRY, operating=OP, settings=ONE_SECOND, geometry=G, rig=None, seed=0):
+    """One simulation; ``seed`` fixes every random draw (ball waviness phases): reproducible."""
+    return simulate(
+        geometry, operating, defect, scene=scene, settings=settings, rig=rig, random_state=seed
+    )
 
 
 # ------------------------------------------------------------------------------ docs/model.md 8.2
