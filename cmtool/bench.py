@@ -619,6 +619,8 @@ def _markdown(frame: pd.DataFrame, digits: int = 3) -> str:
 def _pivot(table: pd.DataFrame, label: str, order: str, pfa: float = 1e-2) -> str:
     """A markdown table: one row per bin (in order), one column per detector."""
     key = f"pd_at_pfa_{pfa:g}"
+    if not len(table):
+        return "(no faulty signals)"
     detectors = list(dict.fromkeys(table["detector"]))
     bins = table.drop_duplicates(label).sort_values(order)[label].tolist()
     lines = [

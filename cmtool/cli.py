@@ -935,6 +935,7 @@ def cmd_bench(args: argparse.Namespace) -> int:
         for c in bench.FACTORS
         if c not in ("fault_snr_db", "snr_db") and c in results and results[c].nunique() > 1
     }
+    factors = {c: t for c, t in factors.items() if len(t)}  # none without faulty signals
     tag = " [IN-SAMPLE]" if in_sample else ""
     print(f"== ROC area and detection at fixed false-alarm rates{tag}")
     print(summary.to_string(index=False, float_format=lambda v: f"{v:.3f}"))

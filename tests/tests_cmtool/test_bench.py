@@ -195,3 +195,20 @@ def test_snr_below_the_sweep_is_pooled_in_one_bin_first(rng):
     frame.loc[frame["id"].isin(["ball0", "ball1"]), "fault_snr_db"] = [-150.0, -45.0]
     table = by_factor(frame, "fault_snr_db")
     assert table["bin"].iloc[0] == "below -20 dB" and table["signals"].iloc[0] == 2
+
+
+def test_a_dataset_of_healthy_signals_only_gives_false_alarm_figures_and_no_crash(tmp_path):
+    """No faulty signal: no ROC, no Pd; the labels' false-alarm rates are the figures."""
+    import shutil
+
+    data = tmp_path / "healthy" / "data"
+    data.mkdir(parents=True)
+    for name in sorted((SMALL / "data").glob("*.parquet"))[:2]:  # the first parts: healthy
+        shutil.copy(name, data / name.name)
+    out = tmp_path / "out"
+    assert main(["bench", str(data.parent), "--out", str(out)]) == 0
+    summary = pd.read_csv(out / "summary.csv")
+    assert summary["auc"].isna().all() and (summary["signals"] == 0).all()
+    labels = pd.read_csv(out / "labels.csv", index_col=0)
+    assert labels.loc["envelope", "false_alarm_rate"] == 0.0
+    assert (out / "report.md").is_file() and (out / "roc.png").is_file()

@@ -2,6 +2,7 @@
 
 import json
 import pickle
+import shutil
 import zipfile
 from pathlib import Path
 
@@ -162,7 +163,14 @@ def test_cli_train_evaluate(tmp_path, capsys):
     assert "confusion matrix" in out and "precision" in out and "IN-SAMPLE" in out
     assert json.loads((tmp_path / "ev" / "evaluation.json").read_text())["in_sample_fraction"] == 1
     assert (tmp_path / "ev" / "confusion.png").stat().st_size > 5000
-    bench = ["bench", str(SMALL), "--model", str(model), "--out", str(tmp_path / "b")]
+    # bench on four of the training parts (32 signals): refused, then labelled in-sample
+    part = tmp_path / "part" / "data"
+    part.mkdir(parents=True)
+    for name in sorted((SMALL / "data").glob("*.parquet"))[::6]:
+        shutil.copy(name, part / name.name)
+    bench = ["bench", str(part.parent), "--model", str(model), "--out", str(tmp_path / "b")]
+    assert main(bench) == 2
+    assert "--allow-training-data" in capsys.readouterr().err
     assert main([*bench, "--allow-training-data", "--workers", "2"]) == 0
     assert "IN-SAMPLE" in capsys.readouterr().out
     summary = pd.read_csv(tmp_path / "b" / "summary.csv")
