@@ -21,3 +21,21 @@ def shared_data() -> pathlib.Path:
     if not (SHARED_DATA / "MANIFEST.csv").is_file():
         pytest.skip("../shared/data is absent (a fresh clone alone has no measured recordings)")
     return SHARED_DATA
+
+
+@pytest.fixture(scope="session")
+def small_dataset():
+    """The committed ``datasets/small`` (read once per session)."""
+    from cmtool.datasets import read_dataset
+
+    return read_dataset(pathlib.Path(__file__).resolve().parents[1] / "datasets" / "small")
+
+
+@pytest.fixture(scope="session")
+def small_bundle(small_dataset):
+    """``cmtool train``'s defaults on ``datasets/small`` (trained once per session: the
+    diagnosis tests and the small target share it)."""
+    from cmtool.classifier import train
+
+    recipe = pathlib.Path(__file__).resolve().parents[1] / "datasets" / "small" / "recipe.toml"
+    return train(small_dataset, recipe=recipe.read_text())

@@ -16,10 +16,8 @@ from cmtool.classifier import (
     evaluate,
     load_model,
     save_model,
-    train,
 )
 from cmtool.cli import main
-from cmtool.datasets import read_dataset
 from cmtool.diagnose import DETECTION_DB, diagnose_signal
 from cmtool.io import read_recording
 
@@ -27,14 +25,14 @@ REPO = Path(__file__).resolve().parents[2]
 SMALL = REPO / "datasets" / "small"
 
 
-@pytest.fixture(scope="module")
-def small():
-    return read_dataset(SMALL)
+@pytest.fixture
+def small(small_dataset):
+    return small_dataset
 
 
-@pytest.fixture(scope="module")
-def bundle(small):
-    return train(small, recipe=(SMALL / "recipe.toml").read_text())
+@pytest.fixture
+def bundle(small_bundle):
+    return small_bundle
 
 
 def test_committed_small_dataset_matches_its_recipe(small):
