@@ -113,8 +113,14 @@ def test_generate_writes_labelled_parquet(tiny, tmp_path):
     assert b"tiny" in meta[b"recipe"] and meta[b"cmtool_version"]
     text = dataset_info(out)
     assert "healthy" in text and "rpm" in text
-    # noise level follows the SNR: 10 dB -> noise rms = signal rms / 3.16
+    # noise level follows the SNR: noise rms = clean rms / 10^(SNR/20), so the stored (noisy)
+    # signal has rms^2 = noise_rms^2 (1 + 10^(SNR/10)); independent noise of 512 samples leaves
+    # a cross term of a few per cent
     assert (frame["noise_rms"] > 0).all()
+    for _, row in frame.iterrows():
+        stored = np.sqrt(np.mean(np.square(np.asarray(row["signal"], dtype=float))))
+        expected = row["noise_rms"] * np.sqrt(1 + 10 ** (row["snr_db"] / 10))
+        assert stored == pytest.approx(expected, rel=0.1), (stored, expected)
 
 
 def test_same_recipe_same_bytes_whatever_the_workers(tiny, tmp_path):
