@@ -10,7 +10,6 @@ from __future__ import annotations
 import argparse
 import json
 import logging
-import math
 import os
 import sys
 from collections.abc import Sequence
@@ -129,7 +128,16 @@ def parse_defect(spec: str) -> LocalizedDefect:
     return LocalizedDefect(surface=surface, **fields)  # type: ignore[arg-type]
 
 
+def _default(cls: type, name: str):
+    """The default of a parameter object's field (the one place it is written)."""
+    import dataclasses
+
+    return next(f.default for f in dataclasses.fields(cls) if f.name == name)
+
+
 def _add_model_arguments(p: argparse.ArgumentParser) -> None:
+    from generators.params import INTEGRATORS, SCENE_LEVELS
+
     g = p.add_argument_group("bearing and operating point")
     g.add_argument(
         "--bearing", default="6205", choices=sorted(BEARINGS), help="catalog bearing (default 6205)"
@@ -141,25 +149,35 @@ def _add_model_arguments(p: argparse.ArgumentParser) -> None:
         help="radial internal (diametral) clearance P_d [m]; default the catalog's",
     )
     g.add_argument("--rpm", type=float, default=1800.0, help="shaft speed [rev/min]")
-    g.add_argument("--load", type=float, default=500.0, help="radial load [N]")
+    g.add_argument(
+        "--load",
+        type=float,
+        default=_default(OperatingCondition, "radial_load"),
+        help="radial load [N]",
+    )
     g.add_argument(
         "--load-angle",
         type=float,
-        default=-math.pi / 2,
+        default=_default(OperatingCondition, "load_angle"),
         help="load direction from +x [rad] (default -pi/2, down)",
     )
-    g.add_argument("--cage-slip", type=float, default=0.0, help="cage slip fraction [-]")
+    g.add_argument(
+        "--cage-slip",
+        type=float,
+        default=_default(OperatingCondition, "cage_slip"),
+        help="cage slip fraction [-]",
+    )
     g.add_argument(
         "--random-slip",
         type=float,
-        default=0.0,
+        default=_default(OperatingCondition, "random_slip"),
         help="random fluctuation of the cage speed, standard deviation over its mean [-] "
         "(real bearings 0.01-0.02; makes local-defect impacts cyclostationary)",
     )
     g.add_argument(
         "--ball-jitter",
         type=float,
-        default=0.0,
+        default=_default(OperatingCondition, "ball_jitter"),
         help="each ball's random offset in its cage pocket, standard deviation [rad]",
     )
     g.add_argument(
@@ -181,9 +199,7 @@ def _add_model_arguments(p: argparse.ArgumentParser) -> None:
         "[rad], spin-axis drift [rad/s]",
     )
     s = p.add_argument_group("model")
-    s.add_argument(
-        "--scene", default="shaft+housing", choices=["shaft", "shaft+housing", "full", "auto"]
-    )
+    s.add_argument("--scene", default=_default(Scene, "level"), choices=SCENE_LEVELS)
     s.add_argument(
         "--ehl",
         dest="ehl",
@@ -192,7 +208,7 @@ def _add_model_arguments(p: argparse.ArgumentParser) -> None:
         help="include the EHL film (default)",
     )
     s.add_argument("--no-ehl", dest="ehl", action="store_false", help="dry contacts")
-    s.add_argument("--auto-error-bound", type=float, default=0.05)
+    s.add_argument("--auto-error-bound", type=float, default=_default(Scene, "auto_error_bound"))
     r = p.add_argument_group("rig (docs/model.md 6.3 defaults)")
     d = Rig()
     r.add_argument("--shaft-mass", type=float, default=d.shaft_mass, help="[kg]")
@@ -207,7 +223,11 @@ def _add_model_arguments(p: argparse.ArgumentParser) -> None:
         help="dry contact damping c = tau dQ/d delta [s]",
     )
     r.add_argument("--film-damping-factor", type=float, default=d.film_damping_factor)
-    r.add_argument("--lubricant", default="VG68", choices=sorted(LUBRICANTS))
+    r.add_argument(
+        "--lubricant",
+        default=next(k for k, v in LUBRICANTS.items() if v == d.lubricant),
+        choices=sorted(LUBRICANTS),
+    )
     r.add_argument(
         "--loading-stiffness",
         type=float,
@@ -217,20 +237,27 @@ def _add_model_arguments(p: argparse.ArgumentParser) -> None:
     r.add_argument("--unbalance", type=float, default=0.0, help="m_u e [kg m]")
     r.add_argument("--no-gravity", dest="gravity", action="store_false", default=True)
     n = p.add_argument_group("integration and sampling")
-    n.add_argument("--fs", type=float, default=25600.0, help="output sample rate [Hz]")
-    n.add_argument("--duration", type=float, default=1.0, help="recorded duration [s]")
-    n.add_argument("--settle", type=float, default=0.1, help="settling time discarded [s]")
-    n.add_argument("--integrator", default="rk4", choices=["rk4", "dopri5"])
+    sim = SimulationSettings()
+    n.add_argument("--fs", type=float, default=sim.fs, help="output sample rate [Hz]")
+    n.add_argument("--duration", type=float, default=sim.duration, help="recorded duration [s]")
+    n.add_argument(
+        "--settle", type=float, default=sim.settle_time, help="settling time discarded [s]"
+    )
+    n.add_argument("--integrator", default=sim.integrator, choices=INTEGRATORS)
     n.add_argument("--step", type=float, default=None, help="RK4 step [s]; default per scene")
-    n.add_argument("--rtol", type=float, default=1e-6, help="dopri5 relative tolerance")
-    n.add_argument("--atol", type=float, default=1e-12, help="dopri5 displacement atol [m]")
+    n.add_argument("--rtol", type=float, default=sim.rtol, help="dopri5 relative tolerance")
+    n.add_argument(
+        "--atol", type=float, default=sim.atol_displacement, help="dopri5 displacement atol [m]"
+    )
     n.add_argument(
         "--oversample",
         type=int,
         default=None,
         help="integration record rate / output rate (anti-alias margin)",
     )
-    n.add_argument("--cage-angle", type=float, default=0.0, help="initial cage angle [rad]")
+    n.add_argument(
+        "--cage-angle", type=float, default=sim.cage_angle, help="initial cage angle [rad]"
+    )
     n.add_argument("--contact-loads", action="store_true", help="also record ball loads")
     n.add_argument(
         "--channels",
@@ -462,8 +489,6 @@ def _print_run(run, settings, geometry, operating, film: bool) -> None:
 
 def _simulate_streamed(args, geometry, operating, defects, scene, rig, settings, film) -> int:
     """A long run: integrated and written block by block, with a progress bar."""
-    from tqdm import tqdm
-
     from generators.stream import simulate_stream
 
     from .io import write_signal_stream
@@ -477,15 +502,7 @@ def _simulate_streamed(args, geometry, operating, defects, scene, rig, settings,
         settings=settings,
         random_state=args.seed,
     )
-    bar = tqdm(
-        total=stream.n_samples,
-        desc="simulate",
-        unit="sample",
-        unit_scale=True,
-        disable=None,
-        file=sys.stderr,
-    )
-    with bar:
+    with _progress_bar(stream.n_samples, "simulate", "sample", unit_scale=True) as bar:
         if args.out:
             path = write_signal_stream(
                 stream, args.out, channels=_requested_channels(args), progress=bar.update
@@ -524,11 +541,21 @@ def cmd_frequencies(args: argparse.Namespace) -> int:
     return 0
 
 
-def _progress_bar(total: int, desc: str):
-    """A tqdm progress bar (count, rate, ETA) on stderr, quiet when not a terminal."""
+def _progress_bar(
+    total: int, desc: str, unit: str = "run", *, initial: int = 0, unit_scale: bool = False
+):
+    """The progress bar of every command: tqdm (count, rate, ETA) on stderr, quiet off a tty."""
     from tqdm import tqdm
 
-    return tqdm(total=total, desc=desc, unit="run", disable=None, file=sys.stderr)
+    return tqdm(
+        total=total,
+        desc=desc,
+        unit=unit,
+        unit_scale=unit_scale,
+        initial=initial,
+        disable=None,
+        file=sys.stderr,
+    )
 
 
 def cmd_fidelity(args: argparse.Namespace) -> int:
@@ -601,16 +628,7 @@ def cmd_generate(args: argparse.Namespace) -> int:
     def progress(done: int, total: int) -> None:
         nonlocal bar
         if bar is None:
-            from tqdm import tqdm
-
-            bar = tqdm(
-                total=total,
-                desc="generate",
-                unit="signal",
-                disable=None,
-                file=sys.stderr,
-                initial=done,
-            )
+            bar = _progress_bar(total, "generate", "signal", initial=done)
         else:
             bar.update(done - bar.n)
 
@@ -894,9 +912,7 @@ def cmd_bench(args: argparse.Namespace) -> int:
     def progress(done: int, total: int) -> None:
         nonlocal bar
         if bar is None:
-            from tqdm import tqdm
-
-            bar = tqdm(total=total, desc="bench", unit="signal", disable=None, file=sys.stderr)
+            bar = _progress_bar(total, "bench", "signal")
         bar.update(done - bar.n)
 
     results = bench.run_bench(

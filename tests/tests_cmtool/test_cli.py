@@ -321,3 +321,17 @@ def test_version_flag(capsys):
         main(["--version"])
     assert stop.value.code == 0
     assert capsys.readouterr().out.strip() == f"cmtool {__version__}"
+
+
+def test_command_line_defaults_are_the_parameter_objects_defaults():
+    """`simulate` with no flag builds exactly the default parameter objects (the defaults are
+    written once, in generators.params, and read by the command line)."""
+    from cmtool.cli import _model_inputs, build_parser
+    from generators import OperatingCondition, Rig, Scene, SimulationSettings, bearing
+
+    geometry, operating, defects, scene, rig, settings = _model_inputs(
+        build_parser().parse_args(["simulate"])
+    )
+    assert geometry == bearing("6205") and defects == []
+    assert operating == OperatingCondition.from_rpm(1800.0)
+    assert (scene, rig, settings) == (Scene(), Rig(), SimulationSettings())
