@@ -23,9 +23,8 @@ from collections.abc import Mapping
 import numpy as np
 
 from ._validate import FeatureError, check_fs, check_signal
-from .envelope import envelope, kurtogram
+from .envelope import envelope_spectrum, kurtogram
 from .evidence import slip_line
-from .spectra import amplitude_spectrum
 
 __all__ = [
     "FIXED_BAND",
@@ -111,8 +110,7 @@ def envelope_scores(
     fs = check_fs(fs)
     if band is None:
         band = (FIXED_BAND[0] * fs, FIXED_BAND[1] * fs)
-    env = envelope(x, fs, band=band, method="squared", prewhitening=prewhitening)
-    freqs, amp = amplitude_spectrum(env, fs, window="hann", detrend="constant")
+    freqs, amp = envelope_spectrum(x, fs, band=band, method="squared", prewhitening=prewhitening)
     return _ses_line_scores(freqs, amp, fault_frequencies, harmonics)
 
 

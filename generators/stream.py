@@ -19,19 +19,18 @@ step that covers its last record, past the next block's first record time).
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import signal as sp_signal
 
 from . import _kernels as K
 from ._validate import ParameterError
 from .kinematics import BearingFrequencies
 from .model import (
-    _CHANNEL_COLUMNS,
     CHANNELS,
     Prepared,
+    _decimate,
     _diverged,
     _params_record,
     _plan,
@@ -167,7 +166,7 @@ class SignalStream:
                         loads = np.concatenate([carry[2], loads])
             else:  # pragma: no cover - every block needs records past the previous one
                 raise AssertionError("streamed block made no progress")
-            signals = _decimate_block(state, accel, q, self.channels)
+            signals = _decimate(state, accel, q, self.channels)
             first = i0 - carry_start // q  # the block's first sample in the decimated chunk
             block_signals = {name: v[first : first + i1 - i0].copy() for name, v in signals.items()}
             block_loads = None
@@ -226,20 +225,6 @@ def _step_of(record: int, t_first: float, record_dt: float, dt: float) -> int:
 def _margin_records(q: int) -> int:
     """Integration records on each side of a block that cover the anti-alias filter."""
     return 12 * q  # resample_poly's half-length is 10 q; a multiple of q keeps the phase
-
-
-def _decimate_block(
-    state: np.ndarray, accel: np.ndarray, q: int, channels: Sequence[str]
-) -> dict[str, np.ndarray]:
-    """The decimation of :func:`generators.model._decimate` on one stretch of records."""
-    records = (state, accel)
-    block = np.empty((len(channels), state.shape[0]))
-    for c, name in enumerate(channels):
-        which, column = _CHANNEL_COLUMNS[name]
-        block[c] = records[which][:, column]
-    if q > 1:
-        block = sp_signal.resample_poly(block, 1, q, axis=1, padtype="line")
-    return {name: block[c] for c, name in enumerate(channels)}
 
 
 def simulate_stream(
