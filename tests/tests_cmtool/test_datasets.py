@@ -238,6 +238,9 @@ def test_ctrl_c_finishes_the_parts_being_written_and_resume_completes(tmp_path):
         stdout=subprocess.DEVNULL,
         stderr=subprocess.PIPE,
         text=True,
+        # a suite started in the background (no job control) hands its children SIGINT
+        # ignored, and Python then installs no KeyboardInterrupt handler: restore the default
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline and not (out / "data" / "part-00000.parquet").exists():
