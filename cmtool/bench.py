@@ -501,7 +501,8 @@ def by_factor(
                     "signals": len(part),
                 }
             )
-    return pd.DataFrame(rows)
+    columns = ["detector", "bin", "value", key, "ci_low", "ci_high", "signals"]
+    return pd.DataFrame(rows, columns=columns)
 
 
 def _rates(group: pd.DataFrame) -> pd.Series:

@@ -120,6 +120,17 @@ def test_detection_against_snr_bins_in_order_with_intervals(rng):
     assert table["pd_at_pfa_0.01"].iloc[0] < 0.2 and table["pd_at_pfa_0.01"].iloc[-1] > 0.95
 
 
+def test_detection_against_snr_of_an_absent_fault_is_an_empty_table(rng):
+    """A dataset of healthy and ball faults only: the per-fault table of inner-race faults has
+    the columns and no rows (``cmtool bench`` stopped with a KeyError on it)."""
+    frame = _synthetic_results(rng)
+    frame = frame[frame["label"].isin(["healthy", "ball"])]
+    table = by_factor(frame, "fault_snr_db", fault="inner race")
+    assert table.empty
+    assert {"detector", "bin", "value", "pd_at_pfa_0.01", "ci_low", "signals"} <= set(table)
+    assert len(by_factor(frame, "fault_snr_db", fault="ball")) > 0
+
+
 def test_load_callable_errors():
     assert load_callable("test_bench:always_healthy") is always_healthy
     with pytest.raises(ValueError, match="module:function"):
