@@ -148,7 +148,11 @@ def _equilibrium(
         )
     loads = np.empty(gap.size)
     gx, gy, hxx, hxy, hyy, _ = K._static_sums(x, y, cos_t, sin_t, gap, k, fx, fy, False, loads)
-    if math.hypot(gx, gy) > 1e-7 * max(fr, 1.0):
+    # the residual is judged against the largest force in play: the load, or the preload's
+    # ball forces (a preloaded bearing under a few newtons carries tens of newtons per ball,
+    # and rounding leaves ~1e-8 of those)
+    preload_force = k * max(-float(gap.min()), 0.0) ** 1.5
+    if math.hypot(gx, gy) > 1e-7 * max(fr, preload_force, 1.0):
         raise ParameterError(
             f"radial_load = {fr:g} N: static equilibrium not found (residual "
             f"{math.hypot(gx, gy):.3g} N)"
