@@ -178,7 +178,9 @@ def _localized_rows(
     # rolling direction at the Stribeck ball load 4.37 F_r / Z, plus half the pit
     ball_load = max(4.37 * radial_load / geometry.ball_count, 1.0)
     radius = 0.5 * geometry.ball_diameter
-    latitude = rng.uniform(-np.pi, np.pi) if defect.latitude is None else defect.latitude
+    # a point placed at random on a sphere is as likely at any height above its equator
+    # (Archimedes' hat-box theorem): sin(latitude) is uniform, not the latitude
+    latitude = np.arcsin(rng.uniform(-1.0, 1.0)) if defect.latitude is None else defect.latitude
     rows = []
     for code, race, bridge in (
         (K.SURF_BALL_DEFECT_OUTER, "outer", path.bridge_radius_outer),

@@ -141,7 +141,7 @@ def test_cwru_pattern_races_clear_ball_hardest():
                     "depth_m": 0.011 * INCH,
                     "count": 4,
                     # ball pits: anywhere on the ball, spin axis wandering (cwru-rig.toml)
-                    **({"axis_drift_rad_s": {"min": 0, "max": 100}} if surface == "ball" else {}),
+                    **({"axis_drift_rad_s": {"min": 0, "max": 0.2}} if surface == "ball" else {}),
                 }
                 for surface in ("inner", "outer", "ball")
             ],
