@@ -161,15 +161,10 @@ def _waviness_hint(spectra, freqs: BearingFrequencies, geometry: BearingGeometry
 
 
 def _line_snr(f: np.ndarray, a: np.ndarray, line: float) -> tuple[float, float]:
+    """Waviness line over its floor [dB] and the floor [U]: :func:`features.line_snr`."""
     df = f[1] - f[0]
-    near = np.abs(f - line)
-    sel = near <= max(1.5 * df, 0.003 * line)
-    window = (near <= max(0.1 * line, 10 * df)) & ~(near <= 3 * max(1.5 * df, 0.003 * line))
-    if not sel.any() or not window.any():
-        return 0.0, 0.0
-    peak = float(a[sel].max())
-    floor = float(np.median(a[window]))
-    return (20 * math.log10(peak / floor) if peak > 0 and floor > 0 else 0.0), floor
+    snr, _, floor = features.line_snr(f, a, line, half_width=max(1.5 * df, 0.003 * line), guard=3.0)
+    return snr, floor
 
 
 def diagnose_signal(

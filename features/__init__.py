@@ -11,6 +11,7 @@ from .bands import (
     band_metrics,
     fault_bands,
     harmonic_amplitudes,
+    line_snr,
 )
 from .catalog import (
     DEFAULT_FAULTS,
@@ -84,6 +85,7 @@ __all__ = [
     "feature_names",
     "feature_units",
     "harmonic_amplitudes",
+    "line_snr",
     "integrate_signal",
     "integrate_spectrum",
     "kurtogram",

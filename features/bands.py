@@ -14,12 +14,75 @@ import pandas as pd
 from ._validate import FeatureError, check_positive
 
 __all__ = [
+    "line_snr",
     "band_amplitude",
     "harmonic_amplitudes",
     "fault_bands",
     "band_metrics",
     "BAND_METRIC_COLUMNS",
 ]
+
+#: Half width of the noise-floor window around a line, relative to the line's frequency.
+FLOOR_WINDOW = 0.10
+
+
+def line_snr(
+    frequencies: np.ndarray,
+    spectrum: np.ndarray,
+    center: float,
+    *,
+    half_width: float,
+    guard: float = 2.0,
+) -> tuple[float, float, float]:
+    """A spectral line over its local noise floor: the one line measure of the toolkit.
+
+    Used by the feature table (``spectrum_*_snr``, ``envelope_*_snr``) and by ``cmtool
+    diagnose``'s waviness lines, each with its own half width.
+
+    Parameters
+    ----------
+    frequencies : ndarray
+        Bin frequencies [Hz], uniform and increasing.
+    spectrum : ndarray
+        Amplitude spectrum [U], one value per bin.
+    center : float
+        Line frequency [Hz].
+    half_width : float
+        Half width of the search band [Hz] (at least one bin is searched).
+    guard : float
+        The floor leaves out ``guard`` half widths either side of the line [-].
+
+    Returns
+    -------
+    snr_db, peak, floor : float
+        The band's peak over the median of the spectrum within ``FLOOR_WINDOW * center``
+        (at least 10 bins) of the line, outside the guard [dB]; the peak [U]; the floor [U].
+        All 0 when the band reaches past the spectrum's end.
+
+    Examples
+    --------
+    >>> f = np.arange(0.0, 500.0, 0.5)
+    >>> a = np.full(f.size, 0.01)
+    >>> a[200] = 1.0  # a line at 100 Hz, 40 dB over the floor
+    >>> [round(v, 2) for v in line_snr(f, a, 100.0, half_width=1.0)]
+    [40.0, 1.0, 0.01]
+    """
+    f = np.asarray(frequencies, dtype=float)
+    s = np.asarray(spectrum, dtype=float)
+    half_width = check_positive("half_width", half_width, unit="Hz")
+    df = f[1] - f[0]
+    hw = max(half_width, df)
+    near = np.abs(f - center)
+    line = near <= hw
+    if not line.any() or center + hw > f[-1]:
+        return 0.0, 0.0, 0.0
+    peak = float(s[line].max())
+    window = (near <= max(FLOOR_WINDOW * center, 10 * df)) & ~(near <= guard * hw)
+    floor = float(np.median(s[window])) if window.any() else 0.0
+    tiny = 1e-300
+    snr = float(20.0 * np.log10(max(peak, tiny) / max(floor, tiny))) if peak > 0 else 0.0
+    return snr, peak, floor
+
 
 #: Columns of :func:`band_metrics`.
 BAND_METRIC_COLUMNS = (

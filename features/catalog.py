@@ -37,6 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._validate import FeatureError, check_fs, check_positive, check_signal
+from .bands import line_snr
 from .envelope import KurtogramResult, envelope, kurtogram
 from .spectra import amplitude_spectrum
 from .stats import TIME_STATISTICS, time_statistics
@@ -57,8 +58,6 @@ DEFAULT_FAULTS = ("bpfo", "bpfi", "two_bsf", "ftf")
 SIDEBAND_SPACING = {"bpfi": "shaft", "two_bsf": "ftf"}
 #: Sidebands searched per harmonic in the amplitude spectrum.
 SPECTRUM_SIDEBANDS = 1
-#: Relative width of the noise-floor window around a line.
-FLOOR_WINDOW = 0.10
 #: The kurtogram may only choose bands at least this many times wider than the fastest fault
 #: rate measured: the demodulation band must pass a fault's carrier with its first sidebands
 #: (+/- f_fault) and some margin, or the envelope cannot show the fault rate.
@@ -108,27 +107,6 @@ def compute_spectra(
     env = envelope(x, fs, band=band)
     ef, ea = amplitude_spectrum(env, fs)
     return Spectra(freqs, amp, ef, ea, (float(band[0]), float(band[1])), kg)
-
-
-def _line(
-    freqs: np.ndarray, spec: np.ndarray, center: float, half_width: float
-) -> tuple[float, float]:
-    """Peak within +/- half_width of ``center`` and the local noise floor around it."""
-    df = freqs[1] - freqs[0]
-    hw = max(half_width, df)
-    near = np.abs(freqs - center)
-    line = near <= hw
-    if not line.any() or center + hw > freqs[-1]:
-        return 0.0, 0.0
-    peak = float(spec[line].max())
-    window = (near <= max(FLOOR_WINDOW * center, 10 * df)) & ~(near <= 2 * hw)
-    floor = float(np.median(spec[window])) if window.any() else 0.0
-    return peak, floor
-
-
-def _db(peak: float, floor: float) -> float:
-    tiny = 1e-300
-    return float(20.0 * np.log10(max(peak, tiny) / max(floor, tiny))) if peak > 0 else 0.0
 
 
 def feature_names(faults=DEFAULT_FAULTS, n_harmonics: int = 3) -> list[str]:
@@ -233,9 +211,9 @@ def extract_features(
             f0 = float(context[fault])
             for k in range(1, n_harmonics + 1):
                 hw = half_width if half_width is not None else max(1.5 * df, 0.005 * k * f0)
-                peak, floor = _line(freqs, spec, k * f0, hw)
+                snr, peak, _ = line_snr(freqs, spec, k * f0, half_width=hw)
                 out[f"{kind}_{fault}_h{k}"] = peak
-                out[f"{kind}_{fault}_h{k}_snr"] = _db(peak, floor)
+                out[f"{kind}_{fault}_h{k}_snr"] = snr
     for fault in faults:
         if fault not in SIDEBAND_SPACING:
             continue
@@ -247,10 +225,13 @@ def extract_features(
         hw = half_width if half_width is not None else max(1.5 * df, 0.005 * f0)
         snrs = []
         for sign in (-1, 1):
-            peak, floor = _line(
-                spectra.envelope_frequencies, spectra.envelope_amplitude, f0 + sign * spacing, hw
+            snr, _, _ = line_snr(
+                spectra.envelope_frequencies,
+                spectra.envelope_amplitude,
+                f0 + sign * spacing,
+                half_width=hw,
             )
-            snrs.append(_db(peak, floor))
+            snrs.append(snr)
         out[f"envelope_{fault}_sideband_snr"] = float(np.mean(snrs))
     for fault in faults:
         if fault not in SIDEBAND_SPACING:
@@ -266,8 +247,10 @@ def extract_features(
                         line = k * f0 + sign * m * spacing
                         if line <= 0:
                             continue
-                        peak, floor = _line(spectra.frequencies, spectra.amplitude, line, hw)
-                        best = max(best, _db(peak, floor))
+                        snr, _, _ = line_snr(
+                            spectra.frequencies, spectra.amplitude, line, half_width=hw
+                        )
+                        best = max(best, snr)
             out[f"spectrum_{fault}_h{k}_sideband_snr"] = best
     for fault in faults:
         keys = [f"spectrum_{fault}_h{k}_snr" for k in range(1, n_harmonics + 1)]

@@ -52,3 +52,22 @@ def test_bad_bands():
         F.fault_bands(CTX, domain="order")
     with pytest.raises(F.FeatureError, match="half_width"):
         F.band_amplitude(np.arange(10.0), np.ones(10), 5.0, half_width=0.0)
+
+
+def test_line_snr_floor_guard_and_edge():
+    """A 100 Hz line 40 dB over a flat floor; the floor leaves out the line's skirt;
+    a band past the spectrum's end measures nothing; the half width is validated."""
+    from features import FeatureError, line_snr
+
+    f = np.arange(0.0, 500.0, 0.5)
+    a = np.full(f.size, 0.01)
+    a[200] = 1.0
+    assert line_snr(f, a, 100.0, half_width=1.0) == pytest.approx((40.0, 1.0, 0.01))
+    # the line's own skirt (a Hann leakage of 3 bins) stays out of the floor with guard 3
+    skirt = a.copy()
+    skirt[198:203] = 0.5
+    skirt[200] = 1.0
+    assert line_snr(f, skirt, 100.0, half_width=0.75, guard=3.0)[2] == pytest.approx(0.01)
+    assert line_snr(f, a, 499.5, half_width=1.0) == (0.0, 0.0, 0.0)
+    with pytest.raises(FeatureError, match="half_width"):
+        line_snr(f, a, 100.0, half_width=0.0)
