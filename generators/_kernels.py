@@ -97,6 +97,11 @@ FILM_ITERATIONS = 2  # Newton steps on d = delta + h(K d^1.5): error 1e-5 (tests
 SCENE_SHAFT = 0
 SCENE_SHAFT_HOUSING = 1
 SCENE_FULL = 2
+#: Scene codes and the names their compiled entry points carry.
+SCENE_NAMES = {SCENE_SHAFT: "shaft", SCENE_SHAFT_HOUSING: "shaft_housing", SCENE_FULL: "full"}
+FILM_DRY = 0
+FILM_EHL = 1
+FILM_NAMES = {FILM_DRY: "dry", FILM_EHL: "ehl"}
 
 SURF_OUTER = 0
 SURF_INNER = 1
@@ -1180,477 +1185,11 @@ def _dopri5_impl(
 
 
 # ------------------------------------------------------------------ compiled entry points
-# One entry point per (scene, film) pair: the constants reach the implementations as literal
-# types, so each pair is compiled (and cached) on its own with the other scenes' branches
-# removed; Python picks the entry from ``RK4``, ``DOPRI5`` and ``RHS`` by (scene, ehl).
-
-
-@numba.njit(**_JIT)
-def _rk4_shaft_dry(
-    y0,
-    p,
-    wav,
-    t0,
-    dt,
-    n_steps,
-    t_first,
-    record_dt,
-    n_record,
-    out_state,
-    out_accel,
-    out_loads,
-    record_loads,
-):
-    return _rk4_impl(
-        0,
-        0,
-        y0,
-        p,
-        wav,
-        t0,
-        dt,
-        n_steps,
-        t_first,
-        record_dt,
-        n_record,
-        out_state,
-        out_accel,
-        out_loads,
-        record_loads,
-    )
-
-
-@numba.njit(**_JIT)
-def _rk4_shaft_ehl(
-    y0,
-    p,
-    wav,
-    t0,
-    dt,
-    n_steps,
-    t_first,
-    record_dt,
-    n_record,
-    out_state,
-    out_accel,
-    out_loads,
-    record_loads,
-):
-    return _rk4_impl(
-        0,
-        1,
-        y0,
-        p,
-        wav,
-        t0,
-        dt,
-        n_steps,
-        t_first,
-        record_dt,
-        n_record,
-        out_state,
-        out_accel,
-        out_loads,
-        record_loads,
-    )
-
-
-@numba.njit(**_JIT)
-def _rk4_shaft_housing_dry(
-    y0,
-    p,
-    wav,
-    t0,
-    dt,
-    n_steps,
-    t_first,
-    record_dt,
-    n_record,
-    out_state,
-    out_accel,
-    out_loads,
-    record_loads,
-):
-    return _rk4_impl(
-        1,
-        0,
-        y0,
-        p,
-        wav,
-        t0,
-        dt,
-        n_steps,
-        t_first,
-        record_dt,
-        n_record,
-        out_state,
-        out_accel,
-        out_loads,
-        record_loads,
-    )
-
-
-@numba.njit(**_JIT)
-def _rk4_shaft_housing_ehl(
-    y0,
-    p,
-    wav,
-    t0,
-    dt,
-    n_steps,
-    t_first,
-    record_dt,
-    n_record,
-    out_state,
-    out_accel,
-    out_loads,
-    record_loads,
-):
-    return _rk4_impl(
-        1,
-        1,
-        y0,
-        p,
-        wav,
-        t0,
-        dt,
-        n_steps,
-        t_first,
-        record_dt,
-        n_record,
-        out_state,
-        out_accel,
-        out_loads,
-        record_loads,
-    )
-
-
-@numba.njit(**_JIT)
-def _rk4_full_dry(
-    y0,
-    p,
-    wav,
-    t0,
-    dt,
-    n_steps,
-    t_first,
-    record_dt,
-    n_record,
-    out_state,
-    out_accel,
-    out_loads,
-    record_loads,
-):
-    return _rk4_impl(
-        2,
-        0,
-        y0,
-        p,
-        wav,
-        t0,
-        dt,
-        n_steps,
-        t_first,
-        record_dt,
-        n_record,
-        out_state,
-        out_accel,
-        out_loads,
-        record_loads,
-    )
-
-
-@numba.njit(**_JIT)
-def _rk4_full_ehl(
-    y0,
-    p,
-    wav,
-    t0,
-    dt,
-    n_steps,
-    t_first,
-    record_dt,
-    n_record,
-    out_state,
-    out_accel,
-    out_loads,
-    record_loads,
-):
-    return _rk4_impl(
-        2,
-        1,
-        y0,
-        p,
-        wav,
-        t0,
-        dt,
-        n_steps,
-        t_first,
-        record_dt,
-        n_record,
-        out_state,
-        out_accel,
-        out_loads,
-        record_loads,
-    )
-
-
-@numba.njit(**_JIT)
-def _dopri5_shaft_dry(
-    y0,
-    p,
-    wav,
-    t0,
-    t_first,
-    record_dt,
-    n_record,
-    rtol,
-    atol,
-    h0,
-    h_max,
-    max_steps,
-    out_state,
-    out_accel,
-    out_loads,
-    record_loads,
-    step_stats,
-):
-    return _dopri5_impl(
-        0,
-        0,
-        y0,
-        p,
-        wav,
-        t0,
-        t_first,
-        record_dt,
-        n_record,
-        rtol,
-        atol,
-        h0,
-        h_max,
-        max_steps,
-        out_state,
-        out_accel,
-        out_loads,
-        record_loads,
-        step_stats,
-    )
-
-
-@numba.njit(**_JIT)
-def _dopri5_shaft_ehl(
-    y0,
-    p,
-    wav,
-    t0,
-    t_first,
-    record_dt,
-    n_record,
-    rtol,
-    atol,
-    h0,
-    h_max,
-    max_steps,
-    out_state,
-    out_accel,
-    out_loads,
-    record_loads,
-    step_stats,
-):
-    return _dopri5_impl(
-        0,
-        1,
-        y0,
-        p,
-        wav,
-        t0,
-        t_first,
-        record_dt,
-        n_record,
-        rtol,
-        atol,
-        h0,
-        h_max,
-        max_steps,
-        out_state,
-        out_accel,
-        out_loads,
-        record_loads,
-        step_stats,
-    )
-
-
-@numba.njit(**_JIT)
-def _dopri5_shaft_housing_dry(
-    y0,
-    p,
-    wav,
-    t0,
-    t_first,
-    record_dt,
-    n_record,
-    rtol,
-    atol,
-    h0,
-    h_max,
-    max_steps,
-    out_state,
-    out_accel,
-    out_loads,
-    record_loads,
-    step_stats,
-):
-    return _dopri5_impl(
-        1,
-        0,
-        y0,
-        p,
-        wav,
-        t0,
-        t_first,
-        record_dt,
-        n_record,
-        rtol,
-        atol,
-        h0,
-        h_max,
-        max_steps,
-        out_state,
-        out_accel,
-        out_loads,
-        record_loads,
-        step_stats,
-    )
-
-
-@numba.njit(**_JIT)
-def _dopri5_shaft_housing_ehl(
-    y0,
-    p,
-    wav,
-    t0,
-    t_first,
-    record_dt,
-    n_record,
-    rtol,
-    atol,
-    h0,
-    h_max,
-    max_steps,
-    out_state,
-    out_accel,
-    out_loads,
-    record_loads,
-    step_stats,
-):
-    return _dopri5_impl(
-        1,
-        1,
-        y0,
-        p,
-        wav,
-        t0,
-        t_first,
-        record_dt,
-        n_record,
-        rtol,
-        atol,
-        h0,
-        h_max,
-        max_steps,
-        out_state,
-        out_accel,
-        out_loads,
-        record_loads,
-        step_stats,
-    )
-
-
-@numba.njit(**_JIT)
-def _dopri5_full_dry(
-    y0,
-    p,
-    wav,
-    t0,
-    t_first,
-    record_dt,
-    n_record,
-    rtol,
-    atol,
-    h0,
-    h_max,
-    max_steps,
-    out_state,
-    out_accel,
-    out_loads,
-    record_loads,
-    step_stats,
-):
-    return _dopri5_impl(
-        2,
-        0,
-        y0,
-        p,
-        wav,
-        t0,
-        t_first,
-        record_dt,
-        n_record,
-        rtol,
-        atol,
-        h0,
-        h_max,
-        max_steps,
-        out_state,
-        out_accel,
-        out_loads,
-        record_loads,
-        step_stats,
-    )
-
-
-@numba.njit(**_JIT)
-def _dopri5_full_ehl(
-    y0,
-    p,
-    wav,
-    t0,
-    t_first,
-    record_dt,
-    n_record,
-    rtol,
-    atol,
-    h0,
-    h_max,
-    max_steps,
-    out_state,
-    out_accel,
-    out_loads,
-    record_loads,
-    step_stats,
-):
-    return _dopri5_impl(
-        2,
-        1,
-        y0,
-        p,
-        wav,
-        t0,
-        t_first,
-        record_dt,
-        n_record,
-        rtol,
-        atol,
-        h0,
-        h_max,
-        max_steps,
-        out_state,
-        out_accel,
-        out_loads,
-        record_loads,
-        step_stats,
-    )
+# One entry point per (scene, film) pair: the pair reaches the implementations as literal
+# types, so each pair is compiled (and cached, under its own name) on its own with the other
+# scenes' branches removed; Python picks the entry from ``RK4``, ``DOPRI5`` and ``RHS`` by
+# (scene, ehl). Each factory spells its integrator's arguments once; the closure's two
+# integers are part of numba's cache key (tests_generators/test_kernels_cache.py).
 
 
 @numba.njit(**_JIT)
@@ -1663,60 +1202,111 @@ def _rhs_once_impl(scene, ehl, t, y, p, wav, dydt, loads):
     _rhs(scene, ehl, y, p, wav, dydt, loads, scratch)
 
 
-@numba.njit(**_JIT)
-def _rhs_shaft_dry(t, y, p, wav, dydt, loads):
-    _rhs_once_impl(0, 0, t, y, p, wav, dydt, loads)
+def _specialised(entry, kind: str, scene: int, ehl: int):
+    """Compile ``entry`` (a closure over ``scene`` and ``ehl``) under a name of its own."""
+    entry.__name__ = entry.__qualname__ = f"_{kind}_{SCENE_NAMES[scene]}_{FILM_NAMES[ehl]}"
+    return numba.njit(**_JIT)(entry)
 
 
-@numba.njit(**_JIT)
-def _rhs_shaft_ehl(t, y, p, wav, dydt, loads):
-    _rhs_once_impl(0, 1, t, y, p, wav, dydt, loads)
+def _rk4_entry(scene: int, ehl: int):
+    """The RK4 entry point of one (scene, film) pair (arguments: :func:`_rk4_impl`)."""
+
+    def entry(
+        y0,
+        p,
+        wav,
+        t0,
+        dt,
+        n_steps,
+        t_first,
+        record_dt,
+        n_record,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+    ):
+        return _rk4_impl(
+            scene,
+            ehl,
+            y0,
+            p,
+            wav,
+            t0,
+            dt,
+            n_steps,
+            t_first,
+            record_dt,
+            n_record,
+            out_state,
+            out_accel,
+            out_loads,
+            record_loads,
+        )
+
+    return _specialised(entry, "rk4", scene, ehl)
 
 
-@numba.njit(**_JIT)
-def _rhs_shaft_housing_dry(t, y, p, wav, dydt, loads):
-    _rhs_once_impl(1, 0, t, y, p, wav, dydt, loads)
+def _dopri5_entry(scene: int, ehl: int):
+    """The DOPRI5 entry point of one (scene, film) pair (arguments: :func:`_dopri5_impl`)."""
+
+    def entry(
+        y0,
+        p,
+        wav,
+        t0,
+        t_first,
+        record_dt,
+        n_record,
+        rtol,
+        atol,
+        h0,
+        h_max,
+        max_steps,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+        step_stats,
+    ):
+        return _dopri5_impl(
+            scene,
+            ehl,
+            y0,
+            p,
+            wav,
+            t0,
+            t_first,
+            record_dt,
+            n_record,
+            rtol,
+            atol,
+            h0,
+            h_max,
+            max_steps,
+            out_state,
+            out_accel,
+            out_loads,
+            record_loads,
+            step_stats,
+        )
+
+    return _specialised(entry, "dopri5", scene, ehl)
 
 
-@numba.njit(**_JIT)
-def _rhs_shaft_housing_ehl(t, y, p, wav, dydt, loads):
-    _rhs_once_impl(1, 1, t, y, p, wav, dydt, loads)
+def _rhs_entry(scene: int, ehl: int):
+    """One right-hand-side evaluation of one (scene, film) pair (:func:`_rhs_once_impl`)."""
+
+    def entry(t, y, p, wav, dydt, loads):
+        _rhs_once_impl(scene, ehl, t, y, p, wav, dydt, loads)
+
+    return _specialised(entry, "rhs", scene, ehl)
 
 
-@numba.njit(**_JIT)
-def _rhs_full_dry(t, y, p, wav, dydt, loads):
-    _rhs_once_impl(2, 0, t, y, p, wav, dydt, loads)
-
-
-@numba.njit(**_JIT)
-def _rhs_full_ehl(t, y, p, wav, dydt, loads):
-    _rhs_once_impl(2, 1, t, y, p, wav, dydt, loads)
-
-
-RK4 = {
-    (0, 0): _rk4_shaft_dry,
-    (0, 1): _rk4_shaft_ehl,
-    (1, 0): _rk4_shaft_housing_dry,
-    (1, 1): _rk4_shaft_housing_ehl,
-    (2, 0): _rk4_full_dry,
-    (2, 1): _rk4_full_ehl,
-}
-DOPRI5 = {
-    (0, 0): _dopri5_shaft_dry,
-    (0, 1): _dopri5_shaft_ehl,
-    (1, 0): _dopri5_shaft_housing_dry,
-    (1, 1): _dopri5_shaft_housing_ehl,
-    (2, 0): _dopri5_full_dry,
-    (2, 1): _dopri5_full_ehl,
-}
-RHS = {
-    (0, 0): _rhs_shaft_dry,
-    (0, 1): _rhs_shaft_ehl,
-    (1, 0): _rhs_shaft_housing_dry,
-    (1, 1): _rhs_shaft_housing_ehl,
-    (2, 0): _rhs_full_dry,
-    (2, 1): _rhs_full_ehl,
-}
+PAIRS = tuple((scene, ehl) for scene in SCENE_NAMES for ehl in FILM_NAMES)
+RK4 = {pair: _rk4_entry(*pair) for pair in PAIRS}
+DOPRI5 = {pair: _dopri5_entry(*pair) for pair in PAIRS}
+RHS = {pair: _rhs_entry(*pair) for pair in PAIRS}
 
 
 def _rk4(scene, ehl, *args):

@@ -42,6 +42,7 @@ from numba.extending import intrinsic
 from generators._kernels import (
     _JIT,
     _JIT_INLINE,
+    FILM_NAMES,
     P_BALL_COUNT,
     P_BALL_SPIN_SPEED,
     P_CAGE_ANGLE0,
@@ -73,6 +74,8 @@ from generators._kernels import (
     P_SQUEEZE_SERIES,
     P_UNBALANCE,
     PHASE_ANCHOR,
+    SCENE_NAMES,
+    SCENE_SHAFT,
     SCENE_SHAFT_HOUSING,
     STATUS_NONFINITE,
     STATUS_OK,
@@ -637,30 +640,14 @@ def _rk4_impl(
     return t0 + n_steps * dt
 
 
-# One entry point per (scene, film) pair, as in generators._kernels: the constants reach the
-# implementation as literal types (each pair compiled and cached on its own).
+# One entry point per (scene, film) pair, as in generators._kernels: the pair reaches the
+# implementation as literal types (each pair compiled and cached on its own, under its name).
 
 
-@numba.njit(**_JIT)
-def _rk4_shaft_dry(
-    y0,
-    p,
-    wav,
-    t0,
-    dt,
-    n_steps,
-    t_first,
-    record_dt,
-    n_record,
-    which,
-    column,
-    out,
-    status,
-    t_status,
-):
-    return _rk4_impl(
-        0,
-        0,
+def _rk4_entry(scene: int, ehl: int):
+    """The lanes' RK4 entry point of one (scene, film) pair (arguments: :func:`_rk4_impl`)."""
+
+    def entry(
         y0,
         p,
         wav,
@@ -675,123 +662,30 @@ def _rk4_shaft_dry(
         out,
         status,
         t_status,
-    )
+    ):
+        return _rk4_impl(
+            scene,
+            ehl,
+            y0,
+            p,
+            wav,
+            t0,
+            dt,
+            n_steps,
+            t_first,
+            record_dt,
+            n_record,
+            which,
+            column,
+            out,
+            status,
+            t_status,
+        )
+
+    entry.__name__ = entry.__qualname__ = f"_rk4_lanes_{SCENE_NAMES[scene]}_{FILM_NAMES[ehl]}"
+    return numba.njit(**_JIT)(entry)
 
 
-@numba.njit(**_JIT)
-def _rk4_shaft_ehl(
-    y0,
-    p,
-    wav,
-    t0,
-    dt,
-    n_steps,
-    t_first,
-    record_dt,
-    n_record,
-    which,
-    column,
-    out,
-    status,
-    t_status,
-):
-    return _rk4_impl(
-        0,
-        1,
-        y0,
-        p,
-        wav,
-        t0,
-        dt,
-        n_steps,
-        t_first,
-        record_dt,
-        n_record,
-        which,
-        column,
-        out,
-        status,
-        t_status,
-    )
-
-
-@numba.njit(**_JIT)
-def _rk4_shaft_housing_dry(
-    y0,
-    p,
-    wav,
-    t0,
-    dt,
-    n_steps,
-    t_first,
-    record_dt,
-    n_record,
-    which,
-    column,
-    out,
-    status,
-    t_status,
-):
-    return _rk4_impl(
-        1,
-        0,
-        y0,
-        p,
-        wav,
-        t0,
-        dt,
-        n_steps,
-        t_first,
-        record_dt,
-        n_record,
-        which,
-        column,
-        out,
-        status,
-        t_status,
-    )
-
-
-@numba.njit(**_JIT)
-def _rk4_shaft_housing_ehl(
-    y0,
-    p,
-    wav,
-    t0,
-    dt,
-    n_steps,
-    t_first,
-    record_dt,
-    n_record,
-    which,
-    column,
-    out,
-    status,
-    t_status,
-):
-    return _rk4_impl(
-        1,
-        1,
-        y0,
-        p,
-        wav,
-        t0,
-        dt,
-        n_steps,
-        t_first,
-        record_dt,
-        n_record,
-        which,
-        column,
-        out,
-        status,
-        t_status,
-    )
-
-
-RK4 = {
-    (0, 0): _rk4_shaft_dry,
-    (0, 1): _rk4_shaft_ehl,
-    (1, 0): _rk4_shaft_housing_dry,
-    (1, 1): _rk4_shaft_housing_ehl,
-}
+#: The scenes the lanes integrate (massless balls).
+LANE_SCENES = (SCENE_SHAFT, SCENE_SHAFT_HOUSING)
+RK4 = {(scene, ehl): _rk4_entry(scene, ehl) for scene in LANE_SCENES for ehl in FILM_NAMES}
