@@ -402,7 +402,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     """Run one simulation, write the signal and optionally the spectrum plot."""
     import features
     from generators import simulate
-    from generators.model import EHL_MIN_SHAFT_FREQUENCY
+    from generators.prepared import EHL_MIN_SHAFT_FREQUENCY
 
     from .io import write_signal
     from .plots import plot_spectrum, waviness_markers

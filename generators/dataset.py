@@ -23,6 +23,7 @@ import numpy as np
 from scipy import signal as sp_signal
 
 from ._validate import ParameterError, SimulationDivergedError
+from .batches import lanes_supported, simulate_lanes
 from .catalog import BEARINGS, bearing
 from .kinematics import _passage_lines, characteristic_frequencies
 from .measurement import (
@@ -36,7 +37,7 @@ from .measurement import (
     sensor_response,
     transfer_path,
 )
-from .model import Prepared, _default, _prepare, integrate, lanes_supported, simulate_lanes
+from .model import integrate
 from .params import (
     INTEGRATORS,
     MAX_SHAFT_SPEED_RPM,
@@ -48,6 +49,7 @@ from .params import (
     SimulationSettings,
     Waviness,
 )
+from .prepared import Prepared, _default, _prepare
 
 __all__ = [
     "validate_recipe",

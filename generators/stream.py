@@ -26,17 +26,10 @@ import numpy as np
 
 from . import _kernels as K
 from ._validate import ParameterError
+from .decimation import _decimate
 from .kinematics import BearingFrequencies
-from .model import (
-    CHANNELS,
-    Prepared,
-    _decimate,
-    _diverged,
-    _params_record,
-    _plan,
-    prepare,
-)
-from .params import BearingGeometry, OperatingCondition, Rig, Scene, SimulationSettings
+from .params import CHANNELS, BearingGeometry, OperatingCondition, Rig, Scene, SimulationSettings
+from .prepared import Prepared, _diverged, _params_record, _plan, prepare
 
 __all__ = ["SignalBlock", "SignalStream", "simulate_stream", "RECORD_BYTES_PER_SAMPLE"]
 

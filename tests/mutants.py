@@ -37,7 +37,8 @@ def pytest_configure(config):
     if name not in MUTANTS:
         raise ValueError(f"CMTOOL_MUTANT = {name!r} is not one of {', '.join(MUTANTS)}")
     import generators.contact as contact
-    import generators.model as model
+    import generators.packing as packing
+    import generators.prepared as prepared
     import generators.static as static
     from generators import _kernels as K
 
@@ -48,11 +49,11 @@ def pytest_configure(config):
         def constants(geometry):
             return tuple(1.02 * k for k in original(geometry))
 
-        for module in (contact, model, static):
+        for module in (contact, packing, static):
             module.load_deflection_constants = constants
-        model._contacts.cache_clear()
+        packing._contacts.cache_clear()
     elif name == "waviness_phase":
-        original = model._waviness_table
+        original = prepared._waviness_table
 
         @functools.wraps(original)
         def table(*args, **kwargs):
@@ -61,14 +62,14 @@ def pytest_configure(config):
             wav[rows, K.W_PHASE] += 0.02 * 2 * math.pi
             return wav
 
-        model._waviness_table = table
+        prepared._waviness_table = table
     elif name == "film_thickness":
-        model.film_thickness = _scaled(model.film_thickness, 1.02)
+        packing.film_thickness = _scaled(packing.film_thickness, 1.02)
     elif name == "squeeze_damping":
-        model.squeeze_film_damping = _scaled(model.squeeze_film_damping, 1.02)
+        packing.squeeze_film_damping = _scaled(packing.squeeze_film_damping, 1.02)
     else:
         index = {"contact_damping": K.P_CONTACT_DAMPING_TIME, "cage_speed": K.P_CAGE_SPEED}[name]
-        original = model._pack
+        original = prepared._pack
 
         @functools.wraps(original)
         def pack(*args, **kwargs):
@@ -76,7 +77,7 @@ def pytest_configure(config):
             p[index] *= 1.02
             return p
 
-        model._pack = pack
+        prepared._pack = pack
     config.stash_mutant = name  # noqa: B010 - a marker for the report header
 
 

@@ -150,7 +150,7 @@ def test_ball_defect_hits_both_races_once_per_spin(b6205):
 
 def test_default_step_resolves_the_pit(b6205):
     """The default RK4 step gives at least DEFECT_STEPS steps per passage."""
-    from generators.model import DEFECT_STEPS
+    from generators.steps import DEFECT_STEPS
 
     op = OperatingCondition.from_rpm(1800, 500)
     d = LocalizedDefect(surface="outer", length=0.1e-3, depth=1e-4)

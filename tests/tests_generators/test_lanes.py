@@ -23,7 +23,8 @@ from generators import (
     bearing,
     simulate,
 )
-from generators.model import _row_padding, lanes_supported, prepare, simulate_lanes
+from generators.batches import _row_padding
+from generators.model import lanes_supported, prepare, simulate_lanes
 
 G = bearing("6205")
 CHANNEL = "housing_acceleration_y"

@@ -263,7 +263,7 @@ def test_rk4_stability_radius_matches_the_analytic_limits():
 def test_default_step_is_stable_and_twice_that_is_not():
     # full/dry: the ball radial mode sets the step; RK4 at the default step runs, at 1.6 times
     # it (twice the stability limit's safety margin of 0.8) diverges
-    from generators.model import STABILITY_SAFETY
+    from generators.steps import STABILITY_SAFETY
 
     st = SimulationSettings(fs=25600.0, duration=0.02, settle_time=0.01)
     r = simulate(G6205, OP, settings=st, scene=Scene(level="full", ehl=False))
@@ -326,7 +326,7 @@ def test_the_anti_alias_decimation_keeps_the_band_and_removes_what_would_alias()
     """The record (oversample x fs) is decimated by a zero-phase FIR: a line inside the output
     band keeps amplitude and phase, one above the output Nyquist does not fold back."""
     from generators._kernels import N_OUT_ACCEL, N_OUT_STATE
-    from generators.model import _decimate
+    from generators.decimation import _decimate
 
     fs, factor, n = 10000.0, 4, 4 * 10000
     t = np.arange(n) / (factor * fs)

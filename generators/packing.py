@@ -1,0 +1,349 @@
+"""Parameter packing for the kernels.
+
+The float vector ``p``, the waviness and defect table ``wav``, random slip rows and the EHL
+film tables (docs/model.md 3-5, 11-12).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from . import _kernels as K
+from ._validate import ParameterError
+from .contact import (
+    entrainment_speed,
+    film_thickness,
+    hertz_contact,
+    load_deflection_constants,
+    squeeze_film_damping,
+)
+from .defects import defect_path
+from .kinematics import BearingFrequencies
+from .params import (
+    BearingGeometry,
+    LocalizedDefect,
+    OperatingCondition,
+    Rig,
+    Waviness,
+)
+
+
+@functools.lru_cache(maxsize=64)
+def _contacts(geometry: BearingGeometry):
+    ci = hertz_contact(geometry, "inner")
+    co = hertz_contact(geometry, "outer")
+    return ci, co, load_deflection_constants(geometry)
+
+
+Defect = Waviness | LocalizedDefect
+
+
+def _as_defects(defects) -> tuple[Defect, ...]:
+    if defects is None:
+        return ()
+    if isinstance(defects, (Waviness, LocalizedDefect)):
+        return (defects,)
+    out = tuple(defects)
+    for i, d in enumerate(out):
+        if not isinstance(d, (Waviness, LocalizedDefect)):
+            raise ParameterError(f"defects[{i}] = {d!r} is not a Waviness or LocalizedDefect")
+    return out
+
+
+def _localized_rows(
+    geometry: BearingGeometry,
+    defect: LocalizedDefect,
+    rng: np.random.Generator,
+    radial_load: float,
+) -> list[tuple]:
+    """Kernel table rows of a local defect (columns: see ``_kernels`` SURF_*_DEFECT)."""
+    if defect.surface == "ball" and defect.ball >= geometry.ball_count:
+        raise ParameterError(
+            f"ball = {defect.ball} is outside the allowed range [0, {geometry.ball_count - 1}]"
+        )
+    path = defect_path(geometry, defect)
+    position = rng.uniform(-np.pi, np.pi) if defect.position is None else defect.position
+    common = (path.half_width, defect.depth, position, path.surface_radius)
+    if defect.surface == "outer":
+        return [(K.SURF_OUTER_DEFECT, -1, *common, path.bridge_radius_outer)]
+    if defect.surface == "inner":
+        return [(K.SURF_INNER_DEFECT, -1, *common, path.bridge_radius_inner)]
+    # the band the races sweep on the ball: the contact ellipse's half width across the
+    # rolling direction at the Stribeck ball load 4.37 F_r / Z, plus half the pit
+    ball_load = max(4.37 * radial_load / geometry.ball_count, 1.0)
+    radius = 0.5 * geometry.ball_diameter
+    # a point placed at random on a sphere is as likely at any height above its equator
+    # (Archimedes' hat-box theorem): sin(latitude) is uniform, not the latitude
+    latitude = np.arcsin(rng.uniform(-1.0, 1.0)) if defect.latitude is None else defect.latitude
+    rows = []
+    for code, race, bridge in (
+        (K.SURF_BALL_DEFECT_OUTER, "outer", path.bridge_radius_outer),
+        (K.SURF_BALL_DEFECT_INNER, "inner", path.bridge_radius_inner),
+    ):
+        half_track = hertz_contact(geometry, race).semi_axes(ball_load)[0] + 0.5 * defect.length
+        track = min(half_track / radius, 1.0)
+        rows.append((code, defect.ball, *common, bridge, latitude, defect.axis_drift, track))
+    return rows
+
+
+def _waviness_table(
+    defects: Sequence[Defect],
+    geometry: BearingGeometry,
+    rng: np.random.Generator,
+    radial_load: float,
+) -> np.ndarray:
+    """Expand defects into the kernel table (ball rows per ball, phases drawn).
+
+    ``radial_load`` [N] sets the contact track width of ball pits (Stribeck load).
+    """
+    ball_count = geometry.ball_count
+    rows = []
+    code = {"outer": K.SURF_OUTER, "inner": K.SURF_INNER}
+    for w in defects:
+        if isinstance(w, LocalizedDefect):
+            if w.depth > 0.0:
+                rows.extend(_localized_rows(geometry, w, rng, radial_load))
+            continue
+        if w.amplitude == 0.0:
+            continue
+        if w.surface in code:
+            phase = rng.uniform(0, 2 * np.pi) if w.phase is None else w.phase
+            step = 2 * np.pi * w.order / ball_count
+            rows.append(
+                (code[w.surface], -1, w.order, w.amplitude, phase, np.cos(step), np.sin(step))
+            )
+        else:
+            balls = range(ball_count) if w.ball is None else (w.ball,)
+            for j in balls:
+                if j >= ball_count:
+                    raise ParameterError(
+                        f"ball = {j} is outside the allowed range [0, {ball_count - 1}]"
+                    )
+                # each ball its own waviness phase and initial spin angle (docs/model.md 5, [A])
+                phase = rng.uniform(0, 2 * np.pi) if w.phase is None else w.phase
+                spin0 = rng.uniform(0, 2 * np.pi)
+                rows.append(
+                    (K.SURF_BALL, j, w.order, w.amplitude, phase + w.order * spin0, 1.0, 0.0)
+                )
+    rows = [tuple(row) + (0.0,) * (K.W_SIZE - len(row)) for row in rows]
+    table = np.array(rows, dtype=np.float64).reshape(-1, K.W_SIZE)
+    return np.ascontiguousarray(table)
+
+
+#: Random slip as sums of sinusoids (docs/realism.md): components of the cage-speed
+#: fluctuation, log-spaced over [SLIP_BAND[0], SLIP_BAND[1]] times the cage frequency, and of
+#: each ball's pocket offset over [POCKET_BAND[0], POCKET_BAND[1]] times the cage frequency.
+SLIP_COMPONENTS = 12
+SLIP_BAND = (1.0 / 8.0, 2.0)
+POCKET_COMPONENTS = 4
+POCKET_BAND = (0.5, 4.0)
+
+
+def slip_rows(
+    operating: OperatingCondition, ball_count: int, cage_speed: float, rng: np.random.Generator
+) -> np.ndarray:
+    """Kernel table rows of the random slip (``_kernels.SURF_SLIP``), drawn from ``rng``.
+
+    The cage-speed fluctuation eps(t) (standard deviation ``operating.random_slip``) is a sum
+    of ``SLIP_COMPONENTS`` sinusoids of equal power at frequencies drawn log-uniformly, one per
+    equal log-band of ``SLIP_BAND`` x f_c, with uniform random phases; the balls' common lag
+    is its integral, psi(t) = w_c int eps dt, so component m has angle amplitude
+    w_c eps_m / w_m [rad]. Each ball's pocket offset (standard deviation
+    ``operating.ball_jitter`` [rad]) is a sum of ``POCKET_COMPONENTS`` such sinusoids over
+    ``POCKET_BAND`` x f_c. For random phases the coherent part of harmonic k of a race
+    defect's impact rate is multiplied by the product of J0(k Z a_m) over the rows
+    (:func:`slip_line_factor`).
+
+    Parameters
+    ----------
+    operating : OperatingCondition
+        Supplies ``random_slip`` [-] and ``ball_jitter`` [rad].
+    ball_count : int
+        Z.
+    cage_speed : float
+        Cage angular speed w_c [rad/s].
+    rng : numpy.random.Generator
+        Source of the frequencies and phases.
+
+    Returns
+    -------
+    ndarray, shape (rows, W_SIZE)
+        Empty when both are 0 or the cage stands.
+    """
+    rows = []
+    wc = abs(cage_speed)
+    for sigma, count, band, balls in (
+        (operating.random_slip, SLIP_COMPONENTS, SLIP_BAND, (-1,)),
+        (operating.ball_jitter, POCKET_COMPONENTS, POCKET_BAND, tuple(range(ball_count))),
+    ):
+        if sigma == 0.0 or wc == 0.0:
+            continue
+        edges = np.linspace(np.log(band[0] * wc), np.log(band[1] * wc), count + 1)
+        for ball in balls:
+            rates = np.exp(rng.uniform(edges[:-1], edges[1:]))
+            phases = rng.uniform(0.0, 2 * np.pi, count)
+            share = sigma * np.sqrt(2.0 / count)
+            # the cage's speed fluctuation integrates to an angle; a pocket offset is one
+            angles = wc * share / rates if ball == -1 else np.full(count, share)
+            for rate, angle, phase in zip(rates, angles, phases, strict=True):
+                rows.append((K.SURF_SLIP, ball, rate, angle, phase) + (0.0,) * (K.W_SIZE - 5))
+    return np.array(rows, dtype=np.float64).reshape(-1, K.W_SIZE)
+
+
+def slip_line_factor(wav: np.ndarray, multiple: float, ball: int = 0) -> float:
+    """Expected coherent fraction of a line whose argument is ``multiple`` x ball j's lag.
+
+    For psi = sum a_m sin(w_m t + phi_m) with independent uniform phases,
+    E[exp(i kappa psi)] = prod J0(kappa a_m): the factor by which slip shrinks the discrete
+    (periodic) part of harmonic k of a race defect's impacts, ``multiple = k Z`` for the
+    outer race (the rest spreads into a continuous spectrum).
+
+    Parameters
+    ----------
+    wav : ndarray
+        A kernel table (only its ``SURF_SLIP`` rows for ``ball`` and -1 are used).
+    multiple : float
+        kappa [-].
+    ball : int
+        The ball whose pocket rows count.
+
+    Returns
+    -------
+    float
+        Between 0 and 1 (1 without slip rows).
+    """
+    from scipy.special import j0
+
+    rows = wav[(wav[:, K.W_SURFACE] == K.SURF_SLIP) & np.isin(wav[:, K.W_BALL], (-1, ball))]
+    return float(np.prod(j0(multiple * rows[:, K.W_SLIP_ANGLE])))
+
+
+def _pack(
+    geometry: BearingGeometry,
+    operating: OperatingCondition,
+    rig: Rig,
+    ehl: bool,
+    freqs: BearingFrequencies | None,
+) -> np.ndarray:
+    """Pack the parameter objects into the kernel's float64 vector (indices ``K.P_*``)."""
+    ci, co, (ki, ko, kt) = _contacts(geometry)
+    p = np.zeros(K.P_SIZE)
+    z = geometry.ball_count
+    p[K.P_BALL_COUNT] = z
+    p[K.P_PITCH_COS] = math.cos(2 * math.pi / z)
+    p[K.P_PITCH_SIN] = math.sin(2 * math.pi / z)
+    p[K.P_SHAFT_MASS] = rig.shaft_mass
+    p[K.P_HOUSING_MASS] = rig.housing_mass
+    p[K.P_BALL_MASS] = geometry.ball_mass
+    p[K.P_PEDESTAL_STIFFNESS] = rig.pedestal_stiffness
+    p[K.P_PEDESTAL_DAMPING] = rig.pedestal_damping
+    p[K.P_SHAFT_DAMPING] = rig.shaft_damping
+    p[K.P_K_INNER] = ki
+    p[K.P_K_OUTER] = ko
+    p[K.P_K_SERIES] = kt
+    p[K.P_GAP] = geometry.radial_gap
+    fs = operating.shaft_frequency
+    if freqs is not None:
+        p[K.P_SHAFT_SPEED] = 2 * math.pi * fs
+        p[K.P_CAGE_SPEED] = 2 * math.pi * freqs.ftf
+        p[K.P_BALL_SPIN_SPEED] = 2 * math.pi * freqs.bsf
+    p[K.P_LOAD_X] = operating.radial_load * math.cos(operating.load_angle)
+    p[K.P_LOAD_Y] = operating.radial_load * math.sin(operating.load_angle)
+    p[K.P_GRAVITY] = 9.81 if rig.gravity else 0.0
+    p[K.P_LOADING_STIFFNESS] = rig.loading_stiffness
+    p[K.P_CONTACT_DAMPING_TIME] = rig.contact_damping_time
+    p[K.P_PITCH_RADIUS] = 0.5 * geometry.pitch_diameter
+    p[K.P_UNBALANCE] = rig.unbalance
+    wc = p[K.P_CAGE_SPEED]
+    centrifugal = geometry.ball_mass * wc**2 * geometry.pitch_diameter / 2
+    p[K.P_FILM_LOAD_FLOOR] = max(1.0, centrifugal)  # docs/model.md 4.1: Q_floor = max(1 N, F_c)
+    p[K.P_FILM_REFERENCE_LOAD] = max(operating.radial_load / max(z / 4.37, 1.0), 1.0)
+    if ehl and (u := entrainment_speed(geometry, fs)) > 0.0:
+        lub = rig.lubricant
+        # h_c(Q) = h_c(1 N) * Q^-0.067 (Hamrock-Dowson load exponent)
+        hi = film_thickness(ci, lub, u, 1.0, load_floor=1e-30)
+        ho = film_thickness(co, lub, u, 1.0, load_floor=1e-30)
+        p[K.P_FILM_INNER] = hi
+        p[K.P_FILM_OUTER] = ho
+        qref, qfloor = p[K.P_FILM_REFERENCE_LOAD], p[K.P_FILM_LOAD_FLOOR]
+        p[K.P_FILM_INNER_REF] = hi * (qref + qfloor) ** K.FILM_EXPONENT
+        p[K.P_FILM_OUTER_REF] = ho * (qref + qfloor) ** K.FILM_EXPONENT
+        p[K.P_FILM_INNER_MAX] = hi * qfloor**K.FILM_EXPONENT
+        p[K.P_FILM_OUTER_MAX] = ho * qfloor**K.FILM_EXPONENT
+        csi = rig.film_damping_factor * squeeze_film_damping(ci, lub, 1.0)  # = c_sq * h_c
+        cso = rig.film_damping_factor * squeeze_film_damping(co, lub, 1.0)
+        p[K.P_SQUEEZE_INNER] = csi / hi
+        p[K.P_SQUEEZE_OUTER] = cso / ho
+        # two Kelvin-Voigt contacts in series (docs/model.md 1.4): c_eff = c_i r_o^2 + c_o r_i^2
+        # with r = k / (k_i + k_o); k_i / k_o = (K_i / K_o)^(2/3) at equal load
+        kri, kro = ki ** (2 / 3), ko ** (2 / 3)
+        ri, ro = kri / (kri + kro), kro / (kri + kro)
+        p[K.P_SQUEEZE_SERIES] = p[K.P_SQUEEZE_INNER] * ro**2 + p[K.P_SQUEEZE_OUTER] * ri**2
+    return p
+
+
+#: Nodes per film table (see ``_kernels``): 2048 nodes up to a 100-fold overload keep the
+#: interpolation error below 1e-9 relative in the load (checked in tests_generators).
+FILM_TABLE_NODES = 2048
+
+
+def _film_tables(p: np.ndarray) -> np.ndarray:
+    """Append the film tables d(delta) of the three contacts to ``p`` (EHL scenes)."""
+    floor = p[K.P_FILM_LOAD_FLOOR]
+    e = K.FILM_EXPONENT
+    q_hi = 100.0 * (p[K.P_FILM_REFERENCE_LOAD] + 100.0)
+    specs = (
+        (p[K.P_K_INNER], p[K.P_FILM_INNER], p[K.P_FILM_INNER_MAX]),
+        (p[K.P_K_OUTER], p[K.P_FILM_OUTER], p[K.P_FILM_OUTER_MAX]),
+        (
+            p[K.P_K_SERIES],
+            p[K.P_FILM_INNER] + p[K.P_FILM_OUTER],
+            p[K.P_FILM_INNER_MAX] + p[K.P_FILM_OUTER_MAX],
+        ),
+    )
+    n = FILM_TABLE_NODES
+    tables = np.zeros((3, n, 2))
+    out = p.copy()
+    for c, (kc, film, h_max) in enumerate(specs):
+        delta_hi = (q_hi / kc) ** (2.0 / 3.0)
+        step = math.sqrt(delta_hi + h_max) / (n - 1)  # uniform in s = sqrt(delta + h_max)
+        s_nodes = step * np.arange(n)
+        delta = s_nodes**2 - h_max
+        d = np.maximum(delta + h_max, 0.0)
+        for _ in range(60):  # Newton to full convergence
+            pos = d > 0
+            q = kc * np.where(pos, d, 0.0) ** 1.5
+            h = film * (q + floor) ** e
+            slope = np.where(pos, -1.5 * e * h / np.where(pos, d, 1.0) * q / (q + floor), 0.0)
+            d_new = d - (d - delta - h) / (1.0 + slope)
+            if np.max(np.abs(d_new - d)) <= 1e-16 * max(float(np.max(np.abs(d))), 1e-12):
+                d = d_new
+                break
+            d = d_new
+        d = np.maximum(d, 0.0)
+        pos = d > 0
+        q = kc * d**1.5
+        h = film * (q + floor) ** e
+        slope = np.where(pos, -1.5 * e * h / np.where(pos, d, 1.0) * q / (q + floor), 0.0)
+        tables[c, :, 0] = d
+        tables[c, :, 1] = 2.0 * s_nodes / (1.0 + slope)  # dd/ds = dd/d delta * 2 s
+        out[K.P_TABLE_STEP_INNER + c] = step
+        out[K.P_TABLE_INV_STEP_INNER + c] = 1.0 / step
+    out[K.P_TABLE_NODES] = n
+    return np.concatenate([out, tables.ravel()])
+
+
+def _film_sum(p: np.ndarray, loads: np.ndarray) -> np.ndarray:
+    q = loads + p[K.P_FILM_LOAD_FLOOR]  # smooth floor, as in the kernel
+    return (p[K.P_FILM_INNER] + p[K.P_FILM_OUTER]) * q**K.FILM_EXPONENT
+
+
+def _waviness_at_start(p: np.ndarray, wav: np.ndarray, z: int) -> np.ndarray:
+    """Waviness values seen by each ball at t = 0: rows [w_o, w_i, wb_o, wb_i] [m]."""
+    out = np.zeros((11, z))
+    K._start_waviness(p, wav, z, out)
+    return out[[0, 2, 4, 6]]

@@ -1,0 +1,315 @@
+"""A run made ready for the kernels (:func:`prepare`).
+
+The scene resolved, parameters packed, the static start found, the step schedule planned, and
+the record of every parameter.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _kernels as K
+from ._validate import ParameterError, SimulationDivergedError
+from .defects import defect_path
+from .kinematics import BearingFrequencies, characteristic_frequencies
+from .packing import Defect, _as_defects, _contacts, _film_tables, _pack, _waviness_table, slip_rows
+from .params import (
+    BearingGeometry,
+    LocalizedDefect,
+    OperatingCondition,
+    Rig,
+    Scene,
+    SimulationSettings,
+)
+from .start import _static_state
+from .static import static_load_distribution
+from .steps import default_oversample, default_step, rk4_schedule
+
+SCENE_CODES = {"shaft": K.SCENE_SHAFT, "shaft+housing": K.SCENE_SHAFT_HOUSING, "full": K.SCENE_FULL}
+
+#: Slowest shaft [Hz] (1 rpm) at which the EHL film is modelled; slower runs are dry.
+EHL_MIN_SHAFT_FREQUENCY = 1.0 / 60.0
+
+
+STATUS_REASONS = {
+    K.STATUS_NONFINITE: "non-finite state (NaN or inf)",
+    K.STATUS_RUNAWAY: "runaway displacement beyond the physical limit",
+    K.STATUS_STEP_COLLAPSE: "adaptive step size collapsed",
+    K.STATUS_TOO_MANY_STEPS: "adaptive integrator exceeded its step budget",
+}
+
+
+def resolve_scene(
+    scene: Scene,
+    geometry: BearingGeometry,
+    operating: OperatingCondition,
+    rig: Rig,
+    settings: SimulationSettings,
+) -> tuple[str, str]:
+    """Pick the model level for ``scene.level == "auto"`` and say why.
+
+    Rule (each estimate is a relative error of the dropped physics, compared with
+    ``scene.auto_error_bound``):
+
+    * ``full`` is needed when the ball radial mode f_ball = sqrt((k_i + k_o) / m_b) / 2 pi lies
+      too close to the analysis band f_max = fs / 2.56 (the usual analyser convention): the
+      quasi-static error of massless balls at f_max is ~ (f_max / f_ball)^2 > bound; or when
+      the centrifugal ball force
+      m_b w_c^2 D / 2 exceeds bound times the largest static ball load;
+    * otherwise ``shaft`` suffices when the housing is much stiffer than the bearing
+      (k_b / (k_b + k_h) < bound: the relative error of the one-way housing coupling);
+    * otherwise ``shaft+housing``.
+
+    Returns
+    -------
+    level, reason : str
+    """
+    if scene.level != "auto":
+        return scene.level, "requested"
+    bound = scene.auto_error_bound
+    _, _, (ki, ko, kt) = _contacts(geometry)
+    fr = max(operating.radial_load + (rig.shaft_mass * 9.81 if rig.gravity else 0.0), 1.0)
+    st = static_load_distribution(
+        geometry, fr, load_angle=operating.load_angle, stiffness_constant=kt
+    )
+    qmax = max(st.max_ball_load, 1.0)
+    k_ball = 1.5 * (ki ** (2 / 3) + ko ** (2 / 3)) * qmax ** (1 / 3)
+    f_ball = math.sqrt(k_ball / geometry.ball_mass) / (2 * math.pi)
+    f_band = settings.fs / 2.56  # analysis band of an analyser sampling at 2.56 f_max
+    wc = (
+        2
+        * math.pi
+        * characteristic_frequencies(
+            geometry, max(operating.shaft_frequency, 1e-9), cage_slip=operating.cage_slip
+        ).ftf
+    )
+    centrifugal = geometry.ball_mass * wc**2 * geometry.pitch_diameter / 2
+    if (f_band / f_ball) ** 2 > bound:
+        return "full", f"ball mode {f_ball:.0f} Hz is close to the band f_max = {f_band:.0f} Hz"
+    if centrifugal > bound * qmax:
+        return (
+            "full",
+            f"centrifugal ball force {centrifugal:.3g} N > {bound:g} x Q_max {qmax:.3g} N",
+        )
+    coupling = st.radial_stiffness / (st.radial_stiffness + rig.pedestal_stiffness)
+    if coupling < bound:
+        return "shaft", f"housing coupling k_b/(k_b+k_h) = {coupling:.3g} < {bound:g}"
+    return "shaft+housing", f"housing coupling k_b/(k_b+k_h) = {coupling:.3g} >= {bound:g}"
+
+
+def _defect_record(geometry: BearingGeometry, defect: Defect) -> dict:
+    record = {"kind": type(defect).__name__, **dataclasses.asdict(defect)}
+    if isinstance(defect, LocalizedDefect):
+        path = defect_path(geometry, defect)
+        record.update(half_width_rad=path.half_width, max_sink_m=path.max_sink)
+    return record
+
+
+def _plain(obj):
+    """``dataclasses.asdict`` without its deep copies (the parameter objects are frozen)."""
+    if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
+        return {name: _plain(getattr(obj, name)) for name in _field_names(type(obj))}
+    if isinstance(obj, (list, tuple)):
+        return type(obj)(_plain(v) for v in obj)
+    if isinstance(obj, dict):
+        return {k: _plain(v) for k, v in obj.items()}
+    return obj
+
+
+@functools.cache
+def _field_names(cls: type) -> tuple[str, ...]:
+    return tuple(f.name for f in dataclasses.fields(cls))
+
+
+def _params_record(geometry, operating, rig, scene, level, reason, settings, defects, extra):
+    clean = _plain
+
+    return {
+        "bearing": clean(geometry),
+        "operating": clean(operating),
+        "rig": clean(rig),
+        "scene": {**clean(scene), "resolved_level": level, "reason": reason},
+        "settings": clean(settings),
+        "defects": [_defect_record(geometry, d) for d in defects],
+        **extra,
+    }
+
+
+@dataclass(frozen=True)
+class Prepared:
+    """Everything the kernels need for one run (packed, validated, at static equilibrium)."""
+
+    geometry: BearingGeometry
+    operating: OperatingCondition
+    rig: Rig
+    scene: Scene
+    settings: SimulationSettings
+    defects: tuple
+    level: str
+    reason: str
+    code: int
+    ehl: bool
+    freqs: BearingFrequencies | None
+    p: np.ndarray
+    wav: np.ndarray
+    y0: np.ndarray
+    max_ball_load: float
+
+
+@functools.cache
+def _default(cls: type):
+    """The default instance of a frozen parameter class (built and validated once)."""
+    return cls()
+
+
+def prepare(
+    bearing: BearingGeometry,
+    operating: OperatingCondition,
+    defects: Defect | Sequence[Defect] | None = None,
+    *,
+    scene: Scene | None = None,
+    rig: Rig | None = None,
+    settings: SimulationSettings | None = None,
+    random_state: int | np.random.Generator | None = None,
+) -> Prepared:
+    """Validate the inputs, resolve the scene, pack parameters and find the static start.
+
+    Parameters are those of :func:`simulate`; returns the packed vector ``p``, the waviness
+    table ``wav`` and the initial state ``y0`` (static equilibrium, velocities zero).
+    """
+    if not isinstance(bearing, BearingGeometry):
+        raise ParameterError(f"bearing = {bearing!r} is not a BearingGeometry")
+    if not isinstance(operating, OperatingCondition):
+        raise ParameterError(f"operating = {operating!r} is not an OperatingCondition")
+    scene = _default(Scene) if scene is None else scene
+    rig = _default(Rig) if rig is None else rig
+    settings = _default(SimulationSettings) if settings is None else settings
+    for name, obj, cls in (
+        ("scene", scene, Scene),
+        ("rig", rig, Rig),
+        ("settings", settings, SimulationSettings),
+    ):
+        if not isinstance(obj, cls):
+            raise ParameterError(f"{name} = {obj!r} is not a {cls.__name__}")
+    defect_list = _as_defects(defects)
+    rng = np.random.default_rng(random_state)
+    freqs = None
+    if operating.shaft_frequency > 0:
+        freqs = characteristic_frequencies(
+            bearing, operating.shaft_frequency, cage_slip=operating.cage_slip
+        )
+    return _prepare(bearing, operating, defect_list, scene, rig, settings, rng, freqs)
+
+
+def _prepare(
+    geometry: BearingGeometry,
+    operating: OperatingCondition,
+    defect_list: tuple[Defect, ...],
+    scene: Scene,
+    rig: Rig,
+    settings: SimulationSettings,
+    rng: np.random.Generator,
+    freqs: BearingFrequencies | None,
+) -> Prepared:
+    """:func:`prepare` from checked inputs (the dataset generator calls this per signal).
+
+    Parameter objects of the right types, the defects as a tuple, the phase generator, and
+    the bearing's frequencies at the operating point (``characteristic_frequencies`` with its
+    cage slip; None for a standing shaft).
+    """
+    z = geometry.ball_count
+    level, reason = resolve_scene(scene, geometry, operating, rig, settings)
+    code = SCENE_CODES[level]
+    # no entrainment, no film: a bearing standing or creeping (below EHL_MIN_SHAFT_FREQUENCY)
+    # runs the dry path; a film of a few nanometres adds nothing but a stiffness so high that
+    # the integration crawls (1e-9 rpm took minutes per millisecond)
+    ehl = bool(scene.ehl) and operating.shaft_frequency >= EHL_MIN_SHAFT_FREQUENCY
+    p = _pack(geometry, operating, rig, ehl, freqs)
+    if ehl:
+        p = _film_tables(p)
+    p[K.P_CAGE_ANGLE0] = settings.cage_angle
+    wav = _waviness_table(defect_list, geometry, rng, operating.radial_load)
+    if (operating.random_slip or operating.ball_jitter) and np.any(
+        wav[:, K.W_SURFACE] >= K.SURF_OUTER_DEFECT
+    ):
+        # slip only moves where balls meet local defects: no rows (and no draws) without one
+        wav = np.ascontiguousarray(
+            np.vstack([wav, slip_rows(operating, z, p[K.P_CAGE_SPEED], rng)])
+        )
+    y0, qmax = _static_state(level, ehl, geometry, operating, rig, p, wav)
+    # the loading anchor (docs/model.md 1.3) holds the shaft at its static position
+    p[K.P_LOADING_X0] = y0[0]
+    p[K.P_LOADING_Y0] = y0[1]
+    scale = max(map(abs, y0[: K.n_dof(code, z)].tolist()))
+    p[K.P_MAX_DISPLACEMENT] = (
+        settings.max_displacement
+        if settings.max_displacement is not None
+        else 20.0 * scale + 0.1 * geometry.ball_diameter
+    )
+
+    return Prepared(
+        geometry,
+        operating,
+        rig,
+        scene,
+        settings,
+        defect_list,
+        level,
+        reason,
+        code,
+        ehl,
+        freqs,
+        p,
+        wav,
+        y0,
+        qmax,
+    )
+
+
+@dataclass(frozen=True)
+class _Plan:
+    """Integration schedule of a prepared run (see :func:`rk4_schedule`)."""
+
+    oversample: int
+    record_dt: float
+    n_out: int
+    n_record: int
+    dt: float  # RK4 step [s] (NaN for DOPRI5)
+    n_steps: int
+    t_first: float
+
+
+def _plan(prep: Prepared) -> _Plan:
+    """Step, record rate and record count of a prepared run (as :func:`simulate` does)."""
+    settings = prep.settings
+    step = None
+    if settings.integrator == "rk4":
+        step = settings.step or default_step(
+            prep.level, prep.code, prep.ehl, prep.p, prep.wav, prep.y0
+        )
+    oversample = settings.oversample or default_oversample(step, settings.fs)
+    record_dt = 1.0 / (settings.fs * oversample)
+    n_out = int(round(settings.duration * settings.fs))
+    n_record = n_out * oversample
+    if step is None:
+        return _Plan(oversample, record_dt, n_out, n_record, math.nan, 0, settings.settle_time)
+    dt, n_steps, t_first = rk4_schedule(step, record_dt, settings.settle_time, n_record)
+    return _Plan(oversample, record_dt, n_out, n_record, dt, n_steps, t_first)
+
+
+def _diverged(prep: Prepared, status: int, t_fail: float) -> SimulationDivergedError:
+    why = STATUS_REASONS.get(status, f"status {status}")
+    return SimulationDivergedError(
+        f"simulation diverged in scene {prep.level}/{'ehl' if prep.ehl else 'dry'} at t = "
+        f"{t_fail:.6g} s: {why} (integrator {prep.settings.integrator}; try a smaller step or "
+        "tolerance, or check the inputs)",
+        scene=prep.level,
+        time=t_fail,
+        reason=why,
+    )

@@ -1,0 +1,157 @@
+"""The RK4 step and schedule.
+
+The scene's default step from its stability radius and accuracy, the local-defect limit, the
+record rate and the step grid (docs/model.md 7).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import _kernels as K
+
+#: Default fixed RK4 step of the massless-ball scenes [s] (docs/model.md 7.2: converged to 4 digits
+#: at <= 2e-5 s; 5-10 us recommended). See ``cmtool fidelity`` for the measured trade.
+DEFAULT_STEP_MASSLESS = 2e-5
+
+#: Safety factor on the RK4 stability limit of the linearised scene (dynamic overloads stiffen
+#: the contacts beyond the static linearisation).
+STABILITY_SAFETY = 0.8
+
+#: Default oversampling of the integration record over the output rate (anti-alias margin).
+DEFAULT_OVERSAMPLE = 4
+
+
+def _jacobian(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray) -> np.ndarray:
+    """Jacobian of the first-order right-hand side at ``y0``, t = 0, by central differences.
+
+    Displacements are perturbed by 1e-11 m, velocities by 1e-7 m/s (docs/model.md 7.5).
+    """
+    n = y0.size
+    nd = n // 2
+    loads = np.zeros((2, int(p[K.P_BALL_COUNT])))
+    jac = np.zeros((n, n))
+    fp, fm = np.zeros(n), np.zeros(n)
+    for i in range(n):
+        h = 1e-11 if i < nd else 1e-7
+        yp, ym = y0.copy(), y0.copy()
+        yp[i] += h
+        ym[i] -= h
+        K._rhs_once(code, int(ehl), 0.0, yp, p, wav, fp, loads)
+        K._rhs_once(code, int(ehl), 0.0, ym, p, wav, fm, loads)
+        jac[:, i] = (fp - fm) / (2 * h)
+    return jac
+
+
+#: RK4 steps per passage of a contact over a local defect (envelope line within 1 % of a step
+#: 8 times shorter; tests_validation/test_local_defects.py checks 4 times shorter to 2 %).
+DEFECT_STEPS = 10
+
+
+def default_step(
+    level: str, code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray
+) -> float:
+    """Default RK4 step [s] of a scene.
+
+    The smaller of the accuracy step ``DEFAULT_STEP_MASSLESS`` (massless-ball scenes converge
+    to 0.01 % in the band amplitude there, see ``cmtool fidelity``) and the stability step
+    ``STABILITY_SAFETY * min_i r(arg lambda_i) / |lambda_i|``, lambda the eigenvalues of the
+    right-hand side linearised at the static start and r(phi) the radius of RK4's stability
+    region along the ray at angle phi (:func:`rk4_stability_radius`: 2.83 on the imaginary
+    axis, 2.79 on the real axis, 2.62 at its narrowest, near 120 degrees). The fastest mode is
+    the ball radial mode in the ``full`` scene (lightly damped, or well damped with the squeeze
+    film), otherwise the shaft-on-bearing or a stiff pedestal's housing mode.
+    """
+    lam = np.linalg.eigvals(_jacobian(code, ehl, p, wav, y0))
+    lam = lam[np.abs(lam) > 0.0]
+    stable = math.inf
+    if lam.size:
+        stable = float(np.min(rk4_stability_radius(np.angle(lam)) / np.abs(lam)))
+    step = min(DEFAULT_STEP_MASSLESS, STABILITY_SAFETY * stable)
+    return min(step, defect_step(p, wav))
+
+
+def rk4_stability_radius(angle: np.ndarray | float) -> np.ndarray:
+    """Radius of the classical RK4 stability region along rays z = r exp(i angle).
+
+    The first r > 0 where |R(z)| = 1, R(z) = 1 + z + z^2/2 + z^3/6 + z^4/24 (scan on a 0.001
+    grid, then bisection to 1e-9). A ray into the right half-plane (|angle| < pi/2: an
+    eigenvalue whose real part is rounding noise of a finite-difference Jacobian, or a growing
+    mode the divergence check reports) is given the imaginary-axis value. ``angle`` in rad;
+    returns r [-] (2.7853 at pi, 2.8284 at pi/2).
+    """
+
+    def amplification(r, ray):  # |R(r ray)|, ray = exp(i angle); Horner's form
+        z = r * ray
+        return np.abs(1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6.0 + z / 24.0))))
+
+    phi = np.maximum(np.abs(np.atleast_1d(np.asarray(angle, dtype=float))), 0.5 * np.pi)
+    grid = np.arange(1, 3501) * 1e-3
+    # all rays at once: the first grid point past the boundary, then bisection on every ray
+    ray = np.exp(1j * phi)
+    unstable = amplification(grid[None, :], ray[:, None]) > 1.0 + 1e-12
+    found = unstable.any(axis=1)
+    k = np.argmax(unstable, axis=1)
+    lo = np.where(k > 0, grid[np.maximum(k - 1, 0)], 0.0)
+    hi = grid[k]
+    while np.any(hi - lo > 1e-9):
+        mid = 0.5 * (lo + hi)
+        stable = amplification(mid, ray) <= 1.0 + 1e-12
+        lo, hi = np.where(stable, mid, lo), np.where(stable, hi, mid)
+    return np.where(found, lo, grid[-1])
+
+
+def defect_step(p: np.ndarray, wav: np.ndarray) -> float:
+    """Step limit [s] from local defects: ``DEFECT_STEPS`` steps per passage of a contact.
+
+    A contact crosses a pit of half width w [rad] in 2 w / |rate|, rate the angular speed of
+    the contact point on the defective surface (cage for the outer race, cage minus shaft for
+    the inner race, ball spin for a ball). ``inf`` without local defects.
+    """
+    rates = {
+        K.SURF_OUTER_DEFECT: p[K.P_CAGE_SPEED],
+        K.SURF_INNER_DEFECT: p[K.P_CAGE_SPEED] - p[K.P_SHAFT_SPEED],
+        K.SURF_BALL_DEFECT_OUTER: p[K.P_BALL_SPIN_SPEED],
+        K.SURF_BALL_DEFECT_INNER: p[K.P_BALL_SPIN_SPEED],
+    }
+    step = math.inf
+    for row in wav:
+        rate = abs(rates.get(int(row[K.W_SURFACE]), 0.0))
+        if rate > 0.0:
+            step = min(step, 2.0 * row[K.W_ORDER] / rate / DEFECT_STEPS)
+    return step
+
+
+def default_oversample(step: float | None, fs: float) -> int:
+    """Record rate / output rate: ``DEFAULT_OVERSAMPLE``, less when the RK4 step is long.
+
+    The record feeds the zero-phase FIR decimation; a record faster than the integration step
+    only samples the step's cubic interpolant, whose content above 1 / (2 dt) is not resolved
+    anyway, so it is capped at about one record per step (at least 1).
+    """
+    if step is None:
+        return DEFAULT_OVERSAMPLE
+    return int(min(DEFAULT_OVERSAMPLE, max(1, round(1.0 / (fs * step)))))
+
+
+def rk4_schedule(
+    step: float, record_dt: float, settle_time: float, n_record: int
+) -> tuple[float, int, float]:
+    """RK4 step, number of steps and first record time for a requested step [s].
+
+    A step shorter than the record interval is shortened to divide it exactly when that costs
+    at most 20 % more steps (records then fall on step starts, no interpolation); otherwise the
+    step is kept and the records are interpolated (cubic Hermite dense output).
+    """
+    divisor = record_dt / max(1, int(math.ceil(record_dt / step - 1e-9)))
+    if step <= record_dt * (1 + 1e-9) and divisor >= 0.8 * step:
+        dt = divisor
+        t_first = math.ceil(settle_time / dt - 1e-9) * dt
+    else:
+        dt = step
+        t_first = settle_time
+    t_last = t_first + (n_record - 1) * record_dt
+    n_steps = int(math.floor(t_last / dt + 1e-9)) + 1
+    return dt, n_steps, t_first
