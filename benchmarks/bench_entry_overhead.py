@@ -13,8 +13,8 @@ import time
 
 import numpy as np
 
+from generators import _integrators, bearing
 from generators import _kernels as K
-from generators import bearing
 from generators.model import prepare
 from generators.params import OperatingCondition, Scene, SimulationSettings
 
@@ -43,12 +43,12 @@ def main() -> None:
             y = prep.y0.copy()
             dydt = np.zeros_like(y)
             loads = np.zeros((2, b.ball_count))
-            rhs = per_call(K.RHS[code, film], 0.0, y, prep.p, prep.wav, dydt, loads)
+            rhs = per_call(_integrators.RHS[code, film], 0.0, y, prep.p, prep.wav, dydt, loads)
             out_state = np.zeros((1, K.N_OUT_STATE))
             out_accel = np.zeros((1, K.N_OUT_ACCEL))
             out_loads = np.zeros((1, 2, b.ball_count))
             rk4 = per_call(
-                K.RK4[code, film],
+                _integrators.RK4[code, film],
                 y,
                 prep.p,
                 prep.wav,
@@ -63,7 +63,7 @@ def main() -> None:
                 out_loads,
                 False,
             )
-            name = K.RK4[code, film].__name__
+            name = _integrators.RK4[code, film].__name__
             print(
                 f"{name:26s} RHS entry {rhs * 1e9:6.0f} ns per call, "
                 f"RK4 entry (0 steps) {rk4 * 1e9:6.0f} ns per call"

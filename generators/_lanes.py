@@ -27,7 +27,8 @@ and ball of each row are read from lane 0). Only waviness rows (``SURF_OUTER``,
 One output column per call: ``which`` 0 a state column (``N_OUT_STATE`` order), 1 an
 acceleration (``N_OUT_ACCEL`` order), recorded at ``t_first + k * record_dt`` by the same cubic
 Hermite dense output as the one-signal RK4.
-Only numpy, numba, math and :mod:`generators._kernels` are imported here (import-linter).
+Only numpy, numba, math, :mod:`generators._kernels` and :mod:`generators._integrators` are
+imported here (import-linter).
 """
 
 from __future__ import annotations
@@ -39,6 +40,7 @@ from numba import types
 from numba.core import cgutils
 from numba.extending import intrinsic
 
+from generators._integrators import _hermite_weights
 from generators._kernels import (
     _JIT,
     _JIT_INLINE,
@@ -91,7 +93,6 @@ from generators._kernels import (
     W_STEP_COS,
     W_STEP_SIN,
     W_SURFACE,
-    _hermite_weights,
     _hertz_ehl_table,
 )
 
@@ -560,7 +561,7 @@ def _rk4_impl(
     """Classical RK4 (fixed step) of ``y0.shape[1]`` lanes with cubic Hermite dense output.
 
     The same schedule, stage order, phase rotation (exact every ``PHASE_ANCHOR`` steps) and
-    dense output as the one-signal ``generators._kernels._rk4_impl``. Writes ``out[b, k]``
+    dense output as the one-signal ``generators._integrators._rk4_impl``. Writes ``out[b, k]``
     (lane b, record k < n_record) and, per lane, ``status`` and the time of the first failure
     ``t_status``.
     The lane count is read from the arrays (at most ``LANES``), not a compile-time constant:
@@ -640,7 +641,7 @@ def _rk4_impl(
     return t0 + n_steps * dt
 
 
-# One entry point per (scene, film) pair, as in generators._kernels: the pair reaches the
+# One entry point per (scene, film) pair, as in generators._integrators: the pair reaches the
 # implementation as literal types (each pair compiled and cached on its own, under its name).
 
 

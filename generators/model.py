@@ -1,7 +1,8 @@
 """The dynamic model: validate, pack, find the static start, integrate, decimate, wrap.
 
-``simulate`` is the public entry point; the numba kernels in :mod:`generators._kernels` do the
-time stepping on plain arrays. Model (docs/model.md sections 1-5):
+``simulate`` is the public entry point; the numba kernels (:mod:`generators._kernels`, the
+right-hand sides; :mod:`generators._integrators`, the time stepping) work on plain arrays.
+Model (docs/model.md sections 1-5):
 
 * contact: Hertz Q = K delta^1.5 with stiffness-proportional damping c = tau dQ/d delta (D1),
   optional EHL film in series (Hamrock-Dowson central film, docs/model.md 4.3) and squeeze-film
@@ -22,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _integrators
 from . import _kernels as K
 from .batches import lanes_supported, simulate_lanes
 from .decimation import _decimate
@@ -222,7 +224,7 @@ class _Record:
 
 def _run_rk4(prep: Prepared, plan: _Plan, record: _Record) -> tuple[int, float, dict]:
     """Fixed-step RK4 over the plan's grid: (status, time reached, integrator statistics)."""
-    status, t_fail, _ = K._rk4(
+    status, t_fail, _ = _integrators._rk4(
         prep.code,
         int(prep.ehl),
         prep.y0,
@@ -253,7 +255,7 @@ def _run_dopri5(prep: Prepared, plan: _Plan, record: _Record) -> tuple[int, floa
     # never step over a local defect: at most half a passage per step
     h_max = min(plan.record_dt * 4, 0.5 * DEFECT_STEPS * defect_step(prep.p, prep.wav))
     max_steps = int(settings.max_steps_per_second * (plan.t_first + settings.duration)) + 1000
-    status, t_fail, _ = K._dopri5(
+    status, t_fail, _ = _integrators._dopri5(
         prep.code,
         int(prep.ehl),
         prep.y0,

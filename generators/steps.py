@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 
+from . import _integrators
 from . import _kernels as K
 
 #: Default fixed RK4 step of the massless-ball scenes [s] (docs/model.md 7.2: converged to 4 digits
@@ -39,8 +40,8 @@ def _jacobian(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarr
         yp, ym = y0.copy(), y0.copy()
         yp[i] += h
         ym[i] -= h
-        K._rhs_once(code, int(ehl), 0.0, yp, p, wav, fp, loads)
-        K._rhs_once(code, int(ehl), 0.0, ym, p, wav, fm, loads)
+        _integrators._rhs_once(code, int(ehl), 0.0, yp, p, wav, fp, loads)
+        _integrators._rhs_once(code, int(ehl), 0.0, ym, p, wav, fm, loads)
         jac[:, i] = (fp - fm) / (2 * h)
     return jac
 

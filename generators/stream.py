@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _integrators
 from . import _kernels as K
 from ._validate import ParameterError
 from .decimation import _decimate
@@ -188,7 +189,7 @@ class SignalStream:
         out_state = np.zeros((count, K.N_OUT_STATE))
         out_accel = np.zeros((count, K.N_OUT_ACCEL))
         out_loads = np.zeros((count if record_loads else 1, 2, z))
-        status, t_end, y_end = K._rk4(
+        status, t_end, y_end = _integrators._rk4(
             prep.code,
             int(prep.ehl),
             y,

@@ -289,6 +289,7 @@ def reference_solution(prep, t_eval: np.ndarray) -> np.ndarray:
 def rk4_records(prep, record_dt, n_record, substeps, *, y0=None, ehl=None):
     """Kernel RK4 records (states, accelerations) every ``record_dt`` from t = 0, with
     ``substeps`` steps per record; raises if the kernel reports divergence."""
+    from generators import _integrators
     from generators import _kernels as K
 
     y0 = prep.y0 if y0 is None else y0
@@ -297,7 +298,7 @@ def rk4_records(prep, record_dt, n_record, substeps, *, y0=None, ehl=None):
     st = np.zeros((n_record, K.N_OUT_STATE))
     ac = np.zeros((n_record, K.N_OUT_ACCEL))
     ld = np.zeros((1, 2, prep.geometry.ball_count))
-    status, _, _ = K._rk4(
+    status, _, _ = _integrators._rk4(
         prep.code,
         int(ehl),
         y0,

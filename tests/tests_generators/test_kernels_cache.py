@@ -1,6 +1,6 @@
 """The compiled entry points: one per (scene, film) pair, each cached under its own name.
 
-``generators._kernels`` and ``generators._lanes`` build their entry points with one factory
+``generators._integrators`` and ``generators._lanes`` build their entry points with one factory
 per integrator (a closure over the scene and film codes). numba keys its cache on the
 closure's values, so each pair must be compiled once and then loaded by any later process:
 a child process calls every entry point, a second child must find every one in the cache.
@@ -15,6 +15,7 @@ from pathlib import Path
 
 import pytest
 
+from generators import _integrators
 from generators import _kernels as K
 from generators import _lanes as L
 
@@ -24,7 +25,7 @@ CALL_EVERY_ENTRY = textwrap.dedent(
     """
     import json
     from generators import bearing, simulate
-    from generators import _kernels as K, _lanes as L
+    from generators import _integrators, _lanes as L
     from generators.model import prepare, simulate_lanes
     from generators.params import OperatingCondition, Scene, SimulationSettings
 
@@ -42,7 +43,13 @@ CALL_EVERY_ENTRY = textwrap.dedent(
                 prep = prepare(b, op, scene=Scene(level=level, ehl=ehl), settings=settings)
                 simulate_lanes([prep], "housing_acceleration_y")
     stats = {}
-    for kind, table in (("rk4", K.RK4), ("dopri5", K.DOPRI5), ("rhs", K.RHS), ("lanes", L.RK4)):
+    tables = (
+        ("rk4", _integrators.RK4),
+        ("dopri5", _integrators.DOPRI5),
+        ("rhs", _integrators.RHS),
+        ("lanes", L.RK4),
+    )
+    for kind, table in tables:
         for pair, entry in table.items():
             stats[f"{kind} {pair}"] = [
                 entry.__name__,
@@ -70,15 +77,17 @@ def _child() -> dict:
 
 def test_entry_points_cover_every_pair_with_named_codes():
     assert (
-        set(K.RK4)
-        == set(K.DOPRI5)
-        == set(K.RHS)
+        set(_integrators.RK4)
+        == set(_integrators.DOPRI5)
+        == set(_integrators.RHS)
         == {(scene, film) for scene in K.SCENE_NAMES for film in K.FILM_NAMES}
     )
     assert set(L.RK4) == {(scene, film) for scene in L.LANE_SCENES for film in K.FILM_NAMES}
-    assert K.RK4[K.SCENE_SHAFT_HOUSING, K.FILM_EHL].__name__ == "_rk4_shaft_housing_ehl"
+    assert _integrators.RK4[K.SCENE_SHAFT_HOUSING, K.FILM_EHL].__name__ == "_rk4_shaft_housing_ehl"
     names = [
-        entry.__name__ for table in (K.RK4, K.DOPRI5, K.RHS, L.RK4) for entry in table.values()
+        entry.__name__
+        for table in (_integrators.RK4, _integrators.DOPRI5, _integrators.RHS, L.RK4)
+        for entry in table.values()
     ]
     assert len(set(names)) == len(names) == 22
 

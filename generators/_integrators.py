@@ -1,0 +1,526 @@
+"""The time integrators of the dynamic model and their compiled entry points.
+
+Classical RK4 with a fixed step and cubic Hermite dense output, Dormand-Prince 5(4) with
+Hairer's dense output, and the one-evaluation right-hand side, each compiled per (scene, film)
+pair from one factory (:func:`_rk4_entry`, :func:`_dopri5_entry`, :func:`_rhs_entry`).
+The right-hand sides they integrate are in :mod:`generators._kernels`. Only numpy, numba, math
+and :mod:`generators._kernels` are imported here (import-linter).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from generators._kernels import (
+    _JIT,
+    _JIT_INLINE,
+    FILM_NAMES,
+    P_BALL_COUNT,
+    P_MAX_DISPLACEMENT,
+    PHASE_ANCHOR,
+    SCENE_NAMES,
+    STATUS_OK,
+    STATUS_STEP_COLLAPSE,
+    STATUS_TOO_MANY_STEPS,
+    _advance,
+    _check,
+    _phase_steps,
+    _phases,
+    _record,
+    _rhs,
+    _rhs_inline,
+    _scratch,
+    _time_terms,
+    _time_terms_at,
+    _trig,
+)
+
+# ---------------------------------------------------------------------------------- RK4
+
+
+@numba.njit(**_JIT_INLINE)
+def _hermite_weights(theta, dt, derivative):
+    """Weights of (y0, f0, y1, f1) in the cubic Hermite interpolant over a step ``dt`` [s].
+
+    At fraction ``theta`` of the step; ``derivative``: the weights of its time derivative
+    (f the right-hand side at the step's ends).
+    """
+    th2 = theta * theta
+    th3 = th2 * theta
+    if derivative:
+        return (
+            (6.0 * th2 - 6.0 * theta) / dt,
+            3.0 * th2 - 4.0 * theta + 1.0,
+            (-6.0 * th2 + 6.0 * theta) / dt,
+            3.0 * th2 - 2.0 * theta,
+        )
+    return (
+        2.0 * th3 - 3.0 * th2 + 1.0,
+        (th3 - 2.0 * th2 + theta) * dt,
+        -2.0 * th3 + 3.0 * th2,
+        (th3 - th2) * dt,
+    )
+
+
+@numba.njit(**_JIT_INLINE)
+def _hermite_record(y0, f0, y1, f1, dt, theta, nd, k, out_state, out_accel, tmp, acc):
+    """Record the cubic Hermite interpolant between two RK4 steps at fraction ``theta``.
+
+    Positions and velocities are O(dt^4) accurate (values and derivatives at both ends);
+    accelerations are the derivative of the velocity interpolant, O(dt^3). At theta = 0 the
+    record is exactly the step-start state and its right-hand side.
+    """
+    h00, h10, h01, h11 = _hermite_weights(theta, dt, False)
+    d00, d10, d01, d11 = _hermite_weights(theta, dt, True)
+    n = y0.shape[0]
+    for i in range(n):
+        tmp[i] = h00 * y0[i] + h10 * f0[i] + h01 * y1[i] + h11 * f1[i]
+    for i in range(nd, n):
+        acc[i] = d00 * y0[i] + d10 * f0[i] + d01 * y1[i] + d11 * f1[i]
+    _record(tmp, acc, nd, k, out_state, out_accel)
+
+
+@numba.njit(**_JIT)
+def _rk4_impl(
+    scene,
+    ehl,
+    y0,
+    p,
+    wav,
+    t0,
+    dt,
+    n_steps,
+    t_first,
+    record_dt,
+    n_record,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+):
+    """Classical RK4 with a fixed step and cubic Hermite dense output.
+
+    Records at ``t_first + k * record_dt`` (k < n_record), interpolating inside the step that
+    contains each record time, so the step may be longer or shorter than the record interval.
+    The right-hand side at the end of a step is the first stage of the next (computed once).
+    Returns (status, time, state): the state at that time (a later call continues from it).
+    """
+    numba.literally(scene)
+    numba.literally(ehl)
+    n = y0.shape[0]
+    z = int(p[P_BALL_COUNT])
+    nd = n // 2
+    limit = p[P_MAX_DISPLACEMENT]
+    y = y0.copy()
+    # stages: ks[0] = f(y_n) (the previous step's last evaluation), ks[1..3] = k2..k4,
+    # ks[4] = f(y_{n+1}); one call site of the inlined right-hand side (compile time)
+    ks = np.empty((5, n))
+    k1 = ks[0]
+    f1 = ks[4]
+    y1 = np.empty(n)
+    tmp = np.empty(n)
+    acc = np.zeros(n)
+    loads = np.zeros((2, z))
+    loads_start = np.zeros((2, z))
+    scratch = _scratch(z)
+    half = 0.5 * dt
+    next_rec = 0
+    trig = _trig(wav)
+    inc = _phase_steps(p, wav, half)
+    _time_terms_at(t0, p, wav, trig, scratch)
+    _rhs(scene, ehl, y, p, wav, k1, loads, scratch)
+    if record_loads:
+        loads_start[:, :] = loads
+    t = t0
+    for step in range(n_steps):
+        t = t0 + step * dt
+        if step % PHASE_ANCHOR == 0:
+            _phases(t, p, wav, trig)  # exact every PHASE_ANCHOR steps, rotated between
+        for stage in range(4):
+            if stage == 0:
+                _advance(trig, inc)
+                _time_terms(t + half, p, wav, trig, scratch)
+                for i in range(n):
+                    tmp[i] = y[i] + half * ks[0, i]
+            elif stage == 1:
+                for i in range(n):
+                    tmp[i] = y[i] + half * ks[1, i]
+            elif stage == 2:
+                _advance(trig, inc)
+                _time_terms(t + dt, p, wav, trig, scratch)
+                for i in range(n):
+                    tmp[i] = y[i] + dt * ks[2, i]
+            else:
+                for i in range(n):
+                    tmp[i] = y[i] + dt / 6.0 * (
+                        ks[0, i] + 2.0 * ks[1, i] + 2.0 * ks[2, i] + ks[3, i]
+                    )
+            _rhs_inline(scene, ehl, tmp, p, wav, ks[stage + 1], loads, scratch)
+        for i in range(n):
+            y1[i] = tmp[i]
+        while next_rec < n_record:
+            theta = (t_first + next_rec * record_dt - t) / dt
+            if theta >= 1.0 - 1e-9:
+                break
+            if theta < 0.0:
+                theta = 0.0
+            _hermite_record(y, k1, y1, f1, dt, theta, nd, next_rec, out_state, out_accel, tmp, acc)
+            if record_loads:
+                for j in range(z):  # loads at the nearer end of the step
+                    src = loads_start if theta < 0.5 else loads
+                    out_loads[next_rec, 0, j] = src[0, j]
+                    out_loads[next_rec, 1, j] = src[1, j]
+            next_rec += 1
+        for i in range(n):
+            y[i] = y1[i]
+            k1[i] = f1[i]
+        if record_loads:
+            loads_start[:, :] = loads
+        if step % 64 == 0 or next_rec >= n_record:
+            status = _check(y, nd, limit)
+            if status != STATUS_OK:
+                return status, t + dt, y
+        if next_rec >= n_record:
+            return STATUS_OK, t + dt, y
+    return _check(y, nd, limit), t0 + n_steps * dt, y
+
+
+# --------------------------------------------------------------------- Dormand-Prince 5(4)
+
+# Butcher tableau (Dormand & Prince 1980) and the dense-output coefficients of Hairer's DOPRI5.
+_A21 = 1.0 / 5.0
+_A31, _A32 = 3.0 / 40.0, 9.0 / 40.0
+_A41, _A42, _A43 = 44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0
+_A51, _A52, _A53, _A54 = 19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0
+_A61, _A62, _A63 = 9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0
+_A64, _A65 = 49.0 / 176.0, -5103.0 / 18656.0
+_A71, _A73, _A74 = 35.0 / 384.0, 500.0 / 1113.0, 125.0 / 192.0
+_A75, _A76 = -2187.0 / 6784.0, 11.0 / 84.0
+_E1, _E3, _E4 = 71.0 / 57600.0, -71.0 / 16695.0, 71.0 / 1920.0
+_E5, _E6, _E7 = -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0
+_D1, _D3 = -12715105075.0 / 11282082432.0, 87487479700.0 / 32700410799.0
+_D4, _D5 = -10690763975.0 / 1880347072.0, 701980252875.0 / 199316789632.0
+_D6, _D7 = -1453857185.0 / 822651844.0, 69997945.0 / 29380423.0
+
+
+@numba.njit(**_JIT)
+def _dopri5_impl(
+    scene,
+    ehl,
+    y0,
+    p,
+    wav,
+    t0,
+    t_first,
+    record_dt,
+    n_record,
+    rtol,
+    atol,
+    h0,
+    h_max,
+    max_steps,
+    out_state,
+    out_accel,
+    out_loads,
+    record_loads,
+    step_stats,
+):
+    """Adaptive Dormand-Prince 5(4) with error control and dense output at the record times.
+
+    Records at ``t_first + k * record_dt``; each record evaluates the right-hand side once at
+    the interpolated state (accelerations, loads). ``step_stats`` receives [accepted steps,
+    rejected steps, smallest step, largest step]. Returns (status, time, state at that time).
+    """
+    numba.literally(scene)
+    numba.literally(ehl)
+    n = y0.shape[0]
+    z = int(p[P_BALL_COUNT])
+    nd = n // 2
+    limit = p[P_MAX_DISPLACEMENT]
+    y = y0.copy()
+    y1 = np.empty(n)
+    k1 = np.empty(n)
+    k2 = np.empty(n)
+    k3 = np.empty(n)
+    k4 = np.empty(n)
+    k5 = np.empty(n)
+    k6 = np.empty(n)
+    k7 = np.empty(n)
+    tmp = np.empty(n)
+    r1 = np.empty(n)
+    r2 = np.empty(n)
+    r3 = np.empty(n)
+    r4 = np.empty(n)
+    acc = np.empty(n)
+    loads = np.zeros((2, z))
+    scratch = _scratch(z)
+    trig = _trig(wav)
+    t = t0
+    t_end = t_first + (n_record - 1) * record_dt
+    h = h0
+    h_min_seen = 1e300
+    h_max_seen = 0.0
+    accepted = 0
+    rejected = 0
+    next_rec = 0
+    _time_terms_at(t, p, wav, trig, scratch)
+    _rhs(scene, ehl, y, p, wav, k1, loads, scratch)
+    err_old = 1e-4
+    while next_rec < n_record:
+        if accepted + rejected >= max_steps:
+            step_stats[0], step_stats[1] = accepted, rejected
+            step_stats[2], step_stats[3] = h_min_seen, h_max_seen
+            return STATUS_TOO_MANY_STEPS, t, y
+        if h < 1e-13 * max(abs(t), record_dt):
+            step_stats[0], step_stats[1] = accepted, rejected
+            step_stats[2], step_stats[3] = h_min_seen, h_max_seen
+            return STATUS_STEP_COLLAPSE, t, y
+        if h > h_max:
+            h = h_max
+        if t + h > t_end and t_end > t:
+            h = t_end - t
+        for i in range(n):
+            tmp[i] = y[i] + h * _A21 * k1[i]
+        _time_terms_at(t + 0.2 * h, p, wav, trig, scratch)
+        _rhs(scene, ehl, tmp, p, wav, k2, loads, scratch)
+        for i in range(n):
+            tmp[i] = y[i] + h * (_A31 * k1[i] + _A32 * k2[i])
+        _time_terms_at(t + 0.3 * h, p, wav, trig, scratch)
+        _rhs(scene, ehl, tmp, p, wav, k3, loads, scratch)
+        for i in range(n):
+            tmp[i] = y[i] + h * (_A41 * k1[i] + _A42 * k2[i] + _A43 * k3[i])
+        _time_terms_at(t + 0.8 * h, p, wav, trig, scratch)
+        _rhs(scene, ehl, tmp, p, wav, k4, loads, scratch)
+        for i in range(n):
+            tmp[i] = y[i] + h * (_A51 * k1[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
+        _time_terms_at(t + 8.0 / 9.0 * h, p, wav, trig, scratch)
+        _rhs(scene, ehl, tmp, p, wav, k5, loads, scratch)
+        for i in range(n):
+            tmp[i] = y[i] + h * (
+                _A61 * k1[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i] + _A65 * k5[i]
+            )
+        _time_terms_at(t + h, p, wav, trig, scratch)
+        _rhs(scene, ehl, tmp, p, wav, k6, loads, scratch)
+        for i in range(n):
+            y1[i] = y[i] + h * (
+                _A71 * k1[i] + _A73 * k3[i] + _A74 * k4[i] + _A75 * k5[i] + _A76 * k6[i]
+            )
+        _rhs(scene, ehl, y1, p, wav, k7, loads, scratch)
+        err = 0.0
+        finite = True
+        for i in range(n):
+            e = h * (
+                _E1 * k1[i] + _E3 * k3[i] + _E4 * k4[i] + _E5 * k5[i] + _E6 * k6[i] + _E7 * k7[i]
+            )
+            sc = atol[i] + rtol * max(abs(y[i]), abs(y1[i]))
+            err += (e / sc) ** 2
+            if not math.isfinite(y1[i]):
+                finite = False
+        err = math.sqrt(err / n)
+        if not finite or not math.isfinite(err):
+            rejected += 1
+            h *= 0.2
+            continue
+        if err <= 1.0:
+            # dense output (Hairer's CONTD5) for every record time inside (t, t + h]
+            while next_rec < n_record and t_first + next_rec * record_dt <= t + h * (1 + 1e-12):
+                tr = t_first + next_rec * record_dt
+                if tr < t:
+                    next_rec += 1
+                    continue
+                th = (tr - t) / h
+                th1 = 1.0 - th
+                for i in range(n):
+                    ydiff = y1[i] - y[i]
+                    bspl = h * k1[i] - ydiff
+                    r1[i] = ydiff
+                    r2[i] = bspl
+                    r3[i] = ydiff - h * k7[i] - bspl
+                    r4[i] = h * (
+                        _D1 * k1[i]
+                        + _D3 * k3[i]
+                        + _D4 * k4[i]
+                        + _D5 * k5[i]
+                        + _D6 * k6[i]
+                        + _D7 * k7[i]
+                    )
+                    tmp[i] = y[i] + th * (r1[i] + th1 * (r2[i] + th * (r3[i] + th1 * r4[i])))
+                status = _check(tmp, nd, limit)
+                if status != STATUS_OK:
+                    return status, tr, y
+                _time_terms_at(tr, p, wav, trig, scratch)
+                _rhs(scene, ehl, tmp, p, wav, acc, loads, scratch)
+                _record(tmp, acc, nd, next_rec, out_state, out_accel)
+                if record_loads:
+                    for j in range(z):
+                        out_loads[next_rec, 0, j] = loads[0, j]
+                        out_loads[next_rec, 1, j] = loads[1, j]
+                next_rec += 1
+            t = t + h
+            for i in range(n):
+                y[i] = y1[i]
+                k1[i] = k7[i]  # first same as last
+            accepted += 1
+            if h < h_min_seen:
+                h_min_seen = h
+            if h > h_max_seen:
+                h_max_seen = h
+            status = _check(y, nd, limit)
+            if status != STATUS_OK:
+                step_stats[0], step_stats[1] = accepted, rejected
+                step_stats[2], step_stats[3] = h_min_seen, h_max_seen
+                return status, t, y
+            # PI step control (Hairer: beta = 0.04)
+            fac = 0.9 * err ** (-0.2 + 0.04 * 0.75) * err_old**0.04 if err > 0 else 5.0
+            fac = min(5.0, max(0.2, fac))
+            err_old = max(err, 1e-4)
+            h *= fac
+        else:
+            rejected += 1
+            h *= max(0.2, 0.9 * err**-0.2)
+    step_stats[0], step_stats[1] = accepted, rejected
+    step_stats[2], step_stats[3] = h_min_seen, h_max_seen
+    return STATUS_OK, t, y
+
+
+# ------------------------------------------------------------------ compiled entry points
+# One entry point per (scene, film) pair: the pair reaches the implementations as literal
+# types, so each pair is compiled (and cached, under its own name) on its own with the other
+# scenes' branches removed; Python picks the entry from ``RK4``, ``DOPRI5`` and ``RHS`` by
+# (scene, ehl). Each factory spells its integrator's arguments once; the closure's two
+# integers are part of numba's cache key (tests_generators/test_kernels_cache.py).
+
+
+@numba.njit(**_JIT)
+def _rhs_once_impl(scene, ehl, t, y, p, wav, dydt, loads):
+    numba.literally(scene)
+    numba.literally(ehl)
+    scratch = _scratch(int(p[P_BALL_COUNT]))
+    trig = _trig(wav)
+    _time_terms_at(t, p, wav, trig, scratch)
+    _rhs(scene, ehl, y, p, wav, dydt, loads, scratch)
+
+
+def _specialised(entry, kind: str, scene: int, ehl: int):
+    """Compile ``entry`` (a closure over ``scene`` and ``ehl``) under a name of its own."""
+    entry.__name__ = entry.__qualname__ = f"_{kind}_{SCENE_NAMES[scene]}_{FILM_NAMES[ehl]}"
+    return numba.njit(**_JIT)(entry)
+
+
+def _rk4_entry(scene: int, ehl: int):
+    """The RK4 entry point of one (scene, film) pair (arguments: :func:`_rk4_impl`)."""
+
+    def entry(
+        y0,
+        p,
+        wav,
+        t0,
+        dt,
+        n_steps,
+        t_first,
+        record_dt,
+        n_record,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+    ):
+        return _rk4_impl(
+            scene,
+            ehl,
+            y0,
+            p,
+            wav,
+            t0,
+            dt,
+            n_steps,
+            t_first,
+            record_dt,
+            n_record,
+            out_state,
+            out_accel,
+            out_loads,
+            record_loads,
+        )
+
+    return _specialised(entry, "rk4", scene, ehl)
+
+
+def _dopri5_entry(scene: int, ehl: int):
+    """The DOPRI5 entry point of one (scene, film) pair (arguments: :func:`_dopri5_impl`)."""
+
+    def entry(
+        y0,
+        p,
+        wav,
+        t0,
+        t_first,
+        record_dt,
+        n_record,
+        rtol,
+        atol,
+        h0,
+        h_max,
+        max_steps,
+        out_state,
+        out_accel,
+        out_loads,
+        record_loads,
+        step_stats,
+    ):
+        return _dopri5_impl(
+            scene,
+            ehl,
+            y0,
+            p,
+            wav,
+            t0,
+            t_first,
+            record_dt,
+            n_record,
+            rtol,
+            atol,
+            h0,
+            h_max,
+            max_steps,
+            out_state,
+            out_accel,
+            out_loads,
+            record_loads,
+            step_stats,
+        )
+
+    return _specialised(entry, "dopri5", scene, ehl)
+
+
+def _rhs_entry(scene: int, ehl: int):
+    """One right-hand-side evaluation of one (scene, film) pair (:func:`_rhs_once_impl`)."""
+
+    def entry(t, y, p, wav, dydt, loads):
+        _rhs_once_impl(scene, ehl, t, y, p, wav, dydt, loads)
+
+    return _specialised(entry, "rhs", scene, ehl)
+
+
+PAIRS = tuple((scene, ehl) for scene in SCENE_NAMES for ehl in FILM_NAMES)
+RK4 = {pair: _rk4_entry(*pair) for pair in PAIRS}
+DOPRI5 = {pair: _dopri5_entry(*pair) for pair in PAIRS}
+RHS = {pair: _rhs_entry(*pair) for pair in PAIRS}
+
+
+def _rk4(scene, ehl, *args):
+    """RK4 for a (scene, ehl) pair (Python-side dispatch to the compiled entry point)."""
+    return RK4[int(scene), int(ehl)](*args)
+
+
+def _dopri5(scene, ehl, *args):
+    """DOPRI5 for a (scene, ehl) pair."""
+    return DOPRI5[int(scene), int(ehl)](*args)
+
+
+def _rhs_once(scene, ehl, t, y, p, wav, dydt, loads):
+    """One right-hand-side evaluation (static checks, linearisation, reference tests)."""
+    RHS[int(scene), int(ehl)](float(t), y, p, wav, dydt, loads)
