@@ -34,14 +34,8 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from generators.dataset import (
-    CASE_COLUMNS,
-    Case,
-    case_count,
-    generate_cases,
-    iter_cases,
-    validate_recipe,
-)
+from generators.recipe import CASE_COLUMNS, Case, case_count, iter_cases, validate_recipe
+from generators.synthesis import generate_cases
 
 from . import __version__
 from .io import atomic_write, to_jsonable
@@ -278,7 +272,7 @@ def generate_dataset(
 class _ChunkFeed:
     """The chunks still to generate, in order, each expanded when a worker asks for it.
 
-    Cases are drawn one chunk at a time (:func:`generators.dataset.iter_cases`, under a
+    Cases are drawn one chunk at a time (:func:`generators.recipe.iter_cases`, under a
     lock: the draws and ``operating_point_id`` follow the case order), so the first chunk
     starts at once and the drawing of the rest overlaps the simulations instead of delaying
     them. Chunks whose data file exists (an earlier, interrupted run) are counted in

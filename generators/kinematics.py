@@ -188,10 +188,10 @@ def waviness_passage_frequencies(
     k = check_int("order", order, low=1, high=500)
     qmax = check_int("max_harmonic", max_harmonic, low=1, high=100)
     f = characteristic_frequencies(geometry, shaft_frequency_hz, cage_slip=cage_slip)
-    return _passage_lines(f, geometry.ball_count, surface, k, qmax)
+    return passage_lines(f, geometry.ball_count, surface, k, qmax)
 
 
-def _passage_lines(
+def passage_lines(
     f: BearingFrequencies, z: int, surface: str, k: int, qmax: int
 ) -> list[WavinessLine]:
     """:func:`waviness_passage_frequencies` from checked inputs and known frequencies ``f``."""

@@ -163,7 +163,7 @@ class Prepared:
 
 
 @functools.cache
-def _default(cls: type):
+def default_instance(cls: type):
     """The default instance of a frozen parameter class (built and validated once)."""
     return cls()
 
@@ -187,9 +187,9 @@ def prepare(
         raise ParameterError(f"bearing = {bearing!r} is not a BearingGeometry")
     if not isinstance(operating, OperatingCondition):
         raise ParameterError(f"operating = {operating!r} is not an OperatingCondition")
-    scene = _default(Scene) if scene is None else scene
-    rig = _default(Rig) if rig is None else rig
-    settings = _default(SimulationSettings) if settings is None else settings
+    scene = default_instance(Scene) if scene is None else scene
+    rig = default_instance(Rig) if rig is None else rig
+    settings = default_instance(SimulationSettings) if settings is None else settings
     for name, obj, cls in (
         ("scene", scene, Scene),
         ("rig", rig, Rig),
@@ -204,10 +204,10 @@ def prepare(
         freqs = characteristic_frequencies(
             bearing, operating.shaft_frequency, cage_slip=operating.cage_slip
         )
-    return _prepare(bearing, operating, defect_list, scene, rig, settings, rng, freqs)
+    return prepare_checked(bearing, operating, defect_list, scene, rig, settings, rng, freqs)
 
 
-def _prepare(
+def prepare_checked(
     geometry: BearingGeometry,
     operating: OperatingCondition,
     defect_list: tuple[Defect, ...],

@@ -190,7 +190,7 @@ def test_bench_on_measured_recordings(shared_data):
 def test_the_benchmark_recipe_can_set_a_1e3_threshold_and_sweeps_the_snr():
     import tomllib
 
-    from generators.dataset import validate_recipe
+    from generators.recipe import validate_recipe
 
     path = Path(__file__).resolve().parents[2] / "datasets" / "detector-bench.toml"
     recipe = validate_recipe(tomllib.loads(path.read_text()))

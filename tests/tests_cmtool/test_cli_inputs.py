@@ -220,8 +220,8 @@ def test_recipes_take_the_same_shaft_speed_range(tmp_path):
     import tomllib
 
     from generators import ParameterError
-    from generators.dataset import validate_recipe
     from generators.params import MAX_SHAFT_SPEED_RPM
+    from generators.recipe import validate_recipe
 
     recipe = tomllib.loads((REPO / "datasets" / "small.toml").read_text())
     recipe["operating"]["rpm"] = [MAX_SHAFT_SPEED_RPM]

@@ -17,7 +17,7 @@ from cmtool.cli import main
 from cmtool.datasets import DatasetError, dataset_info, generate_dataset, read_dataset
 from generators import ParameterError
 from generators._lanes import LANES
-from generators.dataset import DEFAULT_CHUNK_SIZE, expand_cases, validate_recipe
+from generators.recipe import DEFAULT_CHUNK_SIZE, expand_cases, validate_recipe
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -328,7 +328,7 @@ def test_committed_dataset_reads_with_pyarrow_and_dask():
 
 
 def test_a_case_without_static_equilibrium_is_a_recorded_failure(monkeypatch, tiny):
-    import generators.dataset as gd
+    import generators.synthesis as gd
     from cmtool.datasets import load_recipe
 
     recipe, _ = load_recipe(tiny)
@@ -337,7 +337,7 @@ def test_a_case_without_static_equilibrium_is_a_recorded_failure(monkeypatch, ti
     def no_equilibrium(*args, **kwargs):
         raise ParameterError("radial_load = 1 N: static equilibrium not found")
 
-    monkeypatch.setattr(gd, "_prepare", no_equilibrium)
+    monkeypatch.setattr(gd, "prepare_checked", no_equilibrium)
     row = gd.generate_case(recipe, case)
     assert "signal" not in row and row["error"].startswith("not simulated: radial_load")
 

@@ -30,7 +30,8 @@ from generators import (
     defect_path,
     simulate,
 )
-from generators.dataset import expand_cases, generate_case, validate_recipe
+from generators.recipe import expand_cases, validate_recipe
+from generators.synthesis import generate_case
 
 pytestmark = pytest.mark.validation
 

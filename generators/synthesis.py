@@ -1,0 +1,427 @@
+"""Synthesis of a recipe's cases: one labelled signal per case (:mod:`generators.recipe`).
+
+Each case is simulated (batches of healthy and waviness runs in SIMD lanes, local defects one
+by one), passed through the recipe's measurement chain (docs/realism.md) and returned as one
+row: the case's columns, the signal and an error message where it could not be made.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import signal as sp_signal
+
+from ._validate import ParameterError, SimulationDivergedError
+from .batches import lanes_supported, simulate_lanes
+from .catalog import bearing
+from .kinematics import characteristic_frequencies, passage_lines
+from .measurement import (
+    MachineBackground,
+    StructuralMode,
+    anti_alias_filter,
+    band_power,
+    digitise,
+    fault_band,
+    machine_background,
+    sensor_response,
+    transfer_path,
+)
+from .model import integrate
+from .params import (
+    LocalizedDefect,
+    OperatingCondition,
+    Rig,
+    Scene,
+    SimulationSettings,
+    Waviness,
+)
+from .prepared import Prepared, default_instance, prepare_checked
+from .recipe import Case
+
+__all__ = ["generate_case", "generate_cases", "MAX_FAULT_GAIN"]
+
+
+def _resonance(x: np.ndarray, fs: float, f0: float, zeta: float) -> np.ndarray:
+    """Sensor/structure resonance: a second-order band-pass (unit gain at f0), bilinear."""
+    w0 = 2 * np.pi * f0
+    # H(s) = 2 zeta w0 s / (s^2 + 2 zeta w0 s + w0^2): |H(j w0)| = 1
+    b, a = sp_signal.bilinear([2 * zeta * w0, 0.0], [1.0, 2 * zeta * w0, w0 * w0], fs)
+    return sp_signal.lfilter(b, a, x)
+
+
+@dataclass
+class _Job:
+    """One case on its way through :func:`generate_cases`."""
+
+    case: Case
+    meta: dict
+    rng: np.random.Generator
+    run: Prepared | None = None  # the case's simulation
+    healthy: Prepared | None = None  # its healthy twin (background noise), if needed
+    error: str | None = None
+
+
+def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
+    """Metadata of a case and its prepared simulation(s) (phases drawn from the case seed).
+
+    ``shared``: the validated parameter objects that cases of one call have in common
+    (geometry per bearing and clearance, settings per sample rate, the scene), built once.
+    """
+    r = recipe
+    sensor, model = r["sensor"], r["model"]
+    geometry = shared.get(("bearing", case.bearing, case.clearance_m))
+    if geometry is None:
+        overrides = (
+            {} if case.clearance_m is None else {"radial_internal_clearance": case.clearance_m}
+        )
+        geometry = bearing(case.bearing, **overrides)
+        shared["bearing", case.bearing, case.clearance_m] = geometry
+    operating = OperatingCondition.from_rpm(
+        case.rpm,
+        case.radial_load_n,
+        random_slip=case.random_slip,
+        ball_jitter=case.ball_jitter_rad,
+    )
+    defects: list = []
+    if case.defect_kind == "localized":
+        defects.append(
+            LocalizedDefect(
+                surface=case.surface,
+                length=case.defect_length_m,
+                depth=case.defect_depth_m,
+                position=None if math.isnan(case.defect_position_rad) else case.defect_position_rad,
+                # a ball pit lies anywhere on the ball: its latitude is drawn per case
+                **(
+                    {"latitude": None, "axis_drift": case.defect_axis_drift_rad_s}
+                    if case.surface == "ball"
+                    else {}
+                ),
+            )
+        )
+    elif case.surface is not None:
+        defects.append(
+            Waviness(
+                surface=case.surface,
+                order=case.waviness_order,
+                amplitude=case.waviness_amplitude_m,
+                phase=None,
+            )
+        )
+    settings = shared.get(("settings", case.fs_hz))
+    if settings is None:
+        settings = SimulationSettings(
+            fs=case.fs_hz,
+            duration=float(sensor["duration_s"]),
+            settle_time=float(sensor["settle_s"]),
+            integrator=model["integrator"],
+            step=model.get("step_s"),
+            rtol=model.get("rtol", 1e-6),
+            channels=(channel,),
+        )
+        shared["settings", case.fs_hz] = settings
+    freqs = characteristic_frequencies(
+        geometry, operating.shaft_frequency, cage_slip=operating.cage_slip
+    )
+    wpf = math.nan
+    if case.defect_kind == "waviness":
+        # waviness_passage_frequencies from the frequencies at hand (order checked by the recipe)
+        lines = passage_lines(freqs, geometry.ball_count, case.surface, case.waviness_order, 2)
+        strong = [ln.frequency for ln in lines if ln.strength == "strong"]
+        wpf = strong[0] if strong else (lines[0].frequency if lines else math.nan)
+    meta = {
+        "id": f"{r['name']}-{case.index:06d}",
+        "index": case.index,
+        "label": case.label,
+        "condition": case.condition,
+        "bearing": case.bearing,
+        "operating_point_id": case.operating_point_id,
+        "rpm": case.rpm,
+        "shaft_frequency_hz": operating.shaft_frequency,
+        "radial_load_n": case.radial_load_n,
+        "radial_internal_clearance_m": geometry.radial_internal_clearance,
+        "surface": case.surface or "none",
+        "waviness_order": case.waviness_order,
+        "waviness_amplitude_m": case.waviness_amplitude_m,
+        "defect_kind": case.defect_kind,
+        "defect_length_m": case.defect_length_m,
+        "defect_depth_m": case.defect_depth_m,
+        "defect_position_rad": case.defect_position_rad,
+        "defect_axis_drift_rad_s": case.defect_axis_drift_rad_s,
+        "seed": case.seed,
+        "scene": model["scene"],
+        "ehl": model["ehl"],
+        "integrator": model["integrator"],
+        "step_s": float(model.get("step_s") or math.nan),
+        "quantity": sensor["quantity"],
+        "body": sensor["body"],
+        "direction": sensor["direction"],
+        "fs_hz": case.fs_hz,
+        "duration_s": float(sensor["duration_s"]),
+        "snr_db": math.nan if case.snr_db is None else case.snr_db,
+        "background_db": case.background_db,
+        "fault_snr_db": case.fault_snr_db,
+        "noise_rms": 0.0,
+        "resonance_hz": case.resonance_hz,
+        "ftf_hz": freqs.ftf,
+        "bpfo_hz": freqs.bpfo,
+        "bpfi_hz": freqs.bpfi,
+        "bsf_hz": freqs.bsf,
+        "two_bsf_hz": freqs.two_bsf,
+        "wpf_hz": wpf,
+        "random_slip": case.random_slip,
+        "ball_jitter_rad": case.ball_jitter_rad,
+        "fault_band_low_hz": math.nan,
+        "fault_band_high_hz": math.nan,
+        "chain": "",
+    }
+    job = _Job(case=case, meta=meta, rng=np.random.default_rng(case.seed))
+    scene = shared.get("scene")
+    if scene is None:
+        scene = shared["scene"] = Scene(level=model["scene"], ehl=model["ehl"])
+    rig = default_instance(Rig)
+    try:
+        # prepare() without re-checking the objects built here
+        job.run = prepare_checked(
+            geometry, operating, tuple(defects), scene, rig, settings, job.rng, freqs
+        )
+        if not math.isnan(case.background_db) and defects:
+            job.healthy = prepare_checked(
+                geometry,
+                operating,
+                (),
+                scene,
+                rig,
+                settings,
+                np.random.default_rng(case.seed),
+                freqs,
+            )
+    except ParameterError as err:  # e.g. no static equilibrium for this case's geometry
+        job.error = f"not simulated: {err}"
+    return job
+
+
+def _measured(recipe: dict, case: Case, x: np.ndarray) -> np.ndarray:
+    """The sensor's view of a simulated channel: mean removed (displacement), resonance."""
+    sensor = recipe["sensor"]
+    x = x - x.mean() if sensor["quantity"] == "displacement" else x
+    if not math.isnan(case.resonance_hz):
+        x = _resonance(x, case.fs_hz, case.resonance_hz, float(sensor["resonance_damping"]))
+    return x
+
+
+#: Largest factor by which the realistic chain scales a fault's simulated signature to reach
+#: the drawn fault SNR (40 dB).
+MAX_FAULT_GAIN = 100.0
+
+
+def _pick(spec: dict | None, rng: np.random.Generator, default, *, integer: bool = False):
+    """One value of a recipe grid (chosen at random) or range (uniform), or ``default``."""
+    if spec is None:
+        return default
+    if "grid" in spec:
+        v = spec["grid"][int(rng.integers(len(spec["grid"])))]
+    else:
+        lo, hi = spec["range"]
+        v = rng.integers(int(lo), int(hi) + 1) if integer else rng.uniform(lo, hi)
+    return int(v) if integer else float(v)
+
+
+def _realistic(recipe: dict) -> bool:
+    """Whether a validated recipe asks for the realistic measurement chain."""
+    return "background" in recipe or "modes" in recipe["sensor"]
+
+
+def _finish_realistic(
+    recipe: dict, job: _Job, x: np.ndarray, healthy: np.ndarray, signal_dtype: type
+) -> dict:
+    """The realistic chain (docs/realism.md): structure, background, fault SNR, sensor, ADC.
+
+    Every random choice of the chain comes from its own generator seeded by the case's seed,
+    so the simulation's draws are those of the same case without the chain.
+    """
+    case, meta, sensor = job.case, job.meta, recipe["sensor"]
+    background = recipe.get("background", {})
+    rng = np.random.default_rng([case.seed, 7])
+    fs = case.fs_hz
+    modes = tuple(
+        StructuralMode(
+            frequency=_pick(sensor.get("mode_hz"), rng, 3000.0),
+            damping=_pick(sensor.get("mode_damping"), rng, 0.05),
+            gain=10.0 ** (_pick(sensor.get("mode_gain_db"), rng, 0.0) / 20.0),
+        )
+        for _ in range(_pick(sensor.get("modes"), rng, 0, integer=True))
+    )
+    at_sensor = transfer_path(x, fs, modes)
+    healthy_at_sensor = at_sensor if healthy is x else transfer_path(healthy, fs, modes)
+    reference = float(np.sqrt(np.mean(healthy_at_sensor**2))) or 1e-12
+
+    def level(key: str, default_db: float | None) -> float:
+        db = _pick(background.get(key), rng, default_db)
+        return 0.0 if db is None else reference * 10.0 ** (db / 20.0)
+
+    shaft_1x = level("shaft_db", None)
+    decay = _pick(background.get("shaft_decay_db"), rng, 6.0)
+    shaft = tuple(
+        shaft_1x * 10.0 ** ((-decay * h + rng.uniform(-3.0, 3.0)) / 20.0)
+        for h in range(_pick(background.get("shaft_harmonics"), rng, 3, integer=True))
+    )
+    line_hz = _pick(background.get("line_hz"), rng, 60.0)
+    line_2x = level("line_db", None)
+    other = level("other_bearing_db", None)
+    other_lines: tuple = ()
+    if "other_bearing" in background and other > 0.0:
+        f = characteristic_frequencies(bearing(background["other_bearing"]), case.rpm / 60.0)
+        other_lines = ((f.bpfo, other), (2.0 * f.bpfo, other / 2.0), (f.bpfi, other / 2.0))
+    machine = MachineBackground(
+        broadband_rms=reference * 10.0 ** (case.background_db / 20.0),
+        shaft_harmonics=shaft,
+        line_frequency=line_hz,
+        line_harmonics=(line_2x / 2.0, line_2x),
+        other_lines=other_lines,
+        floor_rms=level("floor_db", None),
+    )
+    noise = machine_background(x.size, fs, case.rpm / 60.0, machine, modes, rng)
+    chain: dict = {
+        "modes": [[m.frequency, m.damping, m.gain] for m in modes],
+        "shaft_amplitudes": list(shaft),
+        "line_hz": line_hz,
+        "line_2x_amplitude": line_2x,
+        "other_lines": [list(pair) for pair in other_lines],
+        "floor_rms": machine.floor_rms,
+    }
+    y = healthy_at_sensor + noise
+    if healthy is not x:
+        signature = at_sensor - healthy_at_sensor
+        gain = 1.0
+        if not math.isnan(case.fault_snr_db) and np.any(signature):
+            # the fault's visibility where its impacts ring: the band SNR is the label. How
+            # loud a pit of a given size is on a machine is not known, so the signature is
+            # scaled to the drawn SNR, by at most MAX_FAULT_GAIN: a pit the balls barely
+            # touch (outside the load zone) stays as faint as the model makes it, and the
+            # SNR recorded is the one reached.
+            band = fault_band(signature, fs)
+            meta["fault_band_low_hz"], meta["fault_band_high_hz"] = band
+            rest = band_power(y, fs, band)
+            own = max(band_power(signature, fs, band), 1e-300)
+            wanted = rest * 10.0 ** (case.fault_snr_db / 10.0)
+            gain = min(math.sqrt(wanted / own), MAX_FAULT_GAIN)
+            meta["fault_snr_db"] = 10.0 * math.log10(max(gain * gain * own, 1e-300) / rest)
+        chain["fault_gain"] = gain
+        y = y + gain * signature
+    resonance = _pick(sensor.get("sensor_resonance_hz"), rng, None)
+    if resonance is not None:
+        zeta = _pick(sensor.get("sensor_damping"), rng, 0.03)
+        y = sensor_response(y, fs, resonance, zeta)
+        chain["sensor_resonance_hz"], chain["sensor_damping"] = resonance, zeta
+    cutoff = _pick(sensor.get("anti_alias"), rng, None)
+    if cutoff is not None:
+        order = _pick(sensor.get("anti_alias_order"), rng, 8, integer=True)
+        y = anti_alias_filter(y, fs, cutoff, order)
+        chain["anti_alias"], chain["anti_alias_order"] = cutoff, order
+    bits = _pick(sensor.get("adc_bits"), rng, None, integer=True)
+    if bits is not None:
+        headroom = _pick(sensor.get("adc_headroom_db"), rng, 6.0)
+        full_scale = float(np.max(np.abs(y))) * 10.0 ** (headroom / 20.0)
+        y, clipped = digitise(y, bits, max(full_scale, 1e-300))
+        chain.update(adc_bits=bits, adc_full_scale=full_scale, clipped_fraction=clipped)
+    if not np.all(np.isfinite(y)):
+        return {**meta, "error": "non-finite samples after the measurement chain"}
+    meta["noise_rms"] = machine.broadband_rms
+    meta["chain"] = json.dumps(chain, separators=(",", ":"))
+    return {**meta, "signal": y.astype(signal_dtype), "error": None}
+
+
+def _finish(
+    recipe: dict, job: _Job, x: np.ndarray, healthy: np.ndarray, signal_dtype: type
+) -> dict:
+    """Add measurement noise (SNR, background or absolute) and build the row of a case."""
+    if _realistic(recipe):
+        return _finish_realistic(recipe, job, x, healthy, signal_dtype)
+    case, meta, rng, sensor = job.case, job.meta, job.rng, recipe["sensor"]
+    noise_rms = 0.0
+    if case.snr_db is not None:
+        noise_rms = float(np.sqrt(np.mean(x * x))) * 10.0 ** (-case.snr_db / 20.0)
+    elif not math.isnan(case.background_db):
+        # machine background: relative to the healthy bearing at this operating point, the
+        # same for a healthy and a faulty bearing (a fault adds to it, it does not scale it)
+        noise_rms = float(np.sqrt(np.mean(healthy * healthy))) * 10.0 ** (case.background_db / 20.0)
+        if not math.isnan(case.fault_snr_db):
+            # at least the level that puts the fault's own signature (faulty minus healthy
+            # bearing) fault_snr_db above it
+            signature = x - healthy
+            noise_rms = max(
+                noise_rms,
+                float(np.sqrt(np.mean(signature * signature)))
+                * 10.0 ** (-case.fault_snr_db / 20.0),
+            )
+    elif "noise_rms" in sensor:
+        noise_rms = float(sensor["noise_rms"])
+    if noise_rms > 0:
+        x = x + rng.normal(0.0, noise_rms, x.size)
+    if not np.all(np.isfinite(x)):
+        return {**meta, "error": "non-finite samples after the sensor model"}
+    meta["noise_rms"] = noise_rms
+    return {**meta, "signal": x.astype(signal_dtype, copy=False), "error": None}
+
+
+def generate_cases(
+    recipe: dict,
+    cases: list[Case],
+    *,
+    signal_dtype: type = np.float32,
+    workspace: list[np.ndarray] | None = None,
+) -> list[dict]:
+    """Simulate cases: per case its metadata (``CASE_COLUMNS``) plus ``signal`` or ``error``.
+
+    Runs that :func:`generators.model.simulate_lanes` supports (RK4, massless-ball scenes,
+    waviness) are integrated together, several per SIMD lane block; the others one by one
+    (:func:`generators.model.integrate`). A case's row depends only on the recipe and the
+    case, never on the other cases in the call. A diverged simulation returns the metadata
+    with ``error`` set and no signal. ``signal_dtype``: the samples' type in the rows,
+    float32 as stored; ``np.float64`` leaves the rounding to float32 to the writer (one copy
+    fewer per signal when the rows go straight into a file). ``workspace``: output buffers
+    reused from call to call (:func:`generators.model.simulate_lanes`); float64 signals are
+    then views into them, valid until the next call with the same workspace.
+    """
+    sensor = recipe["sensor"]
+    channel = f"{sensor['body']}_{sensor['quantity']}_{sensor['direction']}"
+    shared: dict = {}
+    jobs = [_setup(recipe, case, channel, shared) for case in cases]
+    preps = [prep for job in jobs for prep in (job.run, job.healthy) if prep is not None]
+    lanes = [prep for prep in preps if lanes_supported(prep)]
+    simulated: dict[int, np.ndarray | Exception] = {}
+    results = simulate_lanes(lanes, channel, workspace=workspace)
+    for prep, result in zip(lanes, results, strict=True):
+        simulated[id(prep)] = result
+    for prep in preps:
+        if id(prep) not in simulated:
+            try:
+                simulated[id(prep)] = integrate(prep)[channel]
+            except (SimulationDivergedError, ParameterError) as err:
+                simulated[id(prep)] = err
+    rows = []
+    for job in jobs:
+        if job.error is not None:
+            rows.append({**job.meta, "error": job.error})
+            continue
+        x = simulated[id(job.run)]
+        healthy = x if job.healthy is None else simulated[id(job.healthy)]
+        failed = next((r for r in (x, healthy) if isinstance(r, Exception)), None)
+        if failed is not None:
+            why = str(failed)
+            if isinstance(failed, ParameterError):
+                why = f"not simulated: {why}"
+            rows.append({**job.meta, "error": why})
+            continue
+        x = _measured(recipe, job.case, x)
+        healthy = x if job.healthy is None else _measured(recipe, job.case, healthy)
+        rows.append(_finish(recipe, job, x, healthy, signal_dtype))
+    return rows
+
+
+def generate_case(recipe: dict, case: Case) -> dict:
+    """Simulate one case: :func:`generate_cases` of that case alone (the same row)."""
+    return generate_cases(recipe, [case])[0]
