@@ -273,7 +273,8 @@ MODEL_FLAGS = [
 @pytest.mark.parametrize("flag, value, target, field, expected", MODEL_FLAGS)
 def test_every_model_flag_lands_in_its_parameter_object(flag, value, target, field, expected):
     """One flag at a time: the parameter object gets the value, and nothing else changes."""
-    from cmtool.cli import _model_inputs, build_parser
+    from cmtool.cli import build_parser
+    from cmtool.commands.simulate import _model_inputs
 
     parser = build_parser()
     default = dict(
@@ -326,7 +327,8 @@ def test_version_flag(capsys):
 def test_command_line_defaults_are_the_parameter_objects_defaults():
     """`simulate` with no flag builds exactly the default parameter objects (the defaults are
     written once, in generators.params, and read by the command line)."""
-    from cmtool.cli import _model_inputs, build_parser
+    from cmtool.cli import build_parser
+    from cmtool.commands.simulate import _model_inputs
     from generators import OperatingCondition, Rig, Scene, SimulationSettings, bearing
 
     geometry, operating, defects, scene, rig, settings = _model_inputs(

@@ -134,13 +134,13 @@ def test_an_interrupted_dataset_is_refused_unless_asked(tmp_path, capsys):
 @pytest.mark.parametrize("suffix", [".parquet", ".csv"])
 def test_long_runs_stream_to_the_same_file(tmp_path, monkeypatch, capsys, suffix):
     """Above STREAM_ABOVE_SAMPLES simulate writes block by block; the file is the same one."""
-    import cmtool.cli as cli
+    import cmtool.commands.simulate as simulate_command
     import generators.stream as stream
     from cmtool.io import read_signal
 
     argv = ["simulate", "--duration", "0.3", "--channels", "housing_acceleration_y"]
     assert main([*argv, "--out", str(tmp_path / f"whole{suffix}")]) == 0
-    monkeypatch.setattr(cli, "STREAM_ABOVE_SAMPLES", 1000)
+    monkeypatch.setattr(simulate_command, "STREAM_ABOVE_SAMPLES", 1000)
     monkeypatch.setitem(stream.simulate_stream.__kwdefaults__, "block_samples", 1000)
     assert main([*argv, "--out", str(tmp_path / f"streamed{suffix}")]) == 0
     assert "streamed in blocks of 1,000 samples" in capsys.readouterr().out

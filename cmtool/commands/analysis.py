@@ -1,0 +1,271 @@
+"""``cmtool diagnose``, ``realism``, ``bench`` and ``demo``: signals judged."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+from pathlib import Path
+
+from generators import (
+    BEARINGS,
+)
+from generators.params import check_shaft_speed_rpm
+
+from .common import CliError, _progress_bar
+from .data import _check_training_overlap
+
+logger = logging.getLogger("cmtool")
+
+
+def cmd_diagnose(args: argparse.Namespace) -> int:
+    """Diagnose a recording: verdict, evidence, optional report and JSON."""
+    from ..diagnose import diagnose_signal, write_report
+    from ..io import read_recording
+
+    if args.report and Path(args.report).exists() and not Path(args.report).is_dir():
+        raise CliError(f"--report {args.report!r} is a file; give a folder for report.md")
+    x, meta = read_recording(args.recording, variable=args.variable, channel=args.channel)
+    warnings = []
+    fs = args.fs if args.fs is not None else meta.get("fs_hz")
+    if fs is None:
+        raise CliError(f"{args.recording}: the file holds no sample rate; give --fs")
+    if args.fs is not None and "fs_hz" in meta and abs(meta["fs_hz"] - args.fs) > 1e-6 * args.fs:
+        warnings.append(
+            f"--fs {args.fs:g} Hz differs from the file's {meta['fs_hz']:g} Hz; using --fs"
+        )
+    rpm = check_shaft_speed_rpm("--rpm", args.rpm) if args.rpm is not None else meta.get("rpm")
+    if rpm is None:
+        raise CliError(f"{args.recording}: the file holds no shaft speed; give --rpm")
+    name = args.bearing or meta.get("bearing")
+    if name is None:
+        raise CliError(
+            f"{args.recording}: the file does not say which bearing it is; give --bearing "
+            f"(one of {', '.join(sorted(BEARINGS))})"
+        )
+    if args.bearing and meta.get("bearing") and args.bearing != meta["bearing"]:
+        warnings.append(f"--bearing {args.bearing} differs from the file's {meta['bearing']}")
+    model = None
+    if args.model:
+        from ..classifier import load_model
+
+        model = load_model(args.model)
+    baseline = baseline_fs = None
+    if args.baseline:
+        baseline, base_meta = read_recording(
+            args.baseline, variable=args.variable, channel=args.channel
+        )
+        baseline_fs = base_meta.get("fs_hz", float(fs))
+    diagnosis = diagnose_signal(
+        x, float(fs), float(rpm), name, model=model, baseline=baseline, baseline_fs=baseline_fs
+    )
+    diagnosis.warnings = warnings + diagnosis.warnings
+    diagnosis.assumptions["channel"] = str(meta.get("variable") or args.channel or "first")
+    diagnosis.assumptions["file"] = Path(args.recording).name
+    if args.report:
+        report = write_report(
+            diagnosis, args.report, title=Path(args.recording).name, x=x, fs=float(fs)
+        )
+        if not args.json:
+            print(f"wrote {report}")
+    if args.json:
+        print(json.dumps(diagnosis.to_dict(), indent=2))
+    else:
+        print(
+            f"{Path(args.recording).name}: {diagnosis.verdict} (confidence "
+            f"{diagnosis.confidence:.2f}); envelope band {diagnosis.band_hz[0]:.0f}-"
+            f"{diagnosis.band_hz[1]:.0f} Hz, threshold {diagnosis.threshold_db:.1f} dB"
+        )
+        a = diagnosis.assumptions
+        print(
+            f"  assumed: bearing {a['bearing']}, {a['rpm']:g} rpm, fs {a['fs_hz']:g} Hz, "
+            f"{a['record_s']:g} s ({a['samples']} samples), channel {a['channel']}"
+        )
+        for c in diagnosis.candidates:
+            print(
+                f"  {c['fault']:<11s} {c['frequency_hz']:9.3f} Hz  envelope SNR "
+                f"{c['envelope_snr_db'][0]:6.1f} / {c['envelope_snr_db'][1]:6.1f} / "
+                f"{c['envelope_snr_db'][2]:6.1f} dB (1x/2x/3x)"
+            )
+        print(f"  basis: {diagnosis.basis}")
+        change = (diagnosis.baseline or {}).get("velocity_bands_change_db", {})
+        bands = ", ".join(
+            f"{k} {v:.3g}" + (f" ({change[k]:+.1f} dB)" if change.get(k) is not None else "")
+            for k, v in (diagnosis.velocity_bands or {}).items()
+        )
+        print(f"  velocity RMS (ISO 15242 bands, signal unit x s): {bands}")
+        if diagnosis.waviness:
+            w = diagnosis.waviness
+            over = w.get("over_baseline_db")
+            print(
+                f"  waviness hint: {w['surface']} race order ~{w['order']} at {w['line_hz']} Hz"
+                + ("" if over is None else f", {over:+.1f} dB over the baseline")
+            )
+        if diagnosis.model_verdict:
+            print(f"  model: {diagnosis.model_verdict}")
+        for w in diagnosis.warnings:
+            print(f"  warning: {w}")
+    return 0
+
+
+def cmd_realism(args: argparse.Namespace) -> int:
+    """Tell simulated from measured signals: ROC AUC and the features that give it away."""
+    import numpy as np
+
+    from ..datasets import read_dataset
+    from ..realism import plot_realism, realism, recording_segments
+
+    simulated = read_dataset(args.dataset, allow_incomplete=args.allow_incomplete)
+    duration = float(np.median(simulated["duration_s"])) if "duration_s" in simulated else 1.0
+    measured = recording_segments(args.recordings, duration)
+    result = realism(simulated, measured, feature_set=args.feature_set, n_jobs=args.workers)
+    print(
+        f"measured vs simulated: ROC AUC {result['auc']:.3f} (0.5: indistinguishable, 1: "
+        f"every recording recognised); {result['segments']} segments of {duration:g} s from "
+        f"{result['recordings']} recordings against {result['simulated']} simulated signals, "
+        f"{result['folds']}-fold cross-validation grouped by recording, "
+        f"{result['feature_set']} features"
+    )
+    print("what gives the simulation away (random-forest importance):")
+    for name, value in result["features"][:10]:
+        print(f"  {name:<40s} {value:.3f}")
+    if args.out:
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "realism.json").write_text(
+            json.dumps({k: v for k, v in result.items() if k != "scores"}, indent=2)
+        )
+        print(f"wrote {plot_realism(result, out / 'realism.png')}")
+    return 0
+
+
+def cmd_bench(args: argparse.Namespace) -> int:
+    """Run detectors over a labelled dataset; print and write the scores, curves and report."""
+    import pandas as pd
+
+    from .. import bench
+
+    out = Path(args.out) if args.out else None
+    if out is not None and out.exists() and not out.is_dir():
+        raise CliError(f"--out {args.out!r} is a file; give a folder for the tables and plots")
+    for spec in args.detector:
+        bench.load_callable(spec)  # a wrong plug-in is refused before any work
+    model = None
+    in_sample = 0.0
+    if args.model:
+        from ..classifier import load_model
+
+        model = load_model(args.model)
+        if not (Path(args.dataset) / "MANIFEST.csv").is_file():
+            from ..datasets import read_dataset
+
+            in_sample = _check_training_overlap(
+                model,
+                read_dataset(
+                    args.dataset, columns=["signal"], allow_incomplete=args.allow_incomplete
+                ),
+                args,
+            )
+            if in_sample:
+                print(
+                    f"IN-SAMPLE: {in_sample:.0%} of these signals trained the model; its rates "
+                    "below are not a measure of accuracy"
+                )
+    bar = None
+
+    def progress(done: int, total: int) -> None:
+        nonlocal bar
+        if bar is None:
+            bar = _progress_bar(total, "bench", "signal")
+        bar.update(done - bar.n)
+
+    results = bench.run_bench(
+        args.dataset,
+        model=model,
+        detectors=args.detector,
+        bearing=args.bearing,
+        progress=progress,
+        allow_incomplete=args.allow_incomplete,
+        workers=args.workers,
+    )
+    if bar is not None:
+        bar.close()
+    if in_sample:
+        results["in_sample"] = True
+    summary, curves = bench.score_summary(results)
+    snr_column = next((c for c in ("fault_snr_db", "snr_db") if c in results), None)
+    by_snr = by_snr_fault = None
+    if snr_column is not None:
+        columns = ["detector", "snr_db", "pd_at_pfa_0.01", "ci_low", "ci_high", "signals", "bin"]
+        snr_table = bench.by_factor(results, snr_column)
+        if len(snr_table):
+            by_snr = snr_table.rename(columns={"value": "snr_db"})[columns]
+            by_snr_fault = pd.concat(
+                [by_snr.assign(fault="all")]
+                + [
+                    bench.by_factor(results, snr_column, fault=f)
+                    .rename(columns={"value": "snr_db"})[columns]
+                    .assign(fault=f)
+                    for f in bench.FAULT_CLASSES
+                ],
+                ignore_index=True,
+            )
+    factors = {
+        c: bench.by_factor(results, c)
+        for c in bench.FACTORS
+        if c not in ("fault_snr_db", "snr_db") and c in results and results[c].nunique() > 1
+    }
+    factors = {c: t for c, t in factors.items() if len(t)}  # none without faulty signals
+    tag = " [IN-SAMPLE]" if in_sample else ""
+    print(f"== ROC area and detection at fixed false-alarm rates{tag}")
+    print(summary.to_string(index=False, float_format=lambda v: f"{v:.3f}"))
+    if by_snr is not None:
+        print(f"== detection at false alarm 0.01 against {snr_column}{tag}")
+        print(by_snr.drop(columns=["bin"]).to_string(index=False, float_format="{:.3f}".format))
+    labels = bench.summarise(results)["overall"]
+    print(f"== the detectors' own labels{tag}")
+    print(labels.to_string(float_format=lambda v: f"{v:.3f}"))
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
+        if in_sample:
+            for frame in (summary, labels):
+                frame["in_sample"] = True
+        results.to_csv(out / "results.csv", index=False)
+        summary.to_csv(out / "summary.csv", index=False)
+        labels.to_csv(out / "labels.csv")
+        if by_snr is not None:
+            if in_sample:
+                by_snr = by_snr.assign(in_sample=True)
+            by_snr.drop(columns=["bin"]).to_csv(out / "by_snr.csv", index=False)
+            by_snr_fault.drop(columns=["bin"]).to_csv(out / "by_snr_fault.csv", index=False)
+        if factors:
+            table = pd.concat([t.assign(factor=c) for c, t in factors.items()], ignore_index=True)
+            table.to_csv(out / "by_factor.csv", index=False)
+        title = f"{Path(args.dataset).name}{tag}"
+        written = [bench.plot_roc(curves, out / "roc.png", title=f"ROC: {title}")]
+        if by_snr is not None:
+            written.append(
+                bench.plot_pd_vs_snr(
+                    by_snr_fault, out / "pd_vs_snr.png", title=f"detection against SNR: {title}"
+                )
+            )
+        written.append(
+            bench.write_report(
+                out / "report.md",
+                Path(args.dataset).name,
+                summary,
+                by_snr if by_snr is not None else summary.iloc[0:0],
+                factors,
+                in_sample=in_sample,
+            )
+        )
+        for path in written:
+            print(f"wrote {path}")
+    return 0
+
+
+def cmd_demo(args: argparse.Namespace) -> int:
+    """The main job on the embedded default."""
+    from ..demo import run_demo
+
+    return run_demo(Path(args.out))

@@ -1,0 +1,148 @@
+"""``cmtool generate``, ``dataset info``, ``train`` and ``evaluate``: datasets and models."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import sys
+from pathlib import Path
+
+from .common import CliError, _progress_bar
+
+logger = logging.getLogger("cmtool")
+
+
+def cmd_generate(args: argparse.Namespace) -> int:
+    """Generate a dataset from a recipe."""
+    from ..datasets import generate_dataset
+
+    bar = None
+
+    def progress(done: int, total: int) -> None:
+        nonlocal bar
+        if bar is None:
+            bar = _progress_bar(total, "generate", "signal", initial=done)
+        else:
+            bar.update(done - bar.n)
+
+    try:
+        summary = generate_dataset(
+            args.recipe,
+            args.out,
+            workers=args.workers,
+            resume=args.resume,
+            scheduler=args.scheduler,
+            progress=progress,
+        )
+    except KeyboardInterrupt:
+        # the chunks being written were finished; every visible part is whole
+        if bar is not None:
+            bar.close()
+        print(
+            f"cmtool generate: interrupted; the parts written in {args.out} are complete. "
+            "Run the same command with --resume to finish.",
+            file=sys.stderr,
+        )
+        return 130
+    if bar is not None:
+        bar.close()
+    print(
+        f"dataset {summary['name']} in {args.out}: {summary['written']} written, "
+        f"{summary['failed']} failed, {summary['skipped_existing']} already present "
+        f"(of {summary['signals']})"
+    )
+    return 0
+
+
+def cmd_dataset_info(args: argparse.Namespace) -> int:
+    """Print counts per label and parameter ranges."""
+    from ..datasets import dataset_info
+
+    print(dataset_info(args.path))
+    return 0
+
+
+def cmd_train(args: argparse.Namespace) -> int:
+    """Train classifiers with grouped cross-validation and save the best."""
+    from ..classifier import save_model, train
+    from ..datasets import read_dataset
+
+    frame = read_dataset(args.dataset, allow_incomplete=args.allow_incomplete)
+    recipe = Path(args.dataset, "recipe.toml")
+    bundle = train(
+        frame,
+        recipe=recipe.read_text() if recipe.is_file() else "",
+        random_state=args.seed,
+        feature_set=args.feature_set,
+        min_fault_snr_db=None if args.min_fault_snr is None else float(args.min_fault_snr),
+    )
+    print(
+        f"trained on {len(frame) - bundle['left_out']} signals ({bundle['left_out']} faulty "
+        f"ones below the fault SNR floor left out), {frame['operating_point_id'].nunique()} "
+        f"operating points, features {bundle['feature_set']}; grouped "
+        f"{bundle['n_splits']}-fold accuracy (no operating point in both train and test):"
+    )
+    for name, score in sorted(bundle["scores"].items(), key=lambda kv: -kv[1]):
+        print(f"  {name:<22s} {score:.3f}{'  <- kept' if name == bundle['best'] else ''}")
+    for key, value in bundle["extrapolation"].items():
+        print(f"  extrapolation {key:<28s} {value:.3f}")
+    print(f"wrote {save_model(bundle, args.out)}")
+    return 0
+
+
+def cmd_evaluate(args: argparse.Namespace) -> int:
+    """Accuracy, per-class precision/recall and confusion matrix of a model on a dataset."""
+    from ..classifier import evaluate, load_model
+    from ..datasets import read_dataset
+    from ..plots import plot_confusion
+
+    bundle = load_model(args.model)
+    frame = read_dataset(args.dataset, allow_incomplete=args.allow_incomplete)
+    in_sample = _check_training_overlap(bundle, frame, args)
+    result = evaluate(bundle, frame)
+    result["in_sample_fraction"] = in_sample
+    tag = " (IN-SAMPLE: signals the model was trained on; not a measure of accuracy)"
+    print(
+        f"accuracy {result['accuracy']:.3f} on {len(result['predictions'])} signals"
+        + (tag if in_sample else "")
+    )
+    print(f"{'label':<12s} {'precision':>9s} {'recall':>7s} {'f1':>6s}")
+    for label, m in result["per_class"].items():
+        print(f"{label:<12s} {m['precision']:9.3f} {m['recall']:7.3f} {m['f1-score']:6.3f}")
+    labels = result["labels"]
+    print("confusion matrix (rows true, columns predicted): " + ", ".join(labels))
+    for label, row in zip(labels, result["confusion"], strict=True):
+        print(f"  {label:<12s} " + " ".join(f"{v:4d}" for v in row))
+    if args.out:
+        out = Path(args.out)
+        png = plot_confusion(
+            result["confusion"],
+            labels,
+            out / "confusion.png",
+            title=f"{Path(args.model).name} on {Path(args.dataset).name}"
+            + (" (in-sample)" if in_sample else ""),
+        )
+        (out / "evaluation.json").write_text(
+            json.dumps({k: v for k, v in result.items() if k != "predictions"}, indent=2)
+        )
+        print(f"wrote {png}")
+    return 0
+
+
+def _check_training_overlap(bundle: dict, frame, args: argparse.Namespace) -> float:
+    """Refuse to score a model on its own training signals unless --allow-training-data.
+
+    Returns the fraction of ``frame``'s signals the model was trained on (0 when none).
+    """
+    from ..classifier import training_overlap
+
+    overlap = training_overlap(bundle, frame)
+    if overlap > 0 and not args.allow_training_data:
+        raise CliError(
+            f"{overlap:.0%} of the signals in {args.dataset} were used to train "
+            f"{args.model}: scores on them say nothing about new data. Evaluate on a dataset "
+            "generated with another seed, or pass --allow-training-data to run anyway "
+            "(every output is then labelled in-sample)"
+        )
+    return overlap
