@@ -6,7 +6,7 @@ The rule-based detector always runs:
    signal (a loaded bearing's varying compliance, shaft harmonics, mains, gears) is removed; a
    local fault's impacts, whose timing jitters (slip), stay;
 2. band selection (``features.select_band``): of the kurtogram tree's bands at least
-   ``features.catalog.MIN_BAND_FACTOR`` times the fastest fault rate wide, the one whose
+   ``features.table.MIN_BAND_FACTOR`` times the fastest fault rate wide, the one whose
    envelope spectrum shows a fault rate highest above its floor;
 3. for each fault (outer race: BPFO, inner race: BPFI, ball: 2 x BSF) the height of its
    fundamental above the local noise floor (median of the envelope spectrum within +/- 10 %
@@ -227,7 +227,7 @@ def diagnose_signal(
     fastest = max(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])
     # the demodulation band (3 x the fastest rate wide) must fit under the analyser span
     # fs / 2.56, with the rates' third harmonics inside it
-    needed = features.separation.ANALYSER_RATIO * features.catalog.MIN_BAND_FACTOR * fastest
+    needed = features.separation.ANALYSER_RATIO * features.table.MIN_BAND_FACTOR * fastest
     if fs < needed:
         raise ValueError(
             f"fs = {fs:g} Hz is too low to diagnose this bearing at {rpm:g} rpm: envelope "
@@ -305,7 +305,7 @@ def diagnose_signal(
                 "harmonics of the shaft and ball-pass rates and discrete lines (> "
                 f"{features.LINE_DB:g} dB over the local median) removed, then the band of "
                 f"{len(selection.bands)} candidates at least "
-                f"{min(features.catalog.MIN_BAND_FACTOR * fastest, fs / 4):.0f} Hz wide "
+                f"{min(features.table.MIN_BAND_FACTOR * fastest, fs / 4):.0f} Hz wide "
                 "whose envelope shows a fault rate most clearly"
             ),
             "threshold_db": round(threshold, 2),

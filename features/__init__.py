@@ -13,14 +13,6 @@ from .bands import (
     harmonic_amplitudes,
     line_snr,
 )
-from .catalog import (
-    DEFAULT_FAULTS,
-    Spectra,
-    compute_spectra,
-    extract_features,
-    feature_names,
-    feature_units,
-)
 from .detectors import (
     cpw_envelope_scores,
     envelope_scores,
@@ -47,6 +39,14 @@ from .spectra import (
     velocity_band_rms,
 )
 from .stats import TIME_STATISTICS, time_statistics
+from .table import (
+    DEFAULT_FAULTS,
+    Spectra,
+    compute_spectra,
+    extract_features,
+    feature_names,
+    feature_units,
+)
 from .transformer import CONTEXT_COLUMNS, FEATURE_SETS, FeatureExtractor
 
 __all__ = [

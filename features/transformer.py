@@ -10,8 +10,8 @@ from sklearn.base import BaseEstimator, TransformerMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ._validate import FeatureError
-from .catalog import DEFAULT_FAULTS, extract_features, feature_names, feature_units
 from .evidence import EVIDENCE_NAMES, fault_evidence
+from .table import DEFAULT_FAULTS, extract_features, feature_names, feature_units
 
 __all__ = ["FeatureExtractor", "CONTEXT_COLUMNS", "FEATURE_SETS"]
 

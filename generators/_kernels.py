@@ -107,11 +107,12 @@ FILM_NAMES = {FILM_DRY: "dry", FILM_EHL: "ehl"}
 SURF_OUTER = 0
 SURF_INNER = 1
 SURF_BALL = 2
-# Localized defects (rows of the same table): W_ORDER holds the half width [rad], W_AMPLITUDE
-# the depth [m], W_PHASE the centre position [rad] on the defective surface, W_STEP_COS the radius
-# of that surface [m] (arc length per radian), W_STEP_SIN the bridging radius [m] (the reduced
-# radius of the contact in the rolling direction), W_BALL the ball (ball defects). A ball defect
-# is two rows: the contact with the outer race and, diametrically opposite, with the inner race.
+# Localized defects (rows of the same table, columns named W_HALF_WIDTH, W_DEPTH, W_POSITION,
+# W_SURFACE_RADIUS, W_BRIDGE_RADIUS below): the half width [rad], the depth [m], the centre
+# position [rad] on the defective surface, the radius of that surface [m] (arc length per
+# radian), the bridging radius [m] (the reduced radius of the contact in the rolling direction),
+# W_BALL the ball (ball defects). A ball defect is two rows: the contact with the outer race
+# and, diametrically opposite, with the inner race.
 SURF_OUTER_DEFECT = 3
 SURF_INNER_DEFECT = 4
 SURF_BALL_DEFECT_OUTER = 5
@@ -141,6 +142,11 @@ SLIP_LAG = 9
 ) = range(11)
 W_SLIP_RATE = W_ORDER  # slip rows: angular frequency [rad/s]
 W_SLIP_ANGLE = W_AMPLITUDE  # slip rows: amplitude [rad]
+W_HALF_WIDTH = W_ORDER  # local defect rows: half width [rad]
+W_DEPTH = W_AMPLITUDE  # local defect rows: depth [m]
+W_POSITION = W_PHASE  # local defect rows: centre position [rad]
+W_SURFACE_RADIUS = W_STEP_COS  # local defect rows: radius of the defective surface [m]
+W_BRIDGE_RADIUS = W_STEP_SIN  # local defect rows: bridging radius [m]
 # Ball defects only: W_LATITUDE the pit's angle from the ball's rolling circle at t = 0 [rad],
 # W_DRIFT the rate at which the spin axis turns that angle [rad/s], W_TRACK the half width of
 # the band around the rolling circle in which the pit meets the races, over the ball radius [-].
@@ -444,11 +450,11 @@ def _defect(wav, r, surface, z, theta0, shaft_angle, t, wc, ws, wb, slipping, ou
     ``slipping``: the table has slip rows (:data:`SURF_SLIP`); ball j then meets the defect at
     its nominal position minus its slip angle ``out[SLIP_LAG, j]`` (:func:`_slip_lags`).
     """
-    half = wav[r, W_ORDER]
-    depth = wav[r, W_AMPLITUDE]
-    pos = wav[r, W_PHASE]
-    radius = wav[r, W_STEP_COS]
-    bridge = wav[r, W_STEP_SIN]
+    half = wav[r, W_HALF_WIDTH]
+    depth = wav[r, W_DEPTH]
+    pos = wav[r, W_POSITION]
+    radius = wav[r, W_SURFACE_RADIUS]
+    bridge = wav[r, W_BRIDGE_RADIUS]
     if surface == SURF_BALL_DEFECT_OUTER or surface == SURF_BALL_DEFECT_INNER:
         j = int(wav[r, W_BALL])
         scale, scale_rate = _track_factor(wav, r, t)

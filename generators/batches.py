@@ -25,7 +25,7 @@ def lanes_supported(prep: Prepared) -> bool:
     """
     return (
         prep.settings.integrator == "rk4"
-        and prep.level in ("shaft", "shaft+housing")
+        and prep.scene_name in ("shaft", "shaft+housing")
         and not prep.settings.record_contact_loads
         and bool(np.all(prep.wav[:, K.W_SURFACE] <= K.SURF_BALL))
         and prep.wav.shape[0] < _lanes.MAX_ROWS
@@ -95,12 +95,12 @@ def simulate_lanes(
     for i, prep in enumerate(preps):
         if not lanes_supported(prep):
             raise ParameterError(
-                f"preps[{i}] (scene {prep.level}, integrator {prep.settings.integrator}) "
+                f"preps[{i}] (scene {prep.scene_name}, integrator {prep.settings.integrator}) "
                 "cannot run in lanes: RK4, shaft or shaft+housing scene, waviness only"
             )
         plan = _plan(prep)
         layout = tuple(map(tuple, prep.wav[:, [K.W_SURFACE, K.W_BALL]].tolist()))
-        key = (prep.code, prep.ehl, prep.geometry.ball_count, prep.p.size, layout, plan)
+        key = (prep.scene_code, prep.ehl, prep.geometry.ball_count, prep.p.size, layout, plan)
         groups.setdefault(key, []).append((i, prep, plan))
     results: list = [None] * len(preps)
     lanes = _lanes.LANES

@@ -225,7 +225,7 @@ class _Record:
 def _run_rk4(prep: Prepared, plan: _Plan, record: _Record) -> tuple[int, float, dict]:
     """Fixed-step RK4 over the plan's grid: (status, time reached, integrator statistics)."""
     status, t_fail, _ = _integrators._rk4(
-        prep.code,
+        prep.scene_code,
         int(prep.ehl),
         prep.y0,
         prep.p,
@@ -247,7 +247,7 @@ def _run_rk4(prep: Prepared, plan: _Plan, record: _Record) -> tuple[int, float, 
 def _run_dopri5(prep: Prepared, plan: _Plan, record: _Record) -> tuple[int, float, dict]:
     """Adaptive DOPRI5 with dense output: (status, time reached, integrator statistics)."""
     settings = prep.settings
-    nd = K.n_dof(prep.code, prep.geometry.ball_count)
+    nd = K.n_dof(prep.scene_code, prep.geometry.ball_count)
     atol = np.empty(2 * nd)
     atol[:nd] = settings.atol_displacement
     atol[nd:] = settings.atol_displacement * 1e3
@@ -256,7 +256,7 @@ def _run_dopri5(prep: Prepared, plan: _Plan, record: _Record) -> tuple[int, floa
     h_max = min(plan.record_dt * 4, 0.5 * DEFECT_STEPS * defect_step(prep.p, prep.wav))
     max_steps = int(settings.max_steps_per_second * (plan.t_first + settings.duration)) + 1000
     status, t_fail, _ = _integrators._dopri5(
-        prep.code,
+        prep.scene_code,
         int(prep.ehl),
         prep.y0,
         prep.p,
@@ -306,7 +306,7 @@ def _result(prep: Prepared, plan: _Plan, record: _Record, stats: dict) -> Simula
         prep.operating,
         prep.rig,
         prep.scene,
-        prep.level,
+        prep.scene_name,
         prep.reason,
         settings,
         prep.defects,
@@ -359,8 +359,8 @@ def natural_frequencies(
     frozen = dataclasses.replace(operating, shaft_frequency=0.0)
     prep = prepare(bearing, frozen, scene=scene, rig=rig)
     nd = prep.y0.size // 2
-    jac = _jacobian(prep.code, prep.ehl, prep.p, prep.wav, prep.y0)
-    if prep.level == "shaft":
+    jac = _jacobian(prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0)
+    if prep.scene_name == "shaft":
         # the one-way housing estimate is not part of the shaft scene's dynamics
         keep = [0, 1, nd, nd + 1]
         jac = jac[np.ix_(keep, keep)]

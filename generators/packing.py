@@ -60,7 +60,11 @@ def _localized_rows(
     rng: np.random.Generator,
     radial_load: float,
 ) -> list[tuple]:
-    """Kernel table rows of a local defect (columns: see ``_kernels`` SURF_*_DEFECT)."""
+    """Kernel table rows of a local defect (one per race; two for a ball pit).
+
+    Column order W_SURFACE, W_BALL, W_HALF_WIDTH, W_DEPTH, W_POSITION, W_SURFACE_RADIUS,
+    W_BRIDGE_RADIUS (and for a ball pit W_LATITUDE, W_DRIFT, W_TRACK) of ``generators._kernels``.
+    """
     if defect.surface == "ball" and defect.ball >= geometry.ball_count:
         raise ParameterError(
             f"ball = {defect.ball} is outside the allowed range [0, {geometry.ball_count - 1}]"

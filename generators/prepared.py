@@ -151,9 +151,9 @@ class Prepared:
     scene: Scene
     settings: SimulationSettings
     defects: tuple
-    level: str
-    reason: str
-    code: int
+    scene_name: str  # the resolved ``Scene.level``: "shaft", "shaft+housing" or "full"
+    reason: str  # why that scene (``Scene(level="auto")``)
+    scene_code: int  # its kernel code (``_kernels.SCENE_*``)
     ehl: bool
     freqs: BearingFrequencies | None
     p: np.ndarray
@@ -291,7 +291,7 @@ def _plan(prep: Prepared) -> _Plan:
     step = None
     if settings.integrator == "rk4":
         step = settings.step or default_step(
-            prep.level, prep.code, prep.ehl, prep.p, prep.wav, prep.y0
+            prep.scene_name, prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0
         )
     oversample = settings.oversample or default_oversample(step, settings.fs)
     record_dt = 1.0 / (settings.fs * oversample)
@@ -306,10 +306,10 @@ def _plan(prep: Prepared) -> _Plan:
 def _diverged(prep: Prepared, status: int, t_fail: float) -> SimulationDivergedError:
     why = STATUS_REASONS.get(status, f"status {status}")
     return SimulationDivergedError(
-        f"simulation diverged in scene {prep.level}/{'ehl' if prep.ehl else 'dry'} at t = "
+        f"simulation diverged in scene {prep.scene_name}/{'ehl' if prep.ehl else 'dry'} at t = "
         f"{t_fail:.6g} s: {why} (integrator {prep.settings.integrator}; try a smaller step or "
         "tolerance, or check the inputs)",
-        scene=prep.level,
+        scene=prep.scene_name,
         time=t_fail,
         reason=why,
     )

@@ -121,7 +121,7 @@ def defect_step(p: np.ndarray, wav: np.ndarray) -> float:
     for row in wav:
         rate = abs(rates.get(int(row[K.W_SURFACE]), 0.0))
         if rate > 0.0:
-            step = min(step, 2.0 * row[K.W_ORDER] / rate / DEFECT_STEPS)
+            step = min(step, 2.0 * row[K.W_HALF_WIDTH] / rate / DEFECT_STEPS)
     return step
 
 

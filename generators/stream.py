@@ -111,7 +111,7 @@ class SignalStream:
             prep.operating,
             prep.rig,
             prep.scene,
-            prep.level,
+            prep.scene_name,
             prep.reason,
             settings,
             prep.defects,
@@ -190,7 +190,7 @@ class SignalStream:
         out_accel = np.zeros((count, K.N_OUT_ACCEL))
         out_loads = np.zeros((count if record_loads else 1, 2, z))
         status, t_end, y_end = _integrators._rk4(
-            prep.code,
+            prep.scene_code,
             int(prep.ehl),
             y,
             prep.p,

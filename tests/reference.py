@@ -90,7 +90,7 @@ class ReferenceModel:
     def __init__(self, prep):
         g, op, rig = prep.geometry, prep.operating, prep.rig
         self.geometry = g
-        self.level, self.ehl = prep.level, prep.ehl
+        self.level, self.ehl = prep.scene_name, prep.ehl
         self.z = g.ball_count
         self.ki, self.ko = hertz_constant(g, "inner"), hertz_constant(g, "outer")
         self.kt = (self.ki ** (-2 / 3) + self.ko ** (-2 / 3)) ** -1.5  # (3.4)
@@ -299,7 +299,7 @@ def rk4_records(prep, record_dt, n_record, substeps, *, y0=None, ehl=None):
     ac = np.zeros((n_record, K.N_OUT_ACCEL))
     ld = np.zeros((1, 2, prep.geometry.ball_count))
     status, _, _ = _integrators._rk4(
-        prep.code,
+        prep.scene_code,
         int(ehl),
         y0,
         prep.p,

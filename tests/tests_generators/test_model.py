@@ -101,7 +101,7 @@ def test_static_start_is_an_equilibrium(level, ehl):
         p[K.P_SHAFT_SPEED] = p[K.P_CAGE_SPEED] = p[K.P_BALL_SPIN_SPEED] = 0.0
     dydt = np.zeros_like(prep.y0)
     loads = np.zeros((2, 9))
-    _integrators._rhs_once(prep.code, int(ehl), 0.0, prep.y0, p, prep.wav, dydt, loads)
+    _integrators._rhs_once(prep.scene_code, int(ehl), 0.0, prep.y0, p, prep.wav, dydt, loads)
     nd = len(prep.y0) // 2
     assert np.abs(dydt[nd : nd + 4]).max() < STATIC_ACCEL
     if level == "full":
