@@ -27,7 +27,7 @@ from pathlib import Path
 
 from cmtool.datasets import generate_dataset, load_recipe
 from generators import OperatingCondition, Scene, SimulationSettings, Waviness, bearing, simulate
-from generators.recipe import expand_cases
+from generators.cases import expand_cases
 
 REPO = Path(__file__).resolve().parents[1]
 

@@ -34,7 +34,8 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from generators.recipe import CASE_COLUMNS, Case, case_count, iter_cases, validate_recipe
+from generators.cases import CASE_COLUMNS, Case, case_count, column_kind, iter_cases
+from generators.recipe import validate_recipe
 from generators.synthesis import generate_cases
 
 from . import __version__
@@ -51,32 +52,20 @@ __all__ = [
 
 DATASET_SCHEMA_VERSION = 2
 
-_TYPES = {
-    "id": pa.string(),
-    "label": pa.string(),
-    "bearing": pa.string(),
-    "surface": pa.string(),
-    "defect_kind": pa.string(),
-    "scene": pa.string(),
-    "integrator": pa.string(),
-    "quantity": pa.string(),
-    "body": pa.string(),
-    "direction": pa.string(),
-    "ehl": pa.bool_(),
-    "index": pa.int64(),
-    "condition": pa.int64(),
-    "operating_point_id": pa.int64(),
-    "waviness_order": pa.int64(),
-    "seed": pa.uint64(),
-    "chain": pa.string(),
+#: Arrow type per storage kind of a metadata column (``generators.cases.CaseRecord``).
+_ARROW = {
+    "text": pa.string(),
+    "bool": pa.bool_(),
+    "int": pa.int64(),
+    "uint": pa.uint64(),
+    "float": pa.float64(),
 }
+_TYPES = {c: _ARROW[column_kind(c)] for c in CASE_COLUMNS}
 DATA_SCHEMA = pa.schema(
-    [pa.field(c, _TYPES.get(c, pa.float64())) for c in CASE_COLUMNS]
-    + [pa.field("signal", pa.list_(pa.float32()))]
+    [pa.field(c, _TYPES[c]) for c in CASE_COLUMNS] + [pa.field("signal", pa.list_(pa.float32()))]
 )
 FAILURE_SCHEMA = pa.schema(
-    [pa.field(c, _TYPES.get(c, pa.float64())) for c in CASE_COLUMNS]
-    + [pa.field("error", pa.string())]
+    [pa.field(c, _TYPES[c]) for c in CASE_COLUMNS] + [pa.field("error", pa.string())]
 )
 
 
@@ -272,7 +261,7 @@ def generate_dataset(
 class _ChunkFeed:
     """The chunks still to generate, in order, each expanded when a worker asks for it.
 
-    Cases are drawn one chunk at a time (:func:`generators.recipe.iter_cases`, under a
+    Cases are drawn one chunk at a time (:func:`generators.cases.iter_cases`, under a
     lock: the draws and ``operating_point_id`` follow the case order), so the first chunk
     starts at once and the drawing of the rest overlaps the simulations instead of delaying
     them. Chunks whose data file exists (an earlier, interrupted run) are counted in

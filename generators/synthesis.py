@@ -16,6 +16,7 @@ from scipy import signal as sp_signal
 
 from ._validate import ParameterError, SimulationDivergedError
 from .batches import lanes_supported, simulate_lanes
+from .cases import Case
 from .catalog import bearing
 from .kinematics import characteristic_frequencies, passage_lines
 from .measurement import (
@@ -39,7 +40,6 @@ from .params import (
     Waviness,
 )
 from .prepared import Prepared, default_instance, prepare_checked
-from .recipe import Case
 
 __all__ = ["generate_case", "generate_cases", "MAX_FAULT_GAIN"]
 

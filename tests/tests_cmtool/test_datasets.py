@@ -17,7 +17,8 @@ from cmtool.cli import main
 from cmtool.datasets import DatasetError, dataset_info, generate_dataset, read_dataset
 from generators import ParameterError
 from generators._lanes import LANES
-from generators.recipe import DEFAULT_CHUNK_SIZE, expand_cases, validate_recipe
+from generators.cases import expand_cases
+from generators.recipe import DEFAULT_CHUNK_SIZE, validate_recipe
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -399,3 +400,46 @@ def test_localized_defect_recipe(tmp_path):
     # noise is at least that, and at least its signature over 10^(fault_snr/20)
     assert (frame["noise_rms"] > 0).all()
     assert "defect_depth_m" in dataset_info(tmp_path / "ds")
+
+
+def test_the_recipe_keys_in_the_readme_are_the_schema():
+    """datasets/README.md shows generators.recipe.RECIPE_SCHEMA, the table the validator walks."""
+    from generators.recipe import RECIPE_SCHEMA, schema_table
+
+    text = (REPO / "datasets" / "README.md").read_text()
+    shown = text.split("<!-- recipe-schema: start -->\n")[1].split("<!-- recipe-schema: end -->")[0]
+    assert shown == schema_table()
+    assert len(shown.splitlines()) == len(RECIPE_SCHEMA) + 2
+
+
+def test_every_schema_key_is_checked_against_its_range():
+    """Each ranged key of the schema refuses a value above its range, naming the key (set
+    where a shipped recipe already has it, or in its table when the recipe lacks it)."""
+    import copy
+    import math
+
+    from generators.recipe import RECIPE_SCHEMA
+
+    bases = [
+        tomllib.loads((REPO / "datasets" / n).read_text()) for n in ("cwru-rig.toml", "small.toml")
+    ]
+    checked = 0
+    for key in RECIPE_SCHEMA:
+        section, _, name = key.path.rpartition(".")
+        if key.kind not in ("values", "grid", "number", "integer") or not math.isfinite(key.high):
+            continue
+        for base in bases:
+            recipe = copy.deepcopy(base)
+            if section == "conditions":
+                tables = [c for c in recipe["conditions"] if name in c]
+            else:
+                tables = [recipe.setdefault(section, {}) if section else recipe]
+            if not tables:
+                continue
+            for table in tables:
+                table[name] = key.high * 2 + 1
+            with pytest.raises(ParameterError, match=rf"recipe key \S*{name} = "):
+                validate_recipe(recipe)
+            checked += 1
+            break
+    assert checked >= 35, checked

@@ -9,7 +9,8 @@ import pytest
 
 from cmtool.diagnose import diagnose_signal
 from generators import ParameterError
-from generators.recipe import expand_cases, validate_recipe
+from generators.cases import expand_cases
+from generators.recipe import validate_recipe
 from generators.synthesis import generate_cases
 
 RECIPE = """

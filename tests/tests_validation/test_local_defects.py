@@ -30,7 +30,8 @@ from generators import (
     defect_path,
     simulate,
 )
-from generators.recipe import expand_cases, validate_recipe
+from generators.cases import expand_cases
+from generators.recipe import validate_recipe
 from generators.synthesis import generate_case
 
 pytestmark = pytest.mark.validation
