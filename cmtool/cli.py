@@ -24,7 +24,7 @@ from .commands.analysis import cmd_bench, cmd_demo, cmd_diagnose, cmd_realism
 from .commands.common import CliError
 from .commands.data import cmd_dataset_info, cmd_evaluate, cmd_generate, cmd_train
 from .commands.simulate import (
-    _add_model_arguments,
+    add_model_arguments,
     cmd_fidelity,
     cmd_frequencies,
     cmd_simulate,
@@ -81,7 +81,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = _Commands()
 
     p = sub.add_parser("simulate", help="simulate one housing vibration signal")
-    _add_model_arguments(p)
+    add_model_arguments(p)
     p.add_argument("--out", help="output file (.parquet or .csv)")
     p.add_argument("--plot", help="spectrum plot (.png)")
     p.add_argument(
@@ -99,7 +99,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser(
         "fidelity", help="speed against accuracy of every model level and integrator setting"
     )
-    _add_model_arguments(p)
+    add_model_arguments(p)
     p.add_argument("--levels", default="shaft,shaft+housing,full")
     p.add_argument("--steps", default=None, help="comma-separated RK4 steps [s]")
     p.add_argument("--rtols", default=None, help="comma-separated DOPRI5 tolerances")

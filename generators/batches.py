@@ -13,8 +13,8 @@ from scipy import signal as sp_signal
 from . import _kernels as K
 from . import _lanes
 from ._validate import ParameterError, SimulationDivergedError
-from .decimation import _CHANNEL_COLUMNS
-from .prepared import Prepared, _diverged, _Plan, _plan
+from .decimation import CHANNEL_COLUMNS
+from .prepared import Plan, Prepared, diverged_error, plan_run
 
 
 def lanes_supported(prep: Prepared) -> bool:
@@ -88,17 +88,17 @@ def simulate_lanes(
         Per run, the channel at ``settings.fs`` [m, m/s or m/s^2], or the
         :class:`SimulationDivergedError` that says why the run diverged.
     """
-    if channel not in _CHANNEL_COLUMNS:
-        raise ParameterError(f"channel = {channel!r} is not one of {sorted(_CHANNEL_COLUMNS)}")
-    which, column = _CHANNEL_COLUMNS[channel]
-    groups: dict[tuple, list[tuple[int, Prepared, _Plan]]] = {}
+    if channel not in CHANNEL_COLUMNS:
+        raise ParameterError(f"channel = {channel!r} is not one of {sorted(CHANNEL_COLUMNS)}")
+    which, column = CHANNEL_COLUMNS[channel]
+    groups: dict[tuple, list[tuple[int, Prepared, Plan]]] = {}
     for i, prep in enumerate(preps):
         if not lanes_supported(prep):
             raise ParameterError(
                 f"preps[{i}] (scene {prep.scene_name}, integrator {prep.settings.integrator}) "
                 "cannot run in lanes: RK4, shaft or shaft+housing scene, waviness only"
             )
-        plan = _plan(prep)
+        plan = plan_run(prep)
         layout = tuple(map(tuple, prep.wav[:, [K.W_SURFACE, K.W_BALL]].tolist()))
         key = (prep.scene_code, prep.ehl, prep.geometry.ball_count, prep.p.size, layout, plan)
         groups.setdefault(key, []).append((i, prep, plan))
@@ -144,7 +144,7 @@ def simulate_lanes(
                 )
             for b, (i, prep, _) in enumerate(block):
                 if status[b] != K.STATUS_OK:
-                    results[i] = _diverged(prep, int(status[b]), float(t_status[b]))
+                    results[i] = diverged_error(prep, int(status[b]), float(t_status[b]))
                 else:
                     results[i] = records[b]  # a row of the block's array
     return results

@@ -8,7 +8,7 @@ import numpy as np
 from scipy import signal as sp_signal
 
 #: Output channel -> (record array: 0 state, 1 acceleration; column).
-_CHANNEL_COLUMNS = {
+CHANNEL_COLUMNS = {
     "housing_displacement_x": (0, 2),
     "housing_displacement_y": (0, 3),
     "housing_velocity_x": (0, 6),
@@ -24,7 +24,7 @@ _CHANNEL_COLUMNS = {
 }
 
 
-def _decimate(
+def decimate(
     out_state: np.ndarray, out_accel: np.ndarray, factor: int, channels: Sequence[str]
 ) -> dict[str, np.ndarray]:
     """Anti-alias filter and downsample the integration record to the output rate.
@@ -35,7 +35,7 @@ def _decimate(
     records = (out_state, out_accel)
     block = np.empty((len(channels), out_state.shape[0]))
     for c, name in enumerate(channels):
-        which, column = _CHANNEL_COLUMNS[name]
+        which, column = CHANNEL_COLUMNS[name]
         block[c] = records[which][:, column]
     if factor > 1:
         # polyphase FIR (Kaiser window), linear phase with its delay compensated

@@ -26,7 +26,7 @@ import numpy as np
 from . import _integrators
 from . import _kernels as K
 from .batches import lanes_supported, simulate_lanes
-from .decimation import _decimate
+from .decimation import decimate
 from .kinematics import BearingFrequencies
 from .packing import Defect, slip_line_factor, slip_rows
 from .params import (
@@ -37,12 +37,20 @@ from .params import (
     Scene,
     SimulationSettings,
 )
-from .prepared import Prepared, _diverged, _params_record, _Plan, _plan, prepare, resolve_scene
+from .prepared import (
+    Plan,
+    Prepared,
+    diverged_error,
+    params_record,
+    plan_run,
+    prepare,
+    resolve_scene,
+)
 from .steps import (
     DEFECT_STEPS,
-    _jacobian,
     default_step,
     defect_step,
+    jacobian,
     rk4_schedule,
     rk4_stability_radius,
 )
@@ -183,7 +191,7 @@ def integrate(prep: Prepared) -> SimulationResult:
     """Integrate a prepared run (:func:`prepare`): the second half of :func:`simulate`.
 
     Named stages, each a function of the run and what the earlier stages made: the schedule
-    (:func:`~generators.prepared._plan`), the record buffers (:class:`_Record`), the
+    (:func:`~generators.prepared.plan_run`), the record buffers (:class:`_Record`), the
     integration (:func:`_run_rk4` or :func:`_run_dopri5`), the divergence check, and the
     result (:func:`_result`: decimated signals and the parameter record).
 
@@ -192,12 +200,12 @@ def integrate(prep: Prepared) -> SimulationResult:
     SimulationDivergedError
         As :func:`simulate`.
     """
-    plan = _plan(prep)
+    plan = plan_run(prep)
     record = _Record.allocate(prep, plan)
     run = _run_rk4 if prep.settings.integrator == "rk4" else _run_dopri5
     status, t_fail, stats = run(prep, plan, record)
     if status != K.STATUS_OK:
-        raise _diverged(prep, int(status), float(t_fail))
+        raise diverged_error(prep, int(status), float(t_fail))
     return _result(prep, plan, record, stats)
 
 
@@ -211,7 +219,7 @@ class _Record:
     with_loads: bool
 
     @classmethod
-    def allocate(cls, prep: Prepared, plan: _Plan) -> _Record:
+    def allocate(cls, prep: Prepared, plan: Plan) -> _Record:
         with_loads = bool(prep.settings.record_contact_loads)
         z = prep.geometry.ball_count
         return cls(
@@ -222,7 +230,7 @@ class _Record:
         )
 
 
-def _run_rk4(prep: Prepared, plan: _Plan, record: _Record) -> tuple[int, float, dict]:
+def _run_rk4(prep: Prepared, plan: Plan, record: _Record) -> tuple[int, float, dict]:
     """Fixed-step RK4 over the plan's grid: (status, time reached, integrator statistics)."""
     status, t_fail, _ = _integrators._rk4(
         prep.scene_code,
@@ -244,7 +252,7 @@ def _run_rk4(prep: Prepared, plan: _Plan, record: _Record) -> tuple[int, float, 
     return status, t_fail, {"step_s": plan.dt, "steps": plan.n_steps}
 
 
-def _run_dopri5(prep: Prepared, plan: _Plan, record: _Record) -> tuple[int, float, dict]:
+def _run_dopri5(prep: Prepared, plan: Plan, record: _Record) -> tuple[int, float, dict]:
     """Adaptive DOPRI5 with dense output: (status, time reached, integrator statistics)."""
     settings = prep.settings
     nd = K.n_dof(prep.scene_code, prep.geometry.ball_count)
@@ -288,11 +296,11 @@ def _run_dopri5(prep: Prepared, plan: _Plan, record: _Record) -> tuple[int, floa
     )
 
 
-def _result(prep: Prepared, plan: _Plan, record: _Record, stats: dict) -> SimulationResult:
+def _result(prep: Prepared, plan: Plan, record: _Record, stats: dict) -> SimulationResult:
     """Decimated signals, contact loads and the parameter record of an integrated run."""
     settings = prep.settings
     oversample = plan.oversample
-    signals = _decimate(record.state, record.accel, oversample, settings.channels or CHANNELS)
+    signals = decimate(record.state, record.accel, oversample, settings.channels or CHANNELS)
     time = np.arange(plan.n_out) / settings.fs
     loads = record.loads[::oversample].copy() if record.with_loads else None
     extra = {
@@ -301,7 +309,7 @@ def _result(prep: Prepared, plan: _Plan, record: _Record, stats: dict) -> Simula
         "first_sample_time_s": plan.t_first,
         "max_static_ball_load_n": prep.max_ball_load,
     }
-    params = _params_record(
+    params = params_record(
         prep.geometry,
         prep.operating,
         prep.rig,
@@ -359,7 +367,7 @@ def natural_frequencies(
     frozen = dataclasses.replace(operating, shaft_frequency=0.0)
     prep = prepare(bearing, frozen, scene=scene, rig=rig)
     nd = prep.y0.size // 2
-    jac = _jacobian(prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0)
+    jac = jacobian(prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0)
     if prep.scene_name == "shaft":
         # the one-way housing estimate is not part of the shaft scene's dynamics
         keep = [0, 1, nd, nd + 1]

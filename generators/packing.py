@@ -33,7 +33,8 @@ from .params import (
 
 
 @functools.lru_cache(maxsize=64)
-def _contacts(geometry: BearingGeometry):
+def contact_geometries(geometry: BearingGeometry):
+    """Inner and outer contact geometry and the Hertz constants (K_i, K_o, K_series) [N/m^1.5]."""
     ci = hertz_contact(geometry, "inner")
     co = hertz_contact(geometry, "outer")
     return ci, co, load_deflection_constants(geometry)
@@ -42,7 +43,8 @@ def _contacts(geometry: BearingGeometry):
 Defect = Waviness | LocalizedDefect
 
 
-def _as_defects(defects) -> tuple[Defect, ...]:
+def as_defects(defects) -> tuple[Defect, ...]:
+    """``simulate``'s ``defects`` argument as a tuple of checked defect objects."""
     if defects is None:
         return ()
     if isinstance(defects, (Waviness, LocalizedDefect)):
@@ -94,7 +96,7 @@ def _localized_rows(
     return rows
 
 
-def _waviness_table(
+def waviness_table(
     defects: Sequence[Defect],
     geometry: BearingGeometry,
     rng: np.random.Generator,
@@ -226,7 +228,7 @@ def slip_line_factor(wav: np.ndarray, multiple: float, ball: int = 0) -> float:
     return float(np.prod(j0(multiple * rows[:, K.W_SLIP_ANGLE])))
 
 
-def _pack(
+def pack_parameters(
     geometry: BearingGeometry,
     operating: OperatingCondition,
     rig: Rig,
@@ -234,7 +236,7 @@ def _pack(
     freqs: BearingFrequencies | None,
 ) -> np.ndarray:
     """Pack the parameter objects into the kernel's float64 vector (indices ``K.P_*``)."""
-    ci, co, (ki, ko, kt) = _contacts(geometry)
+    ci, co, (ki, ko, kt) = contact_geometries(geometry)
     p = np.zeros(K.P_SIZE)
     z = geometry.ball_count
     p[K.P_BALL_COUNT] = z
@@ -295,7 +297,7 @@ def _pack(
 FILM_TABLE_NODES = 2048
 
 
-def _film_tables(p: np.ndarray) -> np.ndarray:
+def with_film_tables(p: np.ndarray) -> np.ndarray:
     """Append the film tables d(delta) of the three contacts to ``p`` (EHL scenes)."""
     floor = p[K.P_FILM_LOAD_FLOOR]
     e = K.FILM_EXPONENT
@@ -341,12 +343,13 @@ def _film_tables(p: np.ndarray) -> np.ndarray:
     return np.concatenate([out, tables.ravel()])
 
 
-def _film_sum(p: np.ndarray, loads: np.ndarray) -> np.ndarray:
+def film_sum(p: np.ndarray, loads: np.ndarray) -> np.ndarray:
+    """Inner plus outer central film [m] of each ball at its load [N] (docs/model.md 4.2)."""
     q = loads + p[K.P_FILM_LOAD_FLOOR]  # smooth floor, as in the kernel
     return (p[K.P_FILM_INNER] + p[K.P_FILM_OUTER]) * q**K.FILM_EXPONENT
 
 
-def _waviness_at_start(p: np.ndarray, wav: np.ndarray, z: int) -> np.ndarray:
+def waviness_at_start(p: np.ndarray, wav: np.ndarray, z: int) -> np.ndarray:
     """Waviness values seen by each ball at t = 0: rows [w_o, w_i, wb_o, wb_i] [m]."""
     out = np.zeros((11, z))
     K._start_waviness(p, wav, z, out)

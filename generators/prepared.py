@@ -18,7 +18,15 @@ from . import _kernels as K
 from ._validate import ParameterError, SimulationDivergedError
 from .defects import defect_path
 from .kinematics import BearingFrequencies, characteristic_frequencies
-from .packing import Defect, _as_defects, _contacts, _film_tables, _pack, _waviness_table, slip_rows
+from .packing import (
+    Defect,
+    as_defects,
+    contact_geometries,
+    pack_parameters,
+    slip_rows,
+    waviness_table,
+    with_film_tables,
+)
 from .params import (
     BearingGeometry,
     LocalizedDefect,
@@ -27,7 +35,7 @@ from .params import (
     Scene,
     SimulationSettings,
 )
-from .start import _static_state
+from .start import static_state
 from .static import static_load_distribution
 from .steps import default_oversample, default_step, rk4_schedule
 
@@ -73,7 +81,7 @@ def resolve_scene(
     if scene.level != "auto":
         return scene.level, "requested"
     bound = scene.auto_error_bound
-    _, _, (ki, ko, kt) = _contacts(geometry)
+    _, _, (ki, ko, kt) = contact_geometries(geometry)
     fr = max(operating.radial_load + (rig.shaft_mass * 9.81 if rig.gravity else 0.0), 1.0)
     st = static_load_distribution(
         geometry, fr, load_angle=operating.load_angle, stiffness_constant=kt
@@ -127,7 +135,8 @@ def _field_names(cls: type) -> tuple[str, ...]:
     return tuple(f.name for f in dataclasses.fields(cls))
 
 
-def _params_record(geometry, operating, rig, scene, level, reason, settings, defects, extra):
+def params_record(geometry, operating, rig, scene, level, reason, settings, defects, extra):
+    """Every parameter of a run as a JSON-serialisable dict (the result's ``parameters``)."""
     clean = _plain
 
     return {
@@ -197,7 +206,7 @@ def prepare(
     ):
         if not isinstance(obj, cls):
             raise ParameterError(f"{name} = {obj!r} is not a {cls.__name__}")
-    defect_list = _as_defects(defects)
+    defect_list = as_defects(defects)
     rng = np.random.default_rng(random_state)
     freqs = None
     if operating.shaft_frequency > 0:
@@ -230,11 +239,11 @@ def prepare_checked(
     # runs the dry path; a film of a few nanometres adds nothing but a stiffness so high that
     # the integration crawls (1e-9 rpm took minutes per millisecond)
     ehl = bool(scene.ehl) and operating.shaft_frequency >= EHL_MIN_SHAFT_FREQUENCY
-    p = _pack(geometry, operating, rig, ehl, freqs)
+    p = pack_parameters(geometry, operating, rig, ehl, freqs)
     if ehl:
-        p = _film_tables(p)
+        p = with_film_tables(p)
     p[K.P_CAGE_ANGLE0] = settings.cage_angle
-    wav = _waviness_table(defect_list, geometry, rng, operating.radial_load)
+    wav = waviness_table(defect_list, geometry, rng, operating.radial_load)
     if (operating.random_slip or operating.ball_jitter) and np.any(
         wav[:, K.W_SURFACE] >= K.SURF_OUTER_DEFECT
     ):
@@ -242,7 +251,7 @@ def prepare_checked(
         wav = np.ascontiguousarray(
             np.vstack([wav, slip_rows(operating, z, p[K.P_CAGE_SPEED], rng)])
         )
-    y0, qmax = _static_state(level, ehl, geometry, operating, rig, p, wav)
+    y0, qmax = static_state(level, ehl, geometry, operating, rig, p, wav)
     # the loading anchor (docs/model.md 1.3) holds the shaft at its static position
     p[K.P_LOADING_X0] = y0[0]
     p[K.P_LOADING_Y0] = y0[1]
@@ -273,7 +282,7 @@ def prepare_checked(
 
 
 @dataclass(frozen=True)
-class _Plan:
+class Plan:
     """Integration schedule of a prepared run (see :func:`rk4_schedule`)."""
 
     oversample: int
@@ -285,7 +294,7 @@ class _Plan:
     t_first: float
 
 
-def _plan(prep: Prepared) -> _Plan:
+def plan_run(prep: Prepared) -> Plan:
     """Step, record rate and record count of a prepared run (as :func:`simulate` does)."""
     settings = prep.settings
     step = None
@@ -298,12 +307,13 @@ def _plan(prep: Prepared) -> _Plan:
     n_out = int(round(settings.duration * settings.fs))
     n_record = n_out * oversample
     if step is None:
-        return _Plan(oversample, record_dt, n_out, n_record, math.nan, 0, settings.settle_time)
+        return Plan(oversample, record_dt, n_out, n_record, math.nan, 0, settings.settle_time)
     dt, n_steps, t_first = rk4_schedule(step, record_dt, settings.settle_time, n_record)
-    return _Plan(oversample, record_dt, n_out, n_record, dt, n_steps, t_first)
+    return Plan(oversample, record_dt, n_out, n_record, dt, n_steps, t_first)
 
 
-def _diverged(prep: Prepared, status: int, t_fail: float) -> SimulationDivergedError:
+def diverged_error(prep: Prepared, status: int, t_fail: float) -> SimulationDivergedError:
+    """The error that names the scene, the time and the reason of a diverged run."""
     why = STATUS_REASONS.get(status, f"status {status}")
     return SimulationDivergedError(
         f"simulation diverged in scene {prep.scene_name}/{'ehl' if prep.ehl else 'dry'} at t = "

@@ -13,13 +13,13 @@ import numpy as np
 
 from . import _kernels as K
 from ._validate import ParameterError
-from .packing import _film_sum, _waviness_at_start
+from .packing import film_sum, waviness_at_start
 from .params import (
     BearingGeometry,
     OperatingCondition,
     Rig,
 )
-from .static import _equilibrium
+from .static import solve_equilibrium
 
 
 @functools.lru_cache(maxsize=64)
@@ -111,7 +111,7 @@ def _ball_equilibrium(
     return 0.5 * (lo + hi)
 
 
-def _static_state(
+def static_state(
     level: str,
     ehl: bool,
     geometry: BearingGeometry,
@@ -127,7 +127,7 @@ def _static_state(
     fy = p[K.P_LOAD_Y] - rig.shaft_mass * g
     fr = math.hypot(fx, fy)
     angle = math.atan2(fy, fx)
-    w0 = _waviness_at_start(p, wav, z)
+    w0 = waviness_at_start(p, wav, z)
     waviness_sum = w0[0] + w0[1] + w0[2] + w0[3]  # as w0.sum(axis=0): row after row
     kt = p[K.P_K_SERIES]
     loads = np.full(z, p[K.P_FILM_REFERENCE_LOAD]) if ehl else None
@@ -137,11 +137,11 @@ def _static_state(
     theta, cos_t, sin_t = _ball_directions(float(p[K.P_CAGE_ANGLE0]), z)
     for _ in range(4 if ehl else 1):
         if ehl:
-            extra = waviness_sum + _film_sum(p, loads)
+            extra = waviness_sum + film_sum(p, loads)
         if not math.isfinite(float(extra.sum())):
             raise ParameterError(f"static start: non-finite approach per ball {extra!r}")
         gap = geometry.radial_gap - extra
-        x, y, loads, _ = _equilibrium(cos_t, sin_t, gap, kt, fr, angle)
+        x, y, loads, _ = solve_equilibrium(cos_t, sin_t, gap, kt, fr, angle)
     housing_x = fx / rig.pedestal_stiffness
     housing_y = (fy - rig.housing_mass * g) / rig.pedestal_stiffness
     nd = 4 + z if level == "full" else 4  # K.n_dof

@@ -115,7 +115,7 @@ def static_load_distribution(
     theta = cage_angle + 2.0 * np.pi * np.arange(z) / z
     cos_t, sin_t = np.cos(theta), np.sin(theta)
     gap = np.ascontiguousarray(geometry.radial_gap - extra)
-    x, y, loads, kr = _equilibrium(cos_t, sin_t, gap, k, fr, load_angle)
+    x, y, loads, kr = solve_equilibrium(cos_t, sin_t, gap, k, fr, load_angle)
     ex, ey = math.cos(load_angle), math.sin(load_angle)
     return StaticSolution(
         displacement=np.array([x, y]),
@@ -126,7 +126,7 @@ def static_load_distribution(
     )
 
 
-def _equilibrium(
+def solve_equilibrium(
     cos_t: np.ndarray, sin_t: np.ndarray, gap: np.ndarray, k: float, fr: float, load_angle: float
 ) -> tuple[float, float, np.ndarray, float]:
     """Displacement (x, y) [m], ball loads [N] and radial stiffness [N/m] from checked inputs.

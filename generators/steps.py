@@ -25,7 +25,7 @@ STABILITY_SAFETY = 0.8
 DEFAULT_OVERSAMPLE = 4
 
 
-def _jacobian(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray) -> np.ndarray:
+def jacobian(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray) -> np.ndarray:
     """Jacobian of the first-order right-hand side at ``y0``, t = 0, by central differences.
 
     Displacements are perturbed by 1e-11 m, velocities by 1e-7 m/s (docs/model.md 7.5).
@@ -65,7 +65,7 @@ def default_step(
     the ball radial mode in the ``full`` scene (lightly damped, or well damped with the squeeze
     film), otherwise the shaft-on-bearing or a stiff pedestal's housing mode.
     """
-    lam = np.linalg.eigvals(_jacobian(code, ehl, p, wav, y0))
+    lam = np.linalg.eigvals(jacobian(code, ehl, p, wav, y0))
     lam = lam[np.abs(lam) > 0.0]
     stable = math.inf
     if lam.size:

@@ -27,10 +27,10 @@ import numpy as np
 from . import _integrators
 from . import _kernels as K
 from ._validate import ParameterError
-from .decimation import _decimate
+from .decimation import decimate
 from .kinematics import BearingFrequencies
 from .params import CHANNELS, BearingGeometry, OperatingCondition, Rig, Scene, SimulationSettings
-from .prepared import Prepared, _diverged, _params_record, _plan, prepare
+from .prepared import Prepared, diverged_error, params_record, plan_run, prepare
 
 __all__ = ["SignalBlock", "SignalStream", "simulate_stream", "RECORD_BYTES_PER_SAMPLE"]
 
@@ -92,13 +92,13 @@ class SignalStream:
         if not isinstance(block_samples, int) or block_samples < 1:
             raise ParameterError(f"block_samples = {block_samples!r} must be an integer >= 1")
         self._prep = prep
-        self._plan = _plan(prep)
+        self.plan_run = plan_run(prep)
         self.fs = float(settings.fs)
-        self.n_samples = self._plan.n_out
+        self.n_samples = self.plan_run.n_out
         self.channels: tuple[str, ...] = tuple(settings.channels or CHANNELS)
         self.block_samples = block_samples
         self.frequencies = prep.freqs or BearingFrequencies(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-        plan = self._plan
+        plan = self.plan_run
         extra = {
             "integrator_stats": {"step_s": plan.dt, "steps": plan.n_steps},
             "oversample": plan.oversample,
@@ -106,7 +106,7 @@ class SignalStream:
             "max_static_ball_load_n": prep.max_ball_load,
             "streamed_block_samples": block_samples,
         }
-        self.parameters = _params_record(
+        self.parameters = params_record(
             prep.geometry,
             prep.operating,
             prep.rig,
@@ -120,7 +120,7 @@ class SignalStream:
 
     def peak_memory_bytes(self) -> int:
         """Memory the blocks hold at once (integration record, decimated block) [bytes]."""
-        q = self._plan.oversample
+        q = self.plan_run.oversample
         margin = _margin_records(q)
         records = self.block_samples * q + 2 * margin
         loads = 2 * self._prep.geometry.ball_count * self._prep.settings.record_contact_loads
@@ -130,7 +130,7 @@ class SignalStream:
         return self._blocks()
 
     def _blocks(self) -> Iterator[SignalBlock]:
-        prep, plan = self._prep, self._plan
+        prep, plan = self._prep, self.plan_run
         q, n_out, n_record = plan.oversample, plan.n_out, plan.n_record
         record_dt, dt, t_first = plan.record_dt, plan.dt, plan.t_first
         margin = _margin_records(q)
@@ -160,7 +160,7 @@ class SignalStream:
                         loads = np.concatenate([carry[2], loads])
             else:  # pragma: no cover - every block needs records past the previous one
                 raise AssertionError("streamed block made no progress")
-            signals = _decimate(state, accel, q, self.channels)
+            signals = decimate(state, accel, q, self.channels)
             first = i0 - carry_start // q  # the block's first sample in the decimated chunk
             block_signals = {name: v[first : first + i1 - i0].copy() for name, v in signals.items()}
             block_loads = None
@@ -207,7 +207,7 @@ class SignalStream:
             record_loads,
         )
         if status != K.STATUS_OK:
-            raise _diverged(prep, int(status), float(t_end))
+            raise diverged_error(prep, int(status), float(t_end))
         return out_state, out_accel, out_loads, float(t_end), y_end
 
 

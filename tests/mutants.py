@@ -51,9 +51,9 @@ def pytest_configure(config):
 
         for module in (contact, packing, static):
             module.load_deflection_constants = constants
-        packing._contacts.cache_clear()
+        packing.contact_geometries.cache_clear()
     elif name == "waviness_phase":
-        original = prepared._waviness_table
+        original = prepared.waviness_table
 
         @functools.wraps(original)
         def table(*args, **kwargs):
@@ -62,14 +62,14 @@ def pytest_configure(config):
             wav[rows, K.W_PHASE] += 0.02 * 2 * math.pi
             return wav
 
-        prepared._waviness_table = table
+        prepared.waviness_table = table
     elif name == "film_thickness":
         packing.film_thickness = _scaled(packing.film_thickness, 1.02)
     elif name == "squeeze_damping":
         packing.squeeze_film_damping = _scaled(packing.squeeze_film_damping, 1.02)
     else:
         index = {"contact_damping": K.P_CONTACT_DAMPING_TIME, "cage_speed": K.P_CAGE_SPEED}[name]
-        original = prepared._pack
+        original = prepared.pack_parameters
 
         @functools.wraps(original)
         def pack(*args, **kwargs):
@@ -77,7 +77,7 @@ def pytest_configure(config):
             p[index] *= 1.02
             return p
 
-        prepared._pack = pack
+        prepared.pack_parameters = pack
     config.stash_mutant = name  # noqa: B010 - a marker for the report header
 
 

@@ -12,8 +12,8 @@ from generators import (
 )
 from generators.params import check_shaft_speed_rpm
 
-from .common import CliError, _progress_bar
-from .data import _check_training_overlap
+from .common import CliError, progress_bar
+from .data import check_training_overlap
 
 logger = logging.getLogger("cmtool")
 
@@ -159,7 +159,7 @@ def cmd_bench(args: argparse.Namespace) -> int:
         if not (Path(args.dataset) / "MANIFEST.csv").is_file():
             from ..datasets import read_dataset
 
-            in_sample = _check_training_overlap(
+            in_sample = check_training_overlap(
                 model,
                 read_dataset(
                     args.dataset, columns=["signal"], allow_incomplete=args.allow_incomplete
@@ -176,7 +176,7 @@ def cmd_bench(args: argparse.Namespace) -> int:
     def progress(done: int, total: int) -> None:
         nonlocal bar
         if bar is None:
-            bar = _progress_bar(total, "bench", "signal")
+            bar = progress_bar(total, "bench", "signal")
         bar.update(done - bar.n)
 
     results = bench.run_bench(

@@ -12,7 +12,7 @@ class CliError(Exception):
     """A command-line input error (printed without a traceback, exit code 2)."""
 
 
-def _progress_bar(
+def progress_bar(
     total: int, desc: str, unit: str = "run", *, initial: int = 0, unit_scale: bool = False
 ):
     """The progress bar of every command: tqdm (count, rate, ETA) on stderr, quiet off a tty."""

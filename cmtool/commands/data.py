@@ -8,7 +8,7 @@ import logging
 import sys
 from pathlib import Path
 
-from .common import CliError, _progress_bar
+from .common import CliError, progress_bar
 
 logger = logging.getLogger("cmtool")
 
@@ -22,7 +22,7 @@ def cmd_generate(args: argparse.Namespace) -> int:
     def progress(done: int, total: int) -> None:
         nonlocal bar
         if bar is None:
-            bar = _progress_bar(total, "generate", "signal", initial=done)
+            bar = progress_bar(total, "generate", "signal", initial=done)
         else:
             bar.update(done - bar.n)
 
@@ -99,7 +99,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
 
     bundle = load_model(args.model)
     frame = read_dataset(args.dataset, allow_incomplete=args.allow_incomplete)
-    in_sample = _check_training_overlap(bundle, frame, args)
+    in_sample = check_training_overlap(bundle, frame, args)
     result = evaluate(bundle, frame)
     result["in_sample_fraction"] = in_sample
     tag = " (IN-SAMPLE: signals the model was trained on; not a measure of accuracy)"
@@ -130,7 +130,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     return 0
 
 
-def _check_training_overlap(bundle: dict, frame, args: argparse.Namespace) -> float:
+def check_training_overlap(bundle: dict, frame, args: argparse.Namespace) -> float:
     """Refuse to score a model on its own training signals unless --allow-training-data.
 
     Returns the fraction of ``frame``'s signals the model was trained on (0 when none).

@@ -23,7 +23,7 @@ from generators import (
 )
 from generators.params import check_shaft_speed_rpm
 
-from .common import CliError, _progress_bar
+from .common import CliError, progress_bar
 
 logger = logging.getLogger("cmtool")
 
@@ -120,7 +120,8 @@ def _default(cls: type, name: str):
     return next(f.default for f in dataclasses.fields(cls) if f.name == name)
 
 
-def _add_model_arguments(p: argparse.ArgumentParser) -> None:
+def add_model_arguments(p: argparse.ArgumentParser) -> None:
+    """The model's arguments (bearing, operating point, defects, scene, rig, settings) on ``p``."""
     from generators.params import INTEGRATORS, SCENE_LEVELS
 
     g = p.add_argument_group("bearing and operating point")
@@ -487,7 +488,7 @@ def _simulate_streamed(args, geometry, operating, defects, scene, rig, settings,
         settings=settings,
         random_state=args.seed,
     )
-    with _progress_bar(stream.n_samples, "simulate", "sample", unit_scale=True) as bar:
+    with progress_bar(stream.n_samples, "simulate", "sample", unit_scale=True) as bar:
         if args.out:
             path = write_signal_stream(
                 stream, args.out, channels=_requested_channels(args), progress=bar.update
@@ -544,7 +545,7 @@ def cmd_fidelity(args: argparse.Namespace) -> int:
     def progress(done: int, total: int, label: str) -> None:
         nonlocal bar
         if bar is None:
-            bar = _progress_bar(total, "fidelity")
+            bar = progress_bar(total, "fidelity")
         bar.set_postfix_str(label)
         bar.update(1)
 

@@ -327,7 +327,7 @@ def test_the_anti_alias_decimation_keeps_the_band_and_removes_what_would_alias()
     """The record (oversample x fs) is decimated by a zero-phase FIR: a line inside the output
     band keeps amplitude and phase, one above the output Nyquist does not fold back."""
     from generators._kernels import N_OUT_ACCEL, N_OUT_STATE
-    from generators.decimation import _decimate
+    from generators.decimation import decimate
 
     fs, factor, n = 10000.0, 4, 4 * 10000
     t = np.arange(n) / (factor * fs)
@@ -335,7 +335,7 @@ def test_the_anti_alias_decimation_keeps_the_band_and_removes_what_would_alias()
     above = np.sin(2 * np.pi * 7000.0 * t)  # would alias to 3000 Hz at fs = 10 kHz
     state = np.zeros((n, N_OUT_STATE))
     state[:, 7] = in_band + above  # housing_velocity_y's column
-    out = _decimate(state, np.zeros((n, N_OUT_ACCEL)), factor, ["housing_velocity_y"])
+    out = decimate(state, np.zeros((n, N_OUT_ACCEL)), factor, ["housing_velocity_y"])
     y = out["housing_velocity_y"]
     tt = np.arange(y.size) / fs
     inner = slice(100, -100)  # away from the filter's edge extension
