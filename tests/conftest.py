@@ -2,13 +2,55 @@
 
 from __future__ import annotations
 
+import os
 import pathlib
+import subprocess
+import sys
+import tempfile
+from dataclasses import dataclass
+from typing import IO
 
 import numpy as np
 import pytest
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
 SHARED_DATA = REPO.parent / "shared" / "data"
+
+
+@dataclass
+class KernelWarmer:
+    """The background process that compiles every kernel specialisation (kernel_warmer.py)."""
+
+    proc: subprocess.Popen
+    stdout: IO[str]
+    stderr: IO[str]
+
+    def result(self, timeout: float = 900.0) -> tuple[int, str, str]:
+        """Wait for it: (exit code, its stdout, the end of its stderr)."""
+        code = self.proc.wait(timeout=timeout)
+        self.stdout.seek(0)
+        self.stderr.seek(0)
+        return code, self.stdout.read(), self.stderr.read()[-4000:]
+
+
+@pytest.fixture(scope="session", autouse=True)
+def kernel_warmer():
+    """Compile the kernels on a second core while the first runs tests (numba's disk cache is
+    shared: a test that needs a specialisation the warmer has built loads it)."""
+    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
+        proc = subprocess.Popen(
+            [sys.executable, str(REPO / "tests" / "kernel_warmer.py")],
+            cwd=REPO,
+            env=env,
+            stdout=out,
+            stderr=err,
+            text=True,
+        )
+        yield KernelWarmer(proc, out, err)
+        if proc.poll() is None:
+            proc.kill()
+        proc.wait()
 
 
 @pytest.fixture

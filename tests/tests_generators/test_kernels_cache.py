@@ -3,14 +3,14 @@
 ``generators._integrators`` and ``generators._lanes`` build their entry points with one factory
 per integrator (a closure over the scene and film codes). numba keys its cache on the
 closure's values, so each pair must be compiled once and then loaded by any later process:
-a child process calls every entry point, a second child must find every one in the cache.
+the session's kernel warmer (tests/kernel_warmer.py, started by tests/conftest.py) calls every
+entry point in a process of its own; a second process must find every one in the cache.
 """
 
 import json
 import os
 import subprocess
 import sys
-import textwrap
 from pathlib import Path
 
 import pytest
@@ -21,55 +21,18 @@ from generators import _lanes as L
 
 REPO = Path(__file__).resolve().parents[2]
 
-CALL_EVERY_ENTRY = textwrap.dedent(
-    """
-    import json
-    from generators import bearing, simulate
-    from generators import _integrators, _lanes as L
-    from generators.model import prepare, simulate_lanes
-    from generators.params import OperatingCondition, Scene, SimulationSettings
-
-    b = bearing("6205")
-    op = OperatingCondition.from_rpm(1800, 500)
-    for level in ("shaft", "shaft+housing", "full"):
-        for ehl in (False, True):
-            for integrator in ("rk4", "dopri5"):
-                settings = SimulationSettings(
-                    fs=12000, duration=0.002, settle_time=0.0, integrator=integrator
-                )
-                simulate(b, op, scene=Scene(level=level, ehl=ehl), settings=settings)
-            if level != "full":
-                settings = SimulationSettings(fs=12000, duration=0.002, settle_time=0.0)
-                prep = prepare(b, op, scene=Scene(level=level, ehl=ehl), settings=settings)
-                simulate_lanes([prep], "housing_acceleration_y")
-    stats = {}
-    tables = (
-        ("rk4", _integrators.RK4),
-        ("dopri5", _integrators.DOPRI5),
-        ("rhs", _integrators.RHS),
-        ("lanes", L.RK4),
-    )
-    for kind, table in tables:
-        for pair, entry in table.items():
-            stats[f"{kind} {pair}"] = [
-                entry.__name__,
-                sum(entry.stats.cache_hits.values()),
-                sum(entry.stats.cache_misses.values()),
-            ]
-    print(json.dumps(stats))
-    """
-)
+WARMER = REPO / "tests" / "kernel_warmer.py"
 
 
 def _child() -> dict:
     env = {**os.environ, "PYTHONPATH": str(REPO)}
     out = subprocess.run(
-        [sys.executable, "-c", CALL_EVERY_ENTRY],
+        [sys.executable, str(WARMER)],
         capture_output=True,
         text=True,
         cwd=REPO,
         env=env,
-        timeout=600,
+        timeout=900,
         check=True,
     )
     return json.loads(out.stdout.strip().splitlines()[-1])
@@ -93,8 +56,12 @@ def test_entry_points_cover_every_pair_with_named_codes():
 
 
 @pytest.mark.validation
-def test_a_second_process_loads_every_specialisation_from_the_cache():
-    first = _child()  # compiles whatever the cache lacks
+def test_a_second_process_loads_every_specialisation_from_the_cache(kernel_warmer):
+    """The session's kernel warmer (tests/conftest.py) called every entry point in a process
+    of its own, compiling what the cache lacked; a second process must load every one."""
+    code, stdout, stderr = kernel_warmer.result()
+    assert code == 0, stderr
+    first = json.loads(stdout.strip().splitlines()[-1])
     assert len(first) == 22 and all(hits + misses == 1 for _, hits, misses in first.values())
     second = _child()
     missed = {key: value for key, value in second.items() if value[1:] != [1, 0]}
