@@ -176,7 +176,7 @@ def builtin_outputs(
     freqs = characteristic_frequencies(geometry, rpm / 60.0)
     rates = {fault: getattr(freqs, key) for fault, key in FAULTS.items()}
     d = diagnose_signal(x, fs, rpm, geometry, model=model)
-    margins = {c["fault"]: c["envelope_snr_db"][0] - d.threshold_db for c in d.candidates}
+    margins = {c["fault"]: c["evidence_db"] - d.threshold_db for c in d.candidates}
     out = {"envelope": DetectorOutput(d.rule_verdict["label"], margins)}
     ses = envelope_scores(x, fs, rates)
     out["fixed_band_ses"] = _labelled(ses, ENVELOPE_LABEL_DB)

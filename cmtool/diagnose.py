@@ -10,7 +10,8 @@ The rule-based detector always runs:
    envelope spectrum shows a fault rate highest above its floor;
 3. for each fault (outer race: BPFO, inner race: BPFI, ball: 2 x BSF) the height of its
    fundamental above the local noise floor (median of the envelope spectrum within +/- 10 %
-   of the line), its harmonics and sidebands.
+   of the line), its harmonics and sidebands, weighed into one figure (``evidence_db``:
+   :attr:`features.Evidence.combined`) by which the candidates are ranked and detected.
 
 Threshold, fixed a priori from noise statistics (not tuned on any recording): for Gaussian
 noise the envelope-spectrum bins are Rayleigh distributed, median = 1.177 sigma and
@@ -260,8 +261,9 @@ def diagnose_signal(
     candidates = []
     for name, key in FAULTS.items():
         snr = [r for r, _ in evidence.lines[key]]
+        weighed = evidence.combined[key]
         harmonics = int(sum(s >= DETECTION_DB / 2 for s in snr))
-        margin = snr[0] - threshold
+        margin = weighed["evidence_db"] - threshold
         sidebands = evidence.features[f"evidence_{key}_sideband_snr"]
         candidates.append(
             {
@@ -271,15 +273,23 @@ def diagnose_signal(
                 "envelope_snr_db": [round(s, 2) for s in snr],
                 "harmonics_above_6db": harmonics,
                 "sideband_snr_db": round(sidebands, 2) if key in ("bpfi", "two_bsf") else None,
-                "detected": snr[0] >= threshold,
+                "evidence_db": round(weighed["evidence_db"], 2),
+                "false_alarm_probability": float(f"{weighed['false_alarm']:.3g}"),
+                "lines_weighed": [
+                    {"line": n, "snr_db": r, "false_alarm_probability": float(f"{p:.3g}")}
+                    for n, r, p in weighed["lines"]
+                ],
+                "detected": bool(weighed["evidence_db"] >= threshold),
                 "confidence": round(
                     _logistic(margin, CONFIDENCE_SCALE_DB, CONFIDENCE_OFFSET_DB), 4
                 ),
             }
         )
-    candidates.sort(key=lambda c: c["envelope_snr_db"][0], reverse=True)
+    # ranked by the weighed evidence of each fault's line family (fundamental, harmonics,
+    # sidebands), ties by the fundamental
+    candidates.sort(key=lambda c: (c["evidence_db"], c["envelope_snr_db"][0]), reverse=True)
     top = candidates[0]
-    margin = top["envelope_snr_db"][0] - threshold
+    margin = top["evidence_db"] - threshold
     if top["detected"]:
         verdict, confidence = top["fault"], round(_logistic(margin, *FAULT_CONFIDENCE), 4)
     else:
@@ -311,6 +321,9 @@ def diagnose_signal(
             "threshold_db": round(threshold, 2),
             "line_search": f"{-100 * SLIP_SEARCH[0]:g} to +{100 * SLIP_SEARCH[1]:g} % of "
             "each kinematic fault rate (slip)",
+            "evidence": "each fault's fundamental, 2x, 3x and first sidebands (inner race: "
+            "shaft rate; ball: cage rate) weighed by their false-alarm probabilities "
+            "(Fisher), on the threshold's dB scale",
         },
     )
     diagnosis.velocity_bands = {k: float(v) for k, v in features.velocity_band_rms(x, fs).items()}
@@ -533,20 +546,22 @@ def write_report(
     lines += [
         "## Evidence (envelope spectrum, dB above the local noise floor)",
         "",
-        "| fault | frequency [Hz] | 1x | 2x | 3x | sidebands | detected | confidence |",
-        "|---|---|---|---|---|---|---|---|",
+        "| fault | frequency [Hz] | 1x | 2x | 3x | sidebands | weighed [dB] | detected "
+        "| confidence |",
+        "|---|---|---|---|---|---|---|---|---|",
     ]
     for c in diagnosis.candidates:
         s = c["envelope_snr_db"]
         lines.append(
             f"| {c['fault']} | {c['frequency_hz']} | {s[0]} | {s[1]} | {s[2]} | "
             f"{c['sideband_snr_db'] if c['sideband_snr_db'] is not None else '-'} | "
-            f"{'yes' if c['detected'] else 'no'} | {c['confidence']} |"
+            f"{c['evidence_db']} | {'yes' if c['detected'] else 'no'} | {c['confidence']} |"
         )
     lines += [
         "",
-        f"Detection threshold: {diagnosis.threshold_db:.1f} dB on the fundamental (false-alarm "
-        "probability about 1e-4 per fault for Gaussian noise, counting every band searched).",
+        f"Detection threshold: {diagnosis.threshold_db:.1f} dB on the weighed evidence of each "
+        "fault's lines (fundamental, 2x, 3x, first sidebands; false-alarm probability about "
+        "1e-4 per fault for Gaussian noise, counting every band searched).",
         "",
         "## Assumptions",
         "",

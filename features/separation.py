@@ -23,6 +23,7 @@ fault at ``FALSE_ALARM`` whatever N is.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -40,6 +41,8 @@ __all__ = [
     "BandSelection",
     "candidate_bands",
     "detection_threshold_db",
+    "line_false_alarm",
+    "ratio_for_false_alarm",
     "LINE_DB",
     "FALSE_ALARM",
 ]
@@ -356,6 +359,73 @@ def detection_threshold_db(
         else:
             high = mid
     return 20.0 * math.log10(high) + CALIBRATION_DB
+
+
+#: Ratios [dB] of the tabulated exceedance curve of :func:`line_false_alarm`, and the
+#: smallest probability it resolves (below it a line's evidence is saturated).
+_CURVE_DB = np.arange(0.0, 60.0 + 1e-9, 0.05)
+_SMALLEST_P = 1e-300
+
+
+@functools.lru_cache(maxsize=64)
+def _log_exceedance_curve(searched_bins: int, floor_bins: int) -> np.ndarray:
+    """The log of P(noise line >= r) on ``_CURVE_DB``, modelled as the threshold is."""
+    x = np.linspace(1e-6, 8.0, 4001)
+    cdf = -np.expm1(-0.5 * x * x)
+    pdf = x * np.exp(-0.5 * x * x)
+    floor_bins = max(3, floor_bins // 2)  # correlated Hann bins, as in the threshold
+    r = (floor_bins + 1) // 2
+    log_norm = math.lgamma(floor_bins + 1) - math.lgamma(r) - math.lgamma(floor_bins - r + 1)
+    with np.errstate(divide="ignore"):
+        log_density = (
+            log_norm + (r - 1) * np.log(cdf) + (floor_bins - r) * np.log1p(-cdf) + np.log(pdf)
+        )
+    weights = np.exp(log_density) * (x[1] - x[0])
+    k = 10.0 ** ((_CURVE_DB - CALIBRATION_DB) / 20.0) * _RAYLEIGH_MEDIAN
+    out = np.empty(k.size)
+    for start in range(0, k.size, 200):
+        kk = k[start : start + 200, None]
+        above = -np.expm1(searched_bins * np.log1p(-np.exp(-0.5 * (kk * x) ** 2)))
+        out[start : start + 200] = above @ weights
+    return np.log(np.clip(out, _SMALLEST_P, 1.0))
+
+
+def line_false_alarm(ratio_db: float, searched_bins: int, floor_bins: int) -> float:
+    """Probability that Gaussian noise alone gives a line this high, in one band.
+
+    The same model as :func:`detection_threshold_db` (Rayleigh bins, the floor a median of
+    ``floor_bins`` correlated bins, ``CALIBRATION_DB``), so that a fundamental at that
+    threshold has ``line_false_alarm(threshold) x n_bands = false_alarm``.
+
+    Parameters
+    ----------
+    ratio_db : float
+        The line's peak over the median of its neighbourhood [dB].
+    searched_bins, floor_bins : int
+        Bins searched for the line; bins of the floor's median.
+
+    Returns
+    -------
+    float
+        P in [1e-300, 1].
+    """
+    curve = _log_exceedance_curve(max(1, int(searched_bins)), max(3, int(floor_bins)))
+    return float(np.exp(np.interp(ratio_db, _CURVE_DB, curve, left=0.0)))
+
+
+def ratio_for_false_alarm(
+    false_alarm: float, n_bands: int, searched_bins: int, floor_bins: int
+) -> float:
+    """The line ratio [dB] whose false-alarm probability over ``n_bands`` bands is ``false_alarm``.
+
+    The inverse of ``n_bands x`` :func:`line_false_alarm`: it puts the evidence of several
+    lines, combined into one probability, on the scale of :func:`detection_threshold_db`
+    (at most ``_CURVE_DB[-1]``).
+    """
+    curve = _log_exceedance_curve(max(1, int(searched_bins)), max(3, int(floor_bins)))
+    target = math.log(max(false_alarm, _SMALLEST_P)) - math.log(max(1, n_bands))
+    # the curve falls with the ratio: interpolate on the reversed arrays
+    return float(np.interp(target, curve[::-1], _CURVE_DB[::-1]))
 
 
 @dataclass(frozen=True)

@@ -85,7 +85,8 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
             print(
                 f"  {c['fault']:<11s} {c['frequency_hz']:9.3f} Hz  envelope SNR "
                 f"{c['envelope_snr_db'][0]:6.1f} / {c['envelope_snr_db'][1]:6.1f} / "
-                f"{c['envelope_snr_db'][2]:6.1f} dB (1x/2x/3x)"
+                f"{c['envelope_snr_db'][2]:6.1f} dB (1x/2x/3x), weighed "
+                f"{c['evidence_db']:5.1f} dB" + ("  DETECTED" if c["detected"] else "")
             )
         print(f"  basis: {diagnosis.basis}")
         change = (diagnosis.baseline or {}).get("velocity_bands_change_db", {})
