@@ -194,6 +194,13 @@ def build_parser() -> argparse.ArgumentParser:
         help="a healthy recording of the same machine: ISO 15242 bands and the waviness line "
         "reported against it",
     )
+    p.add_argument(
+        "--load",
+        type=float,
+        default=None,
+        help="radial load [N] of the healthy model that waviness lines are judged against "
+        "without --baseline (default 500 N, stated as assumed)",
+    )
     p.add_argument("--json", action="store_true", help="print the verdict as JSON")
     p.set_defaults(func=cmd_diagnose)
 

@@ -127,47 +127,6 @@ def check_signal_quality(x: np.ndarray) -> list[str]:
     return warnings
 
 
-def _waviness_hint(spectra, freqs: BearingFrequencies, geometry: BearingGeometry) -> dict | None:
-    """Waviness order suggested by the plain spectrum (docs/model.md 2.1), if a line stands out."""
-    f, a = spectra.frequencies, spectra.amplitude
-    z = geometry.ball_count
-    best = None
-    for q in (1, 2, 3):
-        for m in range(-3, 4):
-            line = q * freqs.bpfi + m * freqs.shaft  # inner: k = qZ + m
-            peak, floor = _line_snr(f, a, line)
-            if best is None or peak > best[0]:
-                best = (peak, "inner", q * z + m, line)
-        peak, floor = _line_snr(f, a, q * freqs.bpfo)  # outer: k = qZ (+/- 1)
-        if peak > best[0]:
-            best = (peak, "outer", q * z, q * freqs.bpfo)
-    if best is None or best[0] < DETECTION_DB:
-        return None
-    return {
-        "surface": best[1],
-        "order": int(best[2]),
-        "line_hz": round(best[3], 3),
-        "snr_db": round(best[0], 2),
-        "note": (
-            "a discrete line consistent with waviness of this order (docs/model.md 2.1; "
-            + (
-                "orders qZ and qZ +/- 1 share the line"
-                if best[1] == "outer"
-                else "order k from the line k f_s - qZ f_c"
-            )
-            + "); a machine component at the same frequency looks the same: compare "
-            "with a baseline before acting"
-        ),
-    }
-
-
-def _line_snr(f: np.ndarray, a: np.ndarray, line: float) -> tuple[float, float]:
-    """Waviness line over its floor [dB] and the floor [U]: :func:`features.line_snr`."""
-    df = f[1] - f[0]
-    snr, _, floor = features.line_snr(f, a, line, half_width=max(1.5 * df, 0.003 * line), guard=3.0)
-    return snr, floor
-
-
 def diagnose_signal(
     x: np.ndarray,
     fs: float,
@@ -178,6 +137,7 @@ def diagnose_signal(
     context_extra: dict | None = None,
     baseline: np.ndarray | None = None,
     baseline_fs: float | None = None,
+    load_n: float | None = None,
 ) -> Diagnosis:
     """Diagnose one signal.
 
@@ -200,6 +160,10 @@ def diagnose_signal(
         velocity bands and the waviness line are then reported against it [dB].
     baseline_fs : float, optional
         Its sample rate [Hz] (default ``fs``).
+    load_n : float, optional
+        Radial load [N] of the healthy model whose lines race waviness is judged against
+        when no baseline is given (default ``cmtool.waviness.DEFAULT_LOAD_N``, said in the
+        assumptions).
 
     Returns
     -------
@@ -328,7 +292,9 @@ def diagnose_signal(
     )
     diagnosis.velocity_bands = {k: float(v) for k, v in features.velocity_band_rms(x, fs).items()}
     if verdict == "healthy":
-        diagnosis.waviness = _waviness_hint(spectra, freqs, geometry)
+        diagnosis.waviness = _race_waviness(
+            diagnosis, geometry, freqs, rpm, fs, x.size / fs, load_n, baseline, baseline_fs
+        )
     if baseline is not None:
         _against_baseline(diagnosis, np.asarray(baseline, dtype=float), baseline_fs or fs)
     diagnosis.rule_verdict = {"label": verdict, "confidence": confidence}
@@ -336,6 +302,58 @@ def diagnose_signal(
         diagnosis.model_verdict = model_verdict(model, x, fs, freqs, context_extra or {})
         _combine(diagnosis)
     return diagnosis
+
+
+def _race_waviness(
+    diagnosis: Diagnosis,
+    geometry: BearingGeometry,
+    freqs: BearingFrequencies,
+    rpm: float,
+    fs: float,
+    record_s: float,
+    load_n: float | None,
+    baseline: np.ndarray | None,
+    baseline_fs: float | None,
+) -> dict | None:
+    """Race waviness against the baseline's lines, or the healthy model's (cmtool.waviness)."""
+    from generators import ParameterError, SimulationDivergedError
+
+    from .waviness import (
+        ASSUMED_LOAD_FACTORS,
+        DEFAULT_LOAD_N,
+        GIVEN_LOAD_FACTORS,
+        healthy_model_spectrum,
+        race_waviness,
+    )
+
+    spectra = diagnosis.spectra
+    if baseline is not None:
+        base = np.asarray(baseline, dtype=float)
+        reference = [features.amplitude_spectrum(base, baseline_fs or fs)]
+        diagnosis.assumptions["waviness_reference"] = "the baseline recording's lines"
+    else:
+        load = DEFAULT_LOAD_N if load_n is None else float(load_n)
+        factors = ASSUMED_LOAD_FACTORS if load_n is None else GIVEN_LOAD_FACTORS
+        # the lines lie below 4 BPFI: a model rate of 25.6 kHz or the record's, if lower
+        model_fs = min(float(fs), 25600.0)
+        duration = min(max(record_s, 0.5), 2.0)
+        try:
+            reference = [
+                healthy_model_spectrum(geometry, rpm, k * load, model_fs, duration=duration)
+                for k in factors
+            ]
+        except (ParameterError, SimulationDivergedError) as error:
+            diagnosis.warnings.append(f"no healthy model prediction for waviness: {error}")
+            reference = None
+        loads = f"{factors[0] * load:g}-{factors[-1] * load:g} N"
+        diagnosis.assumptions["waviness_reference"] = (
+            "none (lines read by their height)"
+            if reference is None
+            else f"the model's healthy lines for the {geometry.name} at {rpm:g} rpm, radial "
+            f"load {loads} ({'given' if load_n is not None else 'assumed; --load'} "
+            f"{load:g} N)"
+        )
+    return race_waviness(spectra.frequencies, spectra.amplitude, freqs, geometry, reference)
 
 
 def _against_baseline(diagnosis: Diagnosis, baseline: np.ndarray, fs: float) -> None:
@@ -527,7 +545,13 @@ def write_report(
         w = diagnosis.waviness
         lines += [
             f"Waviness hint: {w['surface']} race, order about {w['order']} (line "
-            f"{w['line_hz']} Hz, {w['snr_db']} dB above the floor; {w['note']})",
+            f"{w['line_hz']} Hz, {w['snr_db']} dB above the floor"
+            + (
+                ""
+                if w.get("over_model_db") is None
+                else f", {w['over_model_db']} dB over the model's healthy share"
+            )
+            + f"; {w['note']})",
             "",
         ]
     if diagnosis.velocity_bands:

@@ -57,7 +57,14 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
         )
         baseline_fs = base_meta.get("fs_hz", float(fs))
     diagnosis = diagnose_signal(
-        x, float(fs), float(rpm), name, model=model, baseline=baseline, baseline_fs=baseline_fs
+        x,
+        float(fs),
+        float(rpm),
+        name,
+        model=model,
+        baseline=baseline,
+        baseline_fs=baseline_fs,
+        load_n=args.load,
     )
     diagnosis.warnings = warnings + diagnosis.warnings
     diagnosis.assumptions["channel"] = str(meta.get("variable") or args.channel or "first")
@@ -101,6 +108,11 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
             print(
                 f"  waviness hint: {w['surface']} race order ~{w['order']} at {w['line_hz']} Hz"
                 + ("" if over is None else f", {over:+.1f} dB over the baseline")
+                + (
+                    ""
+                    if w.get("over_model_db") is None
+                    else f", {w['over_model_db']:+.1f} dB over the healthy model's share"
+                )
             )
         if diagnosis.model_verdict:
             print(f"  model: {diagnosis.model_verdict}")

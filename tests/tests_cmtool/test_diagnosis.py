@@ -374,3 +374,37 @@ def test_race_waviness_is_reported_against_a_healthy_baseline():
     assert change["low"] > 10 and set(change) == {"low", "medium", "high"}
     same = diagnose_signal(healthy, 25600.0, 1800.0, g, baseline=healthy)
     assert all(abs(v) < 1e-9 for v in same.baseline["velocity_bands_change_db"].values())
+
+
+def test_race_waviness_without_a_baseline_is_judged_against_the_models_healthy_lines():
+    """Through rigs other than the model's (housings of 0.8 and 6 kg, other pedestals), with
+    the load unknown (assumed 500 N, the prediction spanning 125-2000 N): a healthy bearing at
+    2000 N, whose 3 BPFI - 2 f_s line a single 500 N prediction took for inner-race waviness
+    of order 25, reports none; inner (order 8) and outer (order 18) race waviness are
+    reported with their surface and order, over the prediction."""
+    from cmtool.waviness import MODEL_EXCESS_DB
+    from generators import OperatingCondition, Rig, SimulationSettings, Waviness, bearing, simulate
+
+    g = bearing("6205")
+    fs = 25600.0
+    settings = SimulationSettings(fs=fs, duration=1.0, channels=("housing_acceleration_y",))
+    noise = np.random.default_rng(5)
+
+    def diagnose(rig, rpm, load, waviness):
+        op = OperatingCondition.from_rpm(rpm, load)
+        x = simulate(g, op, waviness, settings=settings, rig=rig)["housing_acceleration_y"]
+        x = x + noise.normal(0.0, 0.1 * np.std(x), x.size)
+        return diagnose_signal(x, fs, rpm, g)
+
+    light = Rig(housing_mass=0.8, pedestal_stiffness=2e7)
+    heavy = Rig(housing_mass=6.0, pedestal_stiffness=2e8, shaft_mass=2.5)
+    healthy = diagnose(light, 1200, 2000.0, None)
+    assert healthy.verdict == "healthy" and healthy.waviness is None
+    assert "125-2000 N" in healthy.assumptions["waviness_reference"]
+    inner = diagnose(heavy, 1800, 500.0, Waviness(surface="inner", order=8, amplitude=0.5e-6))
+    assert inner.waviness["surface"] == "inner" and inner.waviness["order"] == 8
+    assert inner.waviness["over_model_db"] > 20
+    outer = diagnose(light, 3000, 500.0, Waviness(surface="outer", order=18, amplitude=1e-6))
+    assert outer.waviness["surface"] == "outer" and outer.waviness["order"] == 18
+    # a line the healthy bearing also has (2 BPFO): over the largest healthy share of 125-2000 N
+    assert outer.waviness["over_model_db"] > MODEL_EXCESS_DB

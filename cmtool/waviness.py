@@ -1,0 +1,219 @@
+"""Race waviness from the plain spectrum, judged against the healthy lines the model predicts.
+
+Waviness of order k on a race makes discrete lines whose frequencies the order fixes
+(docs/model.md 2.1): on the inner race k = qZ + m gives q BPFI + m f_s (m = -3..3 here), on the
+outer race k = qZ (and qZ +/- 1) gives q BPFO. A loaded healthy bearing also makes lines at q
+BPFO, its varying compliance, so a line there says nothing by its height alone. Each candidate
+line is therefore read against a reference that the same recording carries: the geometric mean
+of the ball-pass lines (BPFO, 2 BPFO, 3 BPFO) other than itself. The same ratio is computed on
+healthy simulations of this bearing at this speed over a range of loads (the model's
+``shaft+housing`` scene with its EHL film, ``Rig()`` defaults; the range
+``ASSUMED_LOAD_FACTORS`` or ``GIVEN_LOAD_FACTORS`` around the load), and the line's excess over
+the largest ratio predicted is what tells waviness from a healthy bearing. Ratios of lines at a
+few hundred hertz in one recording do not depend on the sensor's unit or gain, and hardly on the
+structure below its first resonances: measured on simulations through rigs of 0.8 to 6 kg
+housings (docs/diagnosis.md), the healthy pattern moved by less than 1 dB, the load by up to 25
+dB for the 3 BPFI - 2 f_s line between 0.4 and 4 times the one assumed, hence the range.
+
+Thresholds, fixed before any recording was read: a line must stand ``WAVINESS_SNR_DB`` over its
+local floor (the rule detector's one-band threshold) and ``MODEL_EXCESS_DB`` over the model's
+healthy prediction (a factor of about three for what the model leaves out: the structure,
+the clearance, the film).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+import features
+from generators import BearingGeometry
+from generators.kinematics import BearingFrequencies
+
+__all__ = [
+    "MODEL_EXCESS_DB",
+    "WAVINESS_SNR_DB",
+    "DEFAULT_LOAD_N",
+    "ASSUMED_LOAD_FACTORS",
+    "GIVEN_LOAD_FACTORS",
+    "WavinessLine",
+    "candidate_lines",
+    "healthy_model_spectrum",
+    "race_waviness",
+]
+
+#: A waviness line stands this far over its local floor [dB].
+WAVINESS_SNR_DB = 12.0
+#: ... and this far over the healthy model's prediction of its ratio to the ball-pass lines [dB].
+MODEL_EXCESS_DB = 10.0
+#: Radial load of the healthy prediction when none is given [N] (docs/model.md 6.3 scene).
+DEFAULT_LOAD_N = 500.0
+#: Loads of the healthy prediction, as multiples of the load assumed (none given: a bearing's
+#: load is seldom known to better than a factor of four) or given (a measured load, +/- 40 %):
+#: each line is judged against the largest ratio any of them predicts.
+ASSUMED_LOAD_FACTORS = (0.25, 0.5, 1.0, 2.0, 4.0)
+GIVEN_LOAD_FACTORS = (0.7, 1.0, 1.4)
+#: Ball-pass harmonics whose lines are the reference.
+_REFERENCE_HARMONICS = (1, 2, 3)
+
+
+@dataclass(frozen=True)
+class WavinessLine:
+    """One candidate waviness line (docs/model.md 2.1).
+
+    Attributes
+    ----------
+    surface : str
+        ``inner`` or ``outer``.
+    order : int
+        Waviness order k.
+    frequency : float
+        Line [Hz].
+    harmonic : int
+        q, the ball-pass harmonic it belongs to.
+    """
+
+    surface: str
+    order: int
+    frequency: float
+    harmonic: int
+
+
+def candidate_lines(freqs: BearingFrequencies, ball_count: int) -> list[WavinessLine]:
+    """Race waviness lines of orders qZ + m (inner, m = -3..3) and qZ (outer), q = 1..3."""
+    out = []
+    for q in (1, 2, 3):
+        for m in range(-3, 4):
+            out.append(
+                WavinessLine("inner", q * ball_count + m, q * freqs.bpfi + m * freqs.shaft, q)
+            )
+        out.append(WavinessLine("outer", q * ball_count, q * freqs.bpfo, q))
+    return out
+
+
+def _line(f: np.ndarray, a: np.ndarray, line: float) -> tuple[float, float]:
+    """(SNR over the local floor [dB], peak [U]) of a line of a plain spectrum."""
+    df = f[1] - f[0]
+    snr, peak, _ = features.line_snr(f, a, line, half_width=max(1.5 * df, 0.003 * line), guard=3.0)
+    return snr, peak
+
+
+def _ratio_db(f: np.ndarray, a: np.ndarray, line: WavinessLine, freqs: BearingFrequencies) -> float:
+    """The line over the geometric mean of the ball-pass lines other than itself [dB]."""
+    _, peak = _line(f, a, line.frequency)
+    others = [
+        _line(f, a, q * freqs.bpfo)[1]
+        for q in _REFERENCE_HARMONICS
+        if not (line.surface == "outer" and q == line.harmonic)
+    ]
+    reference = float(np.exp(np.mean(np.log(np.maximum(others, 1e-300)))))
+    if peak <= 0 or reference <= 0:
+        return -math.inf
+    return 20.0 * math.log10(peak / reference)
+
+
+def healthy_model_spectrum(
+    geometry: BearingGeometry, rpm: float, load_n: float, fs: float, duration: float = 1.0
+) -> tuple[np.ndarray, np.ndarray]:
+    """Amplitude spectrum of the housing acceleration of this bearing, healthy, in the model.
+
+    Parameters
+    ----------
+    geometry : BearingGeometry
+        The bearing.
+    rpm : float
+        Shaft speed [rev/min].
+    load_n : float
+        Radial load [N].
+    fs : float
+        Sample rate of the simulated record [Hz].
+    duration : float
+        Record length [s].
+
+    Returns
+    -------
+    frequencies, amplitude : ndarray
+        [Hz], [m/s^2].
+
+    Raises
+    ------
+    generators.ParameterError, generators.SimulationDivergedError
+        The model cannot run this case.
+    """
+    from generators import OperatingCondition, SimulationSettings, simulate
+
+    settings = SimulationSettings(fs=fs, duration=duration, channels=("housing_acceleration_y",))
+    x = simulate(geometry, OperatingCondition.from_rpm(rpm, load_n), None, settings=settings)
+    return features.amplitude_spectrum(x["housing_acceleration_y"], fs)
+
+
+def race_waviness(
+    f: np.ndarray,
+    a: np.ndarray,
+    freqs: BearingFrequencies,
+    geometry: BearingGeometry,
+    model: list[tuple[np.ndarray, np.ndarray]] | None,
+) -> dict | None:
+    """The waviness line that stands out most against the model's healthy lines, if one does.
+
+    Parameters
+    ----------
+    f, a : ndarray
+        Plain amplitude spectrum of the recording [Hz], [U].
+    freqs : BearingFrequencies
+        The bearing's frequencies at this speed.
+    geometry : BearingGeometry
+        The bearing.
+    model : list of (ndarray, ndarray), or None
+        The healthy references: :func:`healthy_model_spectrum` at each load of the range
+        (a line is judged against the largest ratio any of them predicts), or a healthy
+        recording's spectrum of the same machine; None reads lines by their height alone (a
+        loaded healthy bearing's ball-pass lines then look like outer-race waviness).
+
+    Returns
+    -------
+    dict or None
+        ``surface``, ``order``, ``line_hz``, ``snr_db`` and ``over_model_db`` (None without a
+        model) of the strongest flagged line, and ``lines``, every candidate over its floor.
+    """
+    flagged = []
+    for line in candidate_lines(freqs, geometry.ball_count):
+        if line.frequency >= f[-1] or line.frequency <= 0:
+            continue
+        snr, _ = _line(f, a, line.frequency)
+        if snr < WAVINESS_SNR_DB:
+            continue
+        excess = None
+        if model is not None:
+            predicted = max(_ratio_db(mf, ma, line, freqs) for mf, ma in model)
+            excess = _ratio_db(f, a, line, freqs) - predicted
+            if not math.isfinite(excess):
+                excess = 99.0  # the model has no line there at all
+            if excess < MODEL_EXCESS_DB:
+                continue
+        flagged.append((line, snr, excess))
+    if not flagged:
+        return None
+    key = (lambda item: item[2]) if model is not None else (lambda item: item[1])
+    line, snr, excess = max(flagged, key=key)
+    return {
+        "surface": line.surface,
+        "order": int(line.order),
+        "line_hz": round(line.frequency, 3),
+        "snr_db": round(snr, 2),
+        "over_model_db": None if excess is None else round(min(excess, 99.0), 2),
+        "note": (
+            "a discrete line consistent with waviness of this order (docs/model.md 2.1; "
+            + (
+                "orders qZ and qZ +/- 1 share the line"
+                if line.surface == "outer"
+                else "order k from the line k f_s - qZ f_c"
+            )
+            + ")"
+            + ("" if model is None else ", above its healthy prediction")
+            + "; a machine component at the same frequency looks the same: compare with a "
+            "baseline before acting"
+        ),
+    }
