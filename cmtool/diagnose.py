@@ -43,18 +43,20 @@ __all__ = ["diagnose_signal", "Diagnosis", "write_report", "DETECTION_DB", "FAUL
 DETECTION_DB = 12.0
 # Confidences calibrated on simulation only (benchmarks/calibrate_confidence.py: logistic fits
 # on 1,100 signals of the detector-bench recipe with seed 9173, checked on the 2,200 of seed
-# 4711: expected calibration error of the verdict 0.183 with the former 3 dB logistic, 0.033
-# with these). They are probabilities for that recipe's population (45 % healthy, pits of
-# every kind and size, fault SNR -20 to +10 dB); another prior shifts them.
+# 4711), in the margin of the weighed evidence (features.Evidence.combined) over the threshold:
+# expected calibration error of the verdict 0.017 with these (0.074 with the constants fitted
+# on the fundamental alone, 0.121 with a plain 3 dB logistic). They are probabilities for that
+# recipe's population (45 % healthy, pits of every kind and size, fault SNR -20 to +10 dB);
+# another prior shifts them.
 #: Each fault line's confidence, 1 / (1 + exp(-(margin - offset) / scale)) with the margin of
-#: the line over the detection threshold [dB]: the probability that the signal has this fault
-CONFIDENCE_SCALE_DB = 4.83
-CONFIDENCE_OFFSET_DB = 1.92
-#: The verdict's confidence (scale, offset) [dB] in the top line's margin: P(the fault called is
-#: the fault) for fault verdicts (0.91 at the threshold, slowly rising: ball pits are the
-#: usual confusion), 1 - P(a fault | the margin) for healthy ones (0.5 at 3.75 dB below it)
-FAULT_CONFIDENCE = (19.29, -44.29)
-HEALTHY_CONFIDENCE = (4.34, -3.75)
+#: the fault's weighed evidence over the detection threshold [dB]: the probability that the
+#: signal has this fault
+CONFIDENCE_SCALE_DB = 5.67
+CONFIDENCE_OFFSET_DB = 7.27
+#: The verdict's confidence (scale, offset) [dB] in the top candidate's margin: P(the fault
+#: called is the fault) for fault verdicts, 1 - P(a fault | the margin) for healthy ones
+FAULT_CONFIDENCE = (3.63, -7.14)
+HEALTHY_CONFIDENCE = (5.09, -1.65)
 SLIP_SEARCH = features.evidence.SLIP_SEARCH
 #: Shortest record [periods of the slowest fault rate]: its envelope spectrum's bins are then
 #: 5 % of that rate apart, as far as the rates of a bearing lie from each other at the least.
