@@ -82,6 +82,15 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("simulate", help="simulate one housing vibration signal")
     add_model_arguments(p)
+    p.add_argument(
+        "--error-bound",
+        dest="step_error_bound",
+        type=float,
+        default=None,
+        help="RK4 without --step: the longest step whose relative error in the bearing's "
+        "characteristic line amplitudes is at most this (e.g. 0.01), measured by pilot runs; "
+        "--step wins",
+    )
     p.add_argument("--out", help="output file (.parquet or .csv)")
     p.add_argument("--plot", help="spectrum plot (.png)")
     p.add_argument(

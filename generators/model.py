@@ -249,7 +249,11 @@ def _run_rk4(prep: Prepared, plan: Plan, record: _Record) -> tuple[int, float, d
         record.loads,
         record.with_loads,
     )
-    return status, t_fail, {"step_s": plan.dt, "steps": plan.n_steps}
+    stats = {"step_s": plan.dt, "steps": plan.n_steps}
+    if prep.settings.error_bound and prep.settings.step is None:
+        stats["error_bound"] = prep.settings.error_bound
+        stats["line_error_estimate"] = plan.error_estimate
+    return status, t_fail, stats
 
 
 def _run_dopri5(prep: Prepared, plan: Plan, record: _Record) -> tuple[int, float, dict]:

@@ -587,6 +587,11 @@ class SimulationSettings:
     channels : tuple of str or None
         Output channels to produce (names from ``CHANNELS``); ``None`` for all. Fewer channels
         save the anti-alias decimation time.
+    error_bound : float or None
+        RK4 only, when ``step`` is None: the longest step whose relative error in the
+        amplitudes of the bearing's characteristic lines is at most this, measured by pilot
+        runs at h and h / 2 (:mod:`generators.accuracy`) [-]; ``None`` keeps the scene's
+        default step. An explicit ``step`` wins.
     """
 
     fs: float = 25600.0
@@ -602,6 +607,7 @@ class SimulationSettings:
     cage_angle: float = 0.0
     channels: tuple[str, ...] | None = None
     max_steps_per_second: float = 5e6
+    error_bound: float | None = None
 
     def __post_init__(self) -> None:
         check_real("fs", self.fs, low=100.0, high=1e7, unit="Hz")
@@ -610,6 +616,8 @@ class SimulationSettings:
         check_choice("integrator", self.integrator, INTEGRATORS)
         if self.step is not None:
             check_real("step", self.step, low=1e-9, high=1e-3, unit="s")
+        if self.error_bound is not None:
+            check_real("error_bound", self.error_bound, low=1e-6, high=0.5)
         check_real("rtol", self.rtol, low=1e-13, high=1e-1)
         check_real("atol_displacement", self.atol_displacement, low=1e-20, high=1e-6, unit="m")
         if self.oversample is not None:

@@ -292,24 +292,34 @@ class Plan:
     dt: float  # RK4 step [s] (NaN for DOPRI5)
     n_steps: int
     t_first: float
+    error_estimate: float = math.nan  # relative line error at dt, when chosen for a bound
 
 
 def plan_run(prep: Prepared) -> Plan:
     """Step, record rate and record count of a prepared run (as :func:`simulate` does)."""
     settings = prep.settings
     step = None
-    if settings.integrator == "rk4":
+    error = math.nan
+    oversample = settings.oversample
+    if settings.integrator == "rk4" and settings.step is None and settings.error_bound:
+        from .accuracy import error_bound_step  # the pilots need the kernels' entry points
+
+        # recorded and decimated as its pilots were (a long step does not lower the record
+        # rate here: what the pilots measured is what the run returns)
+        oversample = oversample or default_oversample(None, settings.fs)
+        step, error = error_bound_step(prep, settings.error_bound, oversample)
+    elif settings.integrator == "rk4":
         step = settings.step or default_step(
             prep.scene_name, prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0
         )
-    oversample = settings.oversample or default_oversample(step, settings.fs)
+    oversample = oversample or default_oversample(step, settings.fs)
     record_dt = 1.0 / (settings.fs * oversample)
     n_out = int(round(settings.duration * settings.fs))
     n_record = n_out * oversample
     if step is None:
         return Plan(oversample, record_dt, n_out, n_record, math.nan, 0, settings.settle_time)
     dt, n_steps, t_first = rk4_schedule(step, record_dt, settings.settle_time, n_record)
-    return Plan(oversample, record_dt, n_out, n_record, dt, n_steps, t_first)
+    return Plan(oversample, record_dt, n_out, n_record, dt, n_steps, t_first, error)
 
 
 def diverged_error(prep: Prepared, status: int, t_fail: float) -> SimulationDivergedError:

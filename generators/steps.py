@@ -65,13 +65,21 @@ def default_step(
     the ball radial mode in the ``full`` scene (lightly damped, or well damped with the squeeze
     film), otherwise the shaft-on-bearing or a stiff pedestal's housing mode.
     """
+    step = min(DEFAULT_STEP_MASSLESS, stability_step(code, ehl, p, wav, y0))
+    return min(step, defect_step(p, wav))
+
+
+def stability_step(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray) -> float:
+    """``STABILITY_SAFETY`` times RK4's stability limit of the scene linearised at ``y0`` [s].
+
+    min_i r(arg lambda_i) / |lambda_i| over the eigenvalues of the Jacobian
+    (:func:`rk4_stability_radius`); ``inf`` when every eigenvalue is zero.
+    """
     lam = np.linalg.eigvals(jacobian(code, ehl, p, wav, y0))
     lam = lam[np.abs(lam) > 0.0]
-    stable = math.inf
-    if lam.size:
-        stable = float(np.min(rk4_stability_radius(np.angle(lam)) / np.abs(lam)))
-    step = min(DEFAULT_STEP_MASSLESS, STABILITY_SAFETY * stable)
-    return min(step, defect_step(p, wav))
+    if not lam.size:
+        return math.inf
+    return float(STABILITY_SAFETY * np.min(rk4_stability_radius(np.angle(lam)) / np.abs(lam)))
 
 
 def rk4_stability_radius(angle: np.ndarray | float) -> np.ndarray:

@@ -231,6 +231,7 @@ def add_model_arguments(p: argparse.ArgumentParser) -> None:
     )
     n.add_argument("--integrator", default=sim.integrator, choices=INTEGRATORS)
     n.add_argument("--step", type=float, default=None, help="RK4 step [s]; default per scene")
+
     n.add_argument("--rtol", type=float, default=sim.rtol, help="dopri5 relative tolerance")
     n.add_argument(
         "--atol", type=float, default=sim.atol_displacement, help="dopri5 displacement atol [m]"
@@ -288,6 +289,7 @@ def _model_inputs(args: argparse.Namespace):
         settle_time=args.settle,
         integrator=args.integrator,
         step=args.step,
+        error_bound=getattr(args, "step_error_bound", None),
         rtol=args.rtol,
         atol_displacement=args.atol,
         oversample=args.oversample,
@@ -466,6 +468,12 @@ def _print_run(run, settings, geometry, operating, film: bool) -> None:
         f"simulated {settings.duration:g} s of {geometry.name} at {operating.rpm:g} rpm, "
         f"{operating.radial_load:g} N, scene {level}/{contacts}"
     )
+    stats = run.parameters.get("integrator_stats", {})
+    if "line_error_estimate" in stats:
+        print(
+            f"RK4 step {stats['step_s']:.3g} s for the error bound {stats['error_bound']:g} "
+            f"(estimated line error {stats['line_error_estimate']:.2g})"
+        )
     f = run.frequencies
     print(
         f"FTF {f.ftf:.3f} Hz  BPFO {f.bpfo:.3f} Hz  BPFI {f.bpfi:.3f} Hz  "

@@ -255,6 +255,7 @@ MODEL_FLAGS = [
     ("--settle", "0.03", "settings", "settle_time", 0.03),
     ("--integrator", "dopri5", "settings", "integrator", "dopri5"),
     ("--step", "7e-6", "settings", "step", 7e-6),
+    ("--error-bound", "0.02", "settings", "error_bound", 0.02),
     ("--rtol", "1e-7", "settings", "rtol", 1e-7),
     ("--atol", "3e-13", "settings", "atol_displacement", 3e-13),
     ("--oversample", "3", "settings", "oversample", 3),

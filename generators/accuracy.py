@@ -1,0 +1,210 @@
+"""The longest RK4 step that meets an error bound, from the measured convergence of the run.
+
+``SimulationSettings(error_bound=e)`` asks for the longest fixed RK4 step whose error in the
+amplitudes of the bearing's characteristic lines stays under ``e`` (relative). The error is
+measured, not assumed: three pilot runs of the prepared scene (same parameters, film,
+defects, speed, record rate and settling), at steps h, h / 2 and h / 4, over the window the
+run records (at most ``PILOT_MAX_DURATION``, at least ``PILOT_PERIODS`` periods of the
+slowest characteristic rate); the complex amplitudes of the lines k f for f in (shaft,
+BPFO, BPFI, 2 x BSF), k = 1..3, fitted by least squares on the housing acceleration (y); the
+largest relative change over the lines within ``LINE_RANGE`` of the strongest, from h to h / 2
+(d1) and from h / 2 to h / 4 (d2), gives the order the run converges at, p = log2(d1 / d2)
+(RK4's 4 where the right-hand side is smooth; about 2 where a contact opens and closes, as
+in the dry ``shaft`` scene), and Richardson's estimate of the error at h,
+d1 2^p / (2^p - 1). The first candidate is the longest step the scene allows (its RK4
+stability radius with ``steps.STABILITY_SAFETY``, and the local-defect limit
+``steps.defect_step``); where it misses the bound the step is scaled by (bound / error)^(1/p)
+with a margin and measured again, until the bound holds (``MAX_TRIALS`` rescalings, then
+halvings). The pilots cost seven times the window at the first candidate step (the
+longest the scene allows) and three times it at each further candidate; the choice is cached
+per run configuration (parameters, defects, start, rate, window, bound), so repeated runs and
+long runs gain most.
+
+The chosen step and its error estimate are recorded in the result's parameter record
+(``integrator_stats``). An explicit ``SimulationSettings.step`` always wins.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+from collections import OrderedDict
+
+import numpy as np
+
+from . import _integrators
+from . import _kernels as K
+from .decimation import decimate
+from .steps import defect_step, rk4_schedule, stability_step
+
+__all__ = ["PILOT_PERIODS", "LINE_RANGE", "MAX_TRIALS", "error_bound_step", "line_error"]
+
+#: Shortest pilot in periods of the slowest characteristic rate (the shaft's): the least-squares
+#: fit resolves lines a few times the record's inverse apart (the closest here, 3 f_s and BPFO
+#: of a 6205, are 0.6 f_s apart: 1.8 line spacings over three periods).
+PILOT_PERIODS = 3
+#: Longest pilot [s]: the run's own window (after its settling) up to this long. The line
+#: error at a step depends on the window by up to a factor 3 where a contact opens and closes
+#: (the dry ``shaft`` scene), so the pilots integrate the window the run records.
+PILOT_MAX_DURATION = 1.0
+#: Lines weighed: those within this factor of the strongest (weaker ones are numerically
+#: absent in a healthy scene: their relative error says nothing).
+LINE_RANGE = 1e-2
+#: Pilot pairs at most; then the last step is halved until it holds, as measured.
+MAX_TRIALS = 4
+#: Margin on the extrapolated step.
+MARGIN = 0.9
+#: Longest step considered [s] (the settings' own upper limit).
+LONGEST_STEP = 1e-3
+
+_CACHE: OrderedDict[str, tuple[float, float]] = OrderedDict()
+
+
+def _lines(prep) -> np.ndarray:
+    """The characteristic line frequencies [Hz] (k = 1..3 of shaft, BPFO, BPFI, 2 x BSF)."""
+    f = prep.freqs
+    if f is None:
+        return np.zeros(0)
+    base = [f.shaft, f.bpfo, f.bpfi, f.two_bsf]
+    return np.array([k * r for r in base for k in (1, 2, 3) if r > 0])
+
+
+def line_error(reference: np.ndarray, other: np.ndarray, fs: float, lines: np.ndarray) -> float:
+    """Largest relative difference of the fitted line amplitudes of two signals.
+
+    Parameters
+    ----------
+    reference, other : ndarray
+        The same record computed two ways [U].
+    fs : float
+        Sample rate [Hz].
+    lines : ndarray
+        Line frequencies [Hz]; those closer than 1.5 / the record length to a lower one are
+        merged with it; none (or none under fs / 2): the relative RMS difference.
+
+    Returns
+    -------
+    float
+        max over lines within ``LINE_RANGE`` of the strongest of |A_o - A_r| / |A_r|.
+    """
+    lines = np.sort(lines[(lines > 0) & (lines < 0.5 * fs)])
+    # lines closer than 1.5 / the record's length cannot be told apart by the fit (their sum
+    # is well determined, each alone is not): keep the first of each such group
+    if lines.size:
+        resolution = 1.5 * fs / reference.size
+        lines = lines[np.concatenate([[True], np.diff(lines) > resolution])]
+    scale = float(np.sqrt(np.mean(reference**2)))
+    if lines.size == 0:
+        return float(np.sqrt(np.mean((other - reference) ** 2))) / (scale or 1.0)
+    t = np.arange(reference.size) / fs
+    basis = np.concatenate(
+        [
+            np.ones((t.size, 1)),
+            np.cos(2 * np.pi * np.outer(t, lines)),
+            np.sin(2 * np.pi * np.outer(t, lines)),
+        ],
+        axis=1,
+    )
+    coef, *_ = np.linalg.lstsq(basis, np.stack([reference, other], axis=1), rcond=None)
+    m = lines.size
+    amp = coef[1 : 1 + m] + 1j * coef[1 + m :]  # (lines, 2)
+    size = np.abs(amp[:, 0])
+    keep = size >= LINE_RANGE * size.max() if size.max() > 0 else np.zeros(m, bool)
+    if not keep.any():
+        return float(np.sqrt(np.mean((other - reference) ** 2))) / (scale or 1.0)
+    return float(np.max(np.abs(amp[keep, 1] - amp[keep, 0]) / size[keep]))
+
+
+def _pilot(
+    prep, step: float, record_dt: float, oversample: int, n_record: int
+) -> np.ndarray | None:
+    """Housing acceleration (y) of a pilot run at ``step``, at the output rate (None: diverged)."""
+    dt, n_steps, t_first = rk4_schedule(step, record_dt, prep.settings.settle_time, n_record)
+    state = np.zeros((n_record, K.N_OUT_STATE))
+    accel = np.zeros((n_record, K.N_OUT_ACCEL))
+    loads = np.zeros((1, 2, prep.geometry.ball_count))
+    status, _, _ = _integrators._rk4(
+        prep.scene_code,
+        int(prep.ehl),
+        prep.y0,
+        prep.p,
+        prep.wav,
+        0.0,
+        dt,
+        n_steps,
+        t_first,
+        record_dt,
+        n_record,
+        state,
+        accel,
+        loads,
+        False,
+    )
+    if status != K.STATUS_OK:
+        return None
+    return decimate(state, accel, oversample, ("housing_acceleration_y",))["housing_acceleration_y"]
+
+
+def _key(prep, bound: float, oversample: int) -> str:
+    digest = hashlib.sha256()
+    for array in (prep.p, prep.wav, prep.y0):
+        digest.update(np.ascontiguousarray(array).tobytes())
+    settings = prep.settings
+    window = (settings.fs, settings.settle_time, min(settings.duration, PILOT_MAX_DURATION))
+    digest.update(repr((prep.scene_code, prep.ehl, window, oversample, bound)).encode())
+    return digest.hexdigest()
+
+
+def error_bound_step(prep, bound: float, oversample: int) -> tuple[float, float]:
+    """The longest RK4 step meeting ``bound`` for a prepared run, and its error estimate.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The run (:func:`generators.prepare`).
+    bound : float
+        Largest relative error of the characteristic line amplitudes [-].
+    oversample : int
+        Record samples per output sample of the run.
+
+    Returns
+    -------
+    (float, float)
+        Step [s] and the estimated relative line error at it [-] (Richardson's estimate from
+        the last pilots, at the order they showed).
+    """
+    key = _key(prep, bound, oversample)
+    if key in _CACHE:
+        _CACHE.move_to_end(key)
+        return _CACHE[key]
+    fs = prep.settings.fs
+    lines = _lines(prep)
+    slowest = float(lines.min()) if lines.size else 10.0
+    window = max(min(prep.settings.duration, PILOT_MAX_DURATION), PILOT_PERIODS / slowest)
+    n_out = int(math.ceil(window * fs))
+    record_dt = 1.0 / (fs * oversample)
+    n_record = n_out * oversample
+    stable = stability_step(prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0)
+    step = min(LONGEST_STEP, stable, defect_step(prep.p, prep.wav))
+    error, order = math.inf, 4.0
+    for trial in range(MAX_TRIALS + 8):
+        runs = [_pilot(prep, step / 2**k, record_dt, oversample, n_record) for k in range(3)]
+        if any(r is None for r in runs):
+            step *= 0.5
+            continue
+        first = line_error(runs[1], runs[0], fs, lines)
+        second = line_error(runs[2], runs[1], fs, lines)
+        # the order the run shows (a contact that opens, a pit's edges: less than RK4's 4)
+        if second > 0.0 and first > 0.0:
+            order = min(4.5, max(1.0, math.log2(first / second)))
+        error = first * 2.0**order / (2.0**order - 1.0)  # Richardson: the error at this step
+        if error <= bound:
+            break
+        if trial < MAX_TRIALS:
+            step *= max(0.125, min(0.95, MARGIN * (bound / error) ** (1.0 / order)))
+        else:
+            step *= 0.5
+    _CACHE[key] = (step, error)
+    while len(_CACHE) > 64:
+        _CACHE.popitem(last=False)
+    return step, error
