@@ -175,7 +175,7 @@ def builtin_outputs(
     geometry = catalog_bearing(bearing)
     freqs = characteristic_frequencies(geometry, rpm / 60.0)
     rates = {fault: getattr(freqs, key) for fault, key in FAULTS.items()}
-    d = diagnose_signal(x, fs, rpm, geometry, model=model)
+    d = diagnose_signal(x, fs, rpm, geometry, model=model, waviness=False)
     margins = {c["fault"]: c["evidence_db"] - d.threshold_db for c in d.candidates}
     out = {"envelope": DetectorOutput(d.rule_verdict["label"], margins)}
     ses = envelope_scores(x, fs, rates)

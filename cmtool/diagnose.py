@@ -140,6 +140,7 @@ def diagnose_signal(
     baseline: np.ndarray | None = None,
     baseline_fs: float | None = None,
     load_n: float | None = None,
+    waviness: bool = True,
 ) -> Diagnosis:
     """Diagnose one signal.
 
@@ -166,6 +167,9 @@ def diagnose_signal(
         Radial load [N] of the healthy model whose lines race waviness is judged against
         when no baseline is given (default ``cmtool.waviness.DEFAULT_LOAD_N``, said in the
         assumptions).
+    waviness : bool
+        Judge race waviness on a healthy verdict (five healthy simulations of the bearing
+        when no baseline is given, about 0.1 s); ``cmtool bench`` leaves it out.
 
     Returns
     -------
@@ -293,7 +297,7 @@ def diagnose_signal(
         },
     )
     diagnosis.velocity_bands = {k: float(v) for k, v in features.velocity_band_rms(x, fs).items()}
-    if verdict == "healthy":
+    if verdict == "healthy" and waviness:
         diagnosis.waviness = _race_waviness(
             diagnosis, geometry, freqs, rpm, fs, x.size / fs, load_n, baseline, baseline_fs
         )

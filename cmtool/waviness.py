@@ -23,6 +23,7 @@ the clearance, the film).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -114,6 +115,7 @@ def _ratio_db(f: np.ndarray, a: np.ndarray, line: WavinessLine, freqs: BearingFr
     return 20.0 * math.log10(peak / reference)
 
 
+@functools.lru_cache(maxsize=128)
 def healthy_model_spectrum(
     geometry: BearingGeometry, rpm: float, load_n: float, fs: float, duration: float = 1.0
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -135,7 +137,7 @@ def healthy_model_spectrum(
     Returns
     -------
     frequencies, amplitude : ndarray
-        [Hz], [m/s^2].
+        [Hz], [m/s^2] (cached per arguments: the same bearing, speed and load recur).
 
     Raises
     ------

@@ -21,8 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy import fft as sp_fft
-from scipy import signal as sp_signal
 
+from . import _windows
 from ._validate import FeatureError, check_fs, check_signal
 from .separation import select_band, separate_discrete
 from .spectra import amplitude_spectrum
@@ -87,7 +87,7 @@ def _band_weights(freqs: np.ndarray, low: float, high: float) -> np.ndarray:
     inside = (freqs >= low) & (freqs <= high)
     m = int(inside.sum())
     if m:
-        w[inside] = sp_signal.windows.tukey(m, TUKEY_ALPHA) if m > 2 else 1.0
+        w[inside] = _windows.tukey(m, TUKEY_ALPHA) if m > 2 else 1.0
     return w
 
 
@@ -238,7 +238,7 @@ def _level_kurtosis(spec: np.ndarray, df: float, bandwidth: float, nb: int) -> n
         return np.zeros(nb)
     starts = np.round(np.arange(nb) * bandwidth / df).astype(int)
     idx = np.minimum(starts[:, None] + np.arange(m)[None, :], spec.size - 1)
-    seg = spec[idx] * sp_signal.windows.tukey(m, TUKEY_ALPHA)
+    seg = spec[idx] * _windows.tukey(m, TUKEY_ALPHA)
     c = sp_fft.ifft(seg, sp_fft.next_fast_len(m), axis=1)
     p = c.real**2 + c.imag**2
     mean = p.mean(axis=1)
@@ -278,7 +278,7 @@ def kurtogram(
     # the FFT treats the record as circular: a record that ends where it did not start has a
     # jump at the seam, a broadband impulse that dominates the kurtosis of quiet bands (e.g.
     # above an anti-alias filter's cut-off); tapered edges remove it
-    spec = sp_fft.rfft((x - x.mean()) * sp_signal.windows.tukey(n, EDGE_TAPER))
+    spec = sp_fft.rfft((x - x.mean()) * _windows.tukey(n, EDGE_TAPER))
     df = fs / n
     min_bw = 3.0 * fs / n * 8 if min_bandwidth is None else float(min_bandwidth)
     cells = 3 * 2 ** (int(nlevel) - 1) * 2

@@ -32,6 +32,7 @@ import numpy as np
 from scipy import ndimage
 from scipy import signal as sp_signal
 
+from . import _windows
 from ._validate import FeatureError, check_fs, check_positive, check_signal
 
 __all__ = [
@@ -471,11 +472,11 @@ def _band_envelope_spectrum(spec: np.ndarray, df: float, low: float, high: float
     """Envelope spectrum of one band from the record's FFT bins (decimated analytic signal)."""
     i0, i1 = int(math.ceil(low / df)), int(math.floor(high / df))
     m = i1 - i0 + 1
-    weights = sp_signal.windows.tukey(m, 0.25) if m > 2 else np.ones(m)
+    weights = _windows.tukey(m, 0.25) if m > 2 else np.ones(m)
     z = np.fft.ifft(spec[i0 : i1 + 1] * weights)  # analytic band signal at rate m * df
     env = np.abs(z)
     env = env - env.mean()
-    amp = np.abs(np.fft.rfft(env * np.hanning(m)))
+    amp = np.abs(np.fft.rfft(env * _windows.hanning(m)))
     return np.arange(amp.size) * df, amp
 
 
@@ -533,7 +534,7 @@ def select_band(
         min_bandwidth = min(3.0 * float(values.max()), fs / 4)
     bands = candidate_bands(fs, x.size, min_bandwidth=min_bandwidth, nlevel=nlevel)
     n = x.size
-    spec = np.fft.fft((x - x.mean()) * sp_signal.windows.tukey(n, 0.05))
+    spec = np.fft.fft((x - x.mean()) * _windows.tukey(n, 0.05))
     df = fs / n
     scores = np.zeros((len(bands), len(names)))
     searched, floor = 1, None

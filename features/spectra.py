@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 from scipy import signal as sp_signal
 
+from . import _windows
 from ._validate import FeatureError, check_fs, check_positive, check_signal
 
 __all__ = ["amplitude_spectrum", "power_spectral_density", "integrate_spectrum", "integrate_signal"]
@@ -71,7 +72,7 @@ def amplitude_spectrum(
     if not 4 <= int(nperseg) <= n:
         raise FeatureError(f"nperseg = {nperseg} is outside the allowed range [4, {n}]")
     nperseg = int(nperseg)
-    win = sp_signal.get_window(window, nperseg)
+    win = _windows.get_window(window, nperseg)
     step = max(nperseg // 2, 1)
     starts = range(0, n - nperseg + 1, step)
     acc = None

@@ -43,10 +43,11 @@ def time_statistics(x: np.ndarray, *, axis: int = -1) -> dict[str, np.ndarray | 
     x = check_signal(x, min_length=2)
     x = x - x.mean(axis=axis, keepdims=True)
     a = np.abs(x)
-    rms = np.sqrt(np.mean(x * x, axis=axis))
+    x2 = x * x  # the moments from one square (x**3 and x**4 would call the general power)
+    m2 = np.mean(x2, axis=axis)
+    rms = np.sqrt(m2)
     peak = a.max(axis=axis)
     mean_abs = a.mean(axis=axis)
-    m2 = np.mean(x**2, axis=axis)
     tiny = np.finfo(float).tiny
     safe_m2 = np.maximum(m2, tiny)
     out = {
@@ -54,8 +55,8 @@ def time_statistics(x: np.ndarray, *, axis: int = -1) -> dict[str, np.ndarray | 
         "peak": peak,
         "peak_to_peak": np.ptp(x, axis=axis),
         "crest_factor": peak / np.maximum(rms, tiny),
-        "kurtosis": np.mean(x**4, axis=axis) / safe_m2**2,
-        "skewness": np.mean(x**3, axis=axis) / safe_m2**1.5,
+        "kurtosis": np.mean(x2 * x2, axis=axis) / safe_m2**2,
+        "skewness": np.mean(x2 * x, axis=axis) / safe_m2**1.5,
         "shape_factor": rms / np.maximum(mean_abs, tiny),
         "impulse_factor": peak / np.maximum(mean_abs, tiny),
         "clearance_factor": peak / np.maximum(np.mean(np.sqrt(a), axis=axis) ** 2, tiny),
