@@ -507,6 +507,7 @@ def write_report(
 ) -> Path:
     """Write ``report.md`` with the spectrum, envelope spectrum and kurtogram plots."""
     from .plots import plot_kurtogram, plot_spectrum
+    from .waviness import comparison_text
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -552,11 +553,7 @@ def write_report(
         lines += [
             f"Waviness hint: {w['surface']} race, order about {w['order']} (line "
             f"{w['line_hz']} Hz, {w['snr_db']} dB above the floor"
-            + (
-                ""
-                if w.get("over_model_db") is None
-                else f", {w['over_model_db']} dB over the model's healthy share"
-            )
+            + comparison_text(w)
             + f"; {w['note']})",
             "",
         ]

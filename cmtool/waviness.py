@@ -41,6 +41,7 @@ __all__ = [
     "GIVEN_LOAD_FACTORS",
     "WavinessLine",
     "candidate_lines",
+    "comparison_text",
     "healthy_model_spectrum",
     "race_waviness",
 ]
@@ -177,8 +178,9 @@ def race_waviness(
     Returns
     -------
     dict or None
-        ``surface``, ``order``, ``line_hz``, ``snr_db`` and ``over_model_db`` (None without a
-        model) of the strongest flagged line, and ``lines``, every candidate over its floor.
+        ``surface``, ``order``, ``line_hz``, ``snr_db``, ``over_model_db`` (99 where the
+        healthy reference has no such line; None without a reference) and
+        ``healthy_model_has_line`` of the strongest flagged line.
     """
     flagged = []
     for line in candidate_lines(freqs, geometry.ball_count):
@@ -192,7 +194,7 @@ def race_waviness(
             predicted = max(_ratio_db(mf, ma, line, freqs) for mf, ma in model)
             excess = _ratio_db(f, a, line, freqs) - predicted
             if not math.isfinite(excess):
-                excess = 99.0  # the model has no line there at all
+                excess = 99.0  # the healthy reference has no line there at all
             if excess < MODEL_EXCESS_DB:
                 continue
         flagged.append((line, snr, excess))
@@ -206,6 +208,7 @@ def race_waviness(
         "line_hz": round(line.frequency, 3),
         "snr_db": round(snr, 2),
         "over_model_db": None if excess is None else round(min(excess, 99.0), 2),
+        "healthy_model_has_line": None if excess is None else bool(excess < 99.0),
         "note": (
             "a discrete line consistent with waviness of this order (docs/model.md 2.1; "
             + (
@@ -219,3 +222,12 @@ def race_waviness(
             "baseline before acting"
         ),
     }
+
+
+def comparison_text(waviness: dict) -> str:
+    """How a reported waviness line compares with its healthy reference, in words."""
+    if waviness.get("over_model_db") is None:
+        return ""
+    if not waviness.get("healthy_model_has_line", True):
+        return ", where the healthy reference has no line"
+    return f", {waviness['over_model_db']} dB over its healthy share"

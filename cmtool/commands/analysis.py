@@ -22,6 +22,7 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     """Diagnose a recording: verdict, evidence, optional report and JSON."""
     from ..diagnose import diagnose_signal, write_report
     from ..io import read_recording
+    from ..waviness import comparison_text
 
     if args.report and Path(args.report).exists() and not Path(args.report).is_dir():
         raise CliError(f"--report {args.report!r} is a file; give a folder for report.md")
@@ -108,11 +109,7 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
             print(
                 f"  waviness hint: {w['surface']} race order ~{w['order']} at {w['line_hz']} Hz"
                 + ("" if over is None else f", {over:+.1f} dB over the baseline")
-                + (
-                    ""
-                    if w.get("over_model_db") is None
-                    else f", {w['over_model_db']:+.1f} dB over the healthy model's share"
-                )
+                + comparison_text(w)
             )
         if diagnosis.model_verdict:
             print(f"  model: {diagnosis.model_verdict}")
