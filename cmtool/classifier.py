@@ -58,6 +58,7 @@ __all__ = [
     "signal_hashes",
     "training_overlap",
     "TRUSTED_TYPES",
+    "pooled_calibration",
 ]
 
 #: Version of the model file layout (2: skops archive with a training-data fingerprint; 1 was
@@ -225,6 +226,83 @@ def _extrapolation(X, y, frame, estimator) -> dict[str, float]:
     return out
 
 
+def pooled_calibration(
+    frame: pd.DataFrame,
+    X,
+    y,
+    groups,
+    estimator,
+    n_splits: int,
+    left_out: pd.DataFrame | None = None,
+    X_left_out=None,
+) -> dict | None:
+    """Calibration of ``diagnose``'s pooled verdict (rule + this model) on the training data.
+
+    The model's out-of-fold probabilities (grouped folds, as in training; the signals left
+    out of training, faults too faint to learn from, scored by every fold's model and
+    averaged) are pooled with the rule detector's probabilities of the same signals
+    (``cmtool.diagnose``); the pooled verdict's probability is mapped to P(the verdict is
+    right) by a logistic in its log-odds. The left-out signals count: a diagnosis meets
+    them too, and without them the calibration is over-confident. None when every pooled
+    verdict is right (or every one wrong): nothing to fit.
+
+    Returns
+    -------
+    dict or None
+        ``slope``, ``intercept``, ``signals``, and the expected calibration error (10 bins)
+        before and after on these signals (``ece_pooled``, ``ece_calibrated``; in-sample).
+    """
+    from .diagnose import CANONICAL, diagnose_signal, pool_probabilities, rule_probabilities
+
+    classes = np.array(sorted(set(y)))
+    proba = np.zeros((len(y), classes.size))
+    extra = 0 if left_out is None else len(left_out)
+    proba_left_out = np.zeros((extra, classes.size))
+    folds = list(GroupKFold(n_splits=n_splits).split(X, y, groups))
+    for train_idx, test_idx in folds:
+        est = clone(estimator).fit(X[train_idx], y[train_idx])
+        columns = np.searchsorted(classes, est.classes_)
+        proba[np.ix_(test_idx, columns)] = est.predict_proba(X[test_idx])
+        if extra:
+            proba_left_out[:, columns] += est.predict_proba(X_left_out) / len(folds)
+    if extra:
+        frame = pd.concat([frame, left_out], ignore_index=True)
+        proba = np.vstack([proba, proba_left_out])
+    top, right = [], []
+    for i, row in enumerate(frame.itertuples(index=False)):
+        d = diagnose_signal(np.asarray(row.signal), row.fs_hz, row.rpm, row.bearing, waviness=False)
+        pooled = pool_probabilities(
+            rule_probabilities(d.candidates), dict(zip(classes, proba[i], strict=True))
+        )
+        verdict = max(pooled, key=pooled.get)
+        top.append(pooled[verdict])
+        right.append(verdict == CANONICAL.get(str(row.label)))
+    top, right = np.clip(np.array(top), 1e-9, 1 - 1e-9), np.array(right)
+    if right.all() or not right.any():
+        return None
+    logit = np.log(top / (1.0 - top)).reshape(-1, 1)
+    fit = LogisticRegression(C=1e6).fit(logit, right)
+    calibrated = fit.predict_proba(logit)[:, 1]
+    return {
+        "slope": float(fit.coef_[0, 0]),
+        "intercept": float(fit.intercept_[0]),
+        "signals": int(right.size),
+        "ece_pooled": _ece(top, right),
+        "ece_calibrated": _ece(calibrated, right),
+    }
+
+
+def _ece(confidence: np.ndarray, correct: np.ndarray, bins: int = 10) -> float:
+    """Expected calibration error: mean |accuracy - confidence| over equal-width bins."""
+    index = np.clip((confidence * bins).astype(int), 0, bins - 1)
+    total = 0.0
+    for b in range(bins):
+        inside = index == b
+        if inside.any():
+            total += inside.mean() * abs(correct[inside].mean() - confidence[inside].mean())
+    return float(total)
+
+
 def train(
     frame: pd.DataFrame,
     *,
@@ -260,10 +338,12 @@ def train(
     dict
         The model bundle: ``pipeline`` (FeatureExtractor + scaler + best classifier, fitted on
         all data), ``classes``, ``feature_names``, ``scores`` (grouped-CV accuracy of every
-        candidate), ``best``, ``extrapolation``, ``recipe``, ``versions``.
+        candidate), ``best``, ``extrapolation``, ``recipe``, ``versions``, and
+        ``pooled_calibration`` (:func:`pooled_calibration`).
     """
     kept = visible_faults(frame, min_fault_snr_db)
     left_out = int((~kept).sum())
+    faint = frame[~kept.to_numpy()].reset_index(drop=True)
     frame = frame[kept.to_numpy()].reset_index(drop=True)
     X, names = _features(frame, feature_set)
     y = frame["label"].astype(str).to_numpy()
@@ -278,6 +358,10 @@ def train(
         scores[name], cv_predictions[name] = _grouped_cv(X, y, groups, est, n_splits)
     best = max(scores, key=scores.get)
     head = make_pipeline(StandardScaler(), candidate_classifiers(random_state)[best])
+    X_faint = _features(faint, feature_set)[0] if len(faint) else None
+    calibration = pooled_calibration(
+        frame, X, y, groups, head, n_splits, faint if len(faint) else None, X_faint
+    )
     extrapolation = _extrapolation(X, y, frame, head)
     pipeline = make_classifier(best, random_state=random_state, feature_set=feature_set)
     # the feature step is stateless: fit it, then fit the rest on the precomputed table
@@ -302,6 +386,7 @@ def train(
         "signal_duration_s": float(np.median(frame["duration_s"]))
         if "duration_s" in frame.columns
         else None,
+        "pooled_calibration": calibration,
         "cv_labels": y.tolist(),
         "cv_predictions": cv_predictions[best].tolist(),
         "versions": {

@@ -38,7 +38,15 @@ from generators import BearingGeometry, bearing, characteristic_frequencies
 from generators.kinematics import BearingFrequencies
 from generators.params import check_shaft_speed_rpm
 
-__all__ = ["diagnose_signal", "Diagnosis", "write_report", "DETECTION_DB", "FAULTS"]
+__all__ = [
+    "diagnose_signal",
+    "Diagnosis",
+    "write_report",
+    "DETECTION_DB",
+    "FAULTS",
+    "pool_probabilities",
+    "calibrated_confidence",
+]
 
 DETECTION_DB = 12.0
 # Confidences calibrated on simulation only (benchmarks/calibrate_confidence.py: logistic fits
@@ -417,29 +425,59 @@ def rule_probabilities(candidates: list[dict]) -> dict[str, float]:
     return {k: v / total for k, v in scores.items()}
 
 
-def _combine(diagnosis: Diagnosis) -> None:
-    """One verdict from the rule evidence and the model's probabilities (log-linear pooling).
-
-    p(class) proportional to sqrt(p_rule p_model): each source counts as much, and a class
-    that either gives almost no chance stays unlikely. The headline says what the verdict
-    rests on and whether the two agree.
-    """
-    probabilities = diagnosis.model_verdict.get("probabilities")
-    if not probabilities:
-        return
-    model_p = {}
-    for label, value in probabilities.items():
+def _as_verdicts(model_probabilities: dict) -> dict[str, float]:
+    """A model's class probabilities summed per verdict (``CANONICAL``)."""
+    out: dict[str, float] = {}
+    for label, value in model_probabilities.items():
         name = CANONICAL.get(str(label))
         if name is not None:
-            model_p[name] = model_p.get(name, 0.0) + float(value)
-    rule_p = rule_probabilities(diagnosis.candidates)
+            out[name] = out.get(name, 0.0) + float(value)
+    return out
+
+
+def pool_probabilities(rule_p: dict[str, float], model_probabilities: dict) -> dict[str, float]:
+    """Log-linear pooling of the rule's and a model's probabilities over the verdicts.
+
+    p(class) proportional to sqrt(p_rule p_model): each source counts as much, and a class
+    that either gives almost no chance stays unlikely. Model labels are read as verdicts
+    (``CANONICAL``); the result sums to 1.
+    """
+    model_p = _as_verdicts(model_probabilities)
     floor = 1e-6
     pooled = {
         k: math.sqrt(max(rule_p.get(k, 0.0), floor) * max(model_p.get(k, 0.0), floor))
         for k in rule_p
     }
     total = sum(pooled.values())
-    pooled = {k: v / total for k, v in pooled.items()}
+    return {k: v / total for k, v in pooled.items()}
+
+
+def calibrated_confidence(probability: float, calibration: dict | None) -> float:
+    """The pooled verdict's probability through the model's calibration.
+
+    A logistic in the probability's log-odds, fitted by ``cmtool train``
+    (:func:`cmtool.classifier.pooled_calibration`); without one, the probability as it is.
+    """
+    if not calibration:
+        return probability
+    p = min(max(probability, 1e-9), 1.0 - 1e-9)
+    z = calibration["slope"] * math.log(p / (1.0 - p)) + calibration["intercept"]
+    return 1.0 / (1.0 + math.exp(-z))
+
+
+def _combine(diagnosis: Diagnosis) -> None:
+    """One verdict from the rule evidence and the model's probabilities (log-linear pooling).
+
+    The verdict follows :func:`pool_probabilities`; its confidence is calibrated when the
+    model carries a calibration of the pooled verdict (``pooled_calibration``: fitted by
+    ``cmtool train`` on its out-of-fold predictions and the rule evidence of the same
+    training signals). The headline says what the verdict rests on and whether the two agree.
+    """
+    probabilities = diagnosis.model_verdict.get("probabilities")
+    if not probabilities:
+        return
+    model_p = _as_verdicts(probabilities)
+    pooled = pool_probabilities(rule_probabilities(diagnosis.candidates), probabilities)
     verdict = max(pooled, key=pooled.get)
     rule_label = diagnosis.rule_verdict["label"]
     model_label = max(model_p, key=model_p.get) if model_p else rule_label
@@ -452,8 +490,11 @@ def _combine(diagnosis: Diagnosis) -> None:
             f"({model_p[model_label]:.2f}): they disagree; the verdict follows their pooled "
             "probabilities"
         )
+    calibration = diagnosis.model_verdict.get("pooled_calibration")
+    if calibration:
+        basis += "; confidence calibrated on the model's out-of-fold training signals"
     diagnosis.verdict = verdict
-    diagnosis.confidence = round(pooled[verdict], 4)
+    diagnosis.confidence = round(calibrated_confidence(pooled[verdict], calibration), 4)
     diagnosis.basis = basis
     diagnosis.probabilities = {k: round(v, 4) for k, v in pooled.items()}
 
@@ -491,6 +532,8 @@ def model_verdict(model, x, fs, freqs: BearingFrequencies, extra: dict) -> dict:
         {"signal": segments, **{k: [v] * len(segments) for k, v in context.items()}}
     )
     out: dict = {"segments": len(segments)}
+    if isinstance(model, dict) and model.get("pooled_calibration"):
+        out["pooled_calibration"] = model["pooled_calibration"]
     if hasattr(pipeline, "predict_proba"):
         proba = pipeline.predict_proba(frame).mean(axis=0)
         classes = [str(c) for c in pipeline.classes_]

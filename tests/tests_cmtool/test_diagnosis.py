@@ -316,7 +316,7 @@ def test_simulated_healthy_bearings_are_healthy_and_slipping_pits_are_found(smal
 
 
 def test_rule_and_model_give_one_verdict_that_says_what_it_rests_on(bundle, small):
-    from cmtool.diagnose import rule_probabilities
+    from cmtool.diagnose import calibrated_confidence, rule_probabilities
 
     row = small[small["label"] == "healthy"].iloc[0]
     d = diagnose_signal(row["signal"], row["fs_hz"], row["rpm"], "6205", model=bundle)
@@ -324,7 +324,11 @@ def test_rule_and_model_give_one_verdict_that_says_what_it_rests_on(bundle, smal
     assert set(d.probabilities) == {"healthy", "inner race", "outer race", "ball"}
     assert sum(d.probabilities.values()) == pytest.approx(1.0, abs=1e-3)
     assert d.verdict == max(d.probabilities, key=d.probabilities.get)
-    assert d.confidence == d.probabilities[d.verdict]
+    # the pooled verdict's confidence goes through the model's own calibration
+    calibration = bundle.get("pooled_calibration")
+    expected = calibrated_confidence(d.probabilities[d.verdict], calibration)
+    assert d.confidence == pytest.approx(expected, abs=2e-3)
+    assert ("calibrated" in d.basis) == bool(calibration)
     model_says = {"healthy": "healthy"}.get(d.model_verdict["label"], d.model_verdict["label"])
     assert ("agree" in d.basis) == (model_says == "healthy")
     # the rule's own probabilities: a clear line makes its fault likely, none makes healthy
@@ -408,3 +412,19 @@ def test_race_waviness_without_a_baseline_is_judged_against_the_models_healthy_l
     assert outer.waviness["surface"] == "outer" and outer.waviness["order"] == 18
     # a line the healthy bearing also has (2 BPFO): over the largest healthy share of 125-2000 N
     assert outer.waviness["over_model_db"] > MODEL_EXCESS_DB
+
+
+def test_the_pooled_verdicts_confidence_is_calibrated_at_training(bundle, small):
+    """``cmtool train`` fits P(the pooled verdict is right) on its out-of-fold predictions and
+    the rule evidence of every signal, the faint faults left out of training included."""
+    from cmtool.diagnose import calibrated_confidence
+
+    calibration = bundle["pooled_calibration"]
+    assert calibration["signals"] == len(small)
+    assert calibration["slope"] > 0  # a more probable pooled verdict is more often right
+    # the logistic fit does not make the in-sample calibration worse (10-bin ECE)
+    assert calibration["ece_calibrated"] <= calibration["ece_pooled"] + 0.02
+    # the mapping: identity without a calibration, monotone with one, inside (0, 1)
+    assert calibrated_confidence(0.37, None) == 0.37
+    values = [calibrated_confidence(p, calibration) for p in (0.3, 0.5, 0.7, 0.9, 0.99)]
+    assert all(0.0 < v < 1.0 for v in values) and values == sorted(values)
