@@ -410,8 +410,13 @@ def line_false_alarm(ratio_db: float, searched_bins: int, floor_bins: int) -> fl
     float
         P in [1e-300, 1].
     """
-    curve = _log_exceedance_curve(max(1, int(searched_bins)), max(3, int(floor_bins)))
-    return float(np.exp(np.interp(ratio_db, _CURVE_DB, curve, left=0.0)))
+    if ratio_db <= 0.0:
+        return 1.0
+    k = 10.0 ** ((ratio_db - CALIBRATION_DB) / 20.0) * _RAYLEIGH_MEDIAN
+    # evaluated directly (a curve per bin count would be built for every harmonic and
+    # sideband, each searched over its own number of bins)
+    p = _exceedance(k, max(1, int(searched_bins)), max(3, max(3, int(floor_bins)) // 2))
+    return float(min(1.0, max(p, _SMALLEST_P)))
 
 
 def ratio_for_false_alarm(
