@@ -290,8 +290,18 @@ def candidate_bands(
     return out
 
 
-def _exceedance(k: float, searched_bins: int, floor_bins: int) -> float:
-    """P(max of ``searched_bins`` Rayleigh bins > k x the median of ``floor_bins`` others)."""
+def _independent_floor_bins(floor_bins: int) -> int:
+    """Independent values among a floor's bins: about half of them, at least 3.
+
+    A Hann-windowed spectrum's neighbouring bins are correlated (equivalent noise bandwidth
+    1.5 bins).
+    """
+    return max(3, int(floor_bins) // 2)
+
+
+@functools.lru_cache(maxsize=64)
+def _median_density(floor_bins: int) -> tuple[np.ndarray, np.ndarray]:
+    """Grid x [sigma] and the density of the median of ``floor_bins`` Rayleigh bins on it."""
     x = np.linspace(1e-6, 8.0, 4001)
     cdf = -np.expm1(-0.5 * x * x)
     pdf = x * np.exp(-0.5 * x * x)
@@ -302,8 +312,24 @@ def _exceedance(k: float, searched_bins: int, floor_bins: int) -> float:
             log_norm + (r - 1) * np.log(cdf) + (floor_bins - r) * np.log1p(-cdf) + np.log(pdf)
         )
     density = np.exp(log_density)
-    above = -np.expm1(searched_bins * np.log1p(-np.exp(-0.5 * (k * x) ** 2)))
-    return float(np.sum(above * density) * (x[1] - x[0]))
+    x.flags.writeable = density.flags.writeable = False
+    return x, density
+
+
+def _exceedance(k, searched_bins: int, floor_bins: int):
+    """P(max of ``searched_bins`` Rayleigh bins > k x the median of ``floor_bins`` others).
+
+    ``k`` a float or an array of them (the result has its shape).
+    """
+    x, density = _median_density(floor_bins)
+    k = np.asarray(k, dtype=float)
+    flat = np.atleast_1d(k).ravel()
+    out = np.empty(flat.size)
+    for start in range(0, flat.size, 200):
+        kk = flat[start : start + 200, None]
+        above = -np.expm1(searched_bins * np.log1p(-np.exp(-0.5 * (kk * x) ** 2)))
+        out[start : start + 200] = np.sum(above * density, axis=1) * (x[1] - x[0])
+    return float(out[0]) if k.ndim == 0 else out.reshape(k.shape)
 
 
 def detection_threshold_db(
@@ -348,9 +374,7 @@ def detection_threshold_db(
         return 20.0 * math.log10(k) + CALIBRATION_DB
     if floor_bins < 3:
         raise FeatureError(f"floor_bins = {floor_bins} is outside the allowed range [3, inf)")
-    # a Hann-windowed spectrum's neighbouring bins are correlated (equivalent noise bandwidth
-    # 1.5 bins): the floor's median rests on about half as many independent values
-    floor_bins = max(3, floor_bins // 2)
+    floor_bins = _independent_floor_bins(floor_bins)
     target = false_alarm / n_bands
     low, high = 1.0, 4.0 * k
     for _ in range(60):  # bisection on log k: the exceedance falls monotonically with k
@@ -371,24 +395,9 @@ _SMALLEST_P = 1e-300
 @functools.lru_cache(maxsize=64)
 def _log_exceedance_curve(searched_bins: int, floor_bins: int) -> np.ndarray:
     """The log of P(noise line >= r) on ``_CURVE_DB``, modelled as the threshold is."""
-    x = np.linspace(1e-6, 8.0, 4001)
-    cdf = -np.expm1(-0.5 * x * x)
-    pdf = x * np.exp(-0.5 * x * x)
-    floor_bins = max(3, floor_bins // 2)  # correlated Hann bins, as in the threshold
-    r = (floor_bins + 1) // 2
-    log_norm = math.lgamma(floor_bins + 1) - math.lgamma(r) - math.lgamma(floor_bins - r + 1)
-    with np.errstate(divide="ignore"):
-        log_density = (
-            log_norm + (r - 1) * np.log(cdf) + (floor_bins - r) * np.log1p(-cdf) + np.log(pdf)
-        )
-    weights = np.exp(log_density) * (x[1] - x[0])
     k = 10.0 ** ((_CURVE_DB - CALIBRATION_DB) / 20.0) * _RAYLEIGH_MEDIAN
-    out = np.empty(k.size)
-    for start in range(0, k.size, 200):
-        kk = k[start : start + 200, None]
-        above = -np.expm1(searched_bins * np.log1p(-np.exp(-0.5 * (kk * x) ** 2)))
-        out[start : start + 200] = above @ weights
-    return np.log(np.clip(out, _SMALLEST_P, 1.0))
+    p = _exceedance(k, searched_bins, _independent_floor_bins(floor_bins))
+    return np.log(np.clip(p, _SMALLEST_P, 1.0))
 
 
 def line_false_alarm(ratio_db: float, searched_bins: int, floor_bins: int) -> float:
@@ -415,7 +424,7 @@ def line_false_alarm(ratio_db: float, searched_bins: int, floor_bins: int) -> fl
     k = 10.0 ** ((ratio_db - CALIBRATION_DB) / 20.0) * _RAYLEIGH_MEDIAN
     # evaluated directly (a curve per bin count would be built for every harmonic and
     # sideband, each searched over its own number of bins)
-    p = _exceedance(k, max(1, int(searched_bins)), max(3, max(3, int(floor_bins)) // 2))
+    p = _exceedance(k, max(1, int(searched_bins)), _independent_floor_bins(floor_bins))
     return float(min(1.0, max(p, _SMALLEST_P)))
 
 
