@@ -26,16 +26,15 @@ The chosen step and its error estimate are recorded in the result's parameter re
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import math
 from collections import OrderedDict
 
 import numpy as np
 
-from . import _integrators
-from . import _kernels as K
-from .decimation import decimate
-from .steps import defect_step, rk4_schedule, stability_step
+from ._validate import SimulationDivergedError
+from .steps import defect_step, stability_step
 
 __all__ = ["PILOT_PERIODS", "LINE_RANGE", "MAX_TRIALS", "error_bound_step", "line_error"]
 
@@ -54,6 +53,8 @@ LINE_RANGE = 1e-2
 MAX_TRIALS = 4
 #: Margin on the extrapolated step.
 MARGIN = 0.9
+#: The channel the pilots compare.
+PILOT_CHANNEL = "housing_acceleration_y"
 #: Longest step considered [s] (the settings' own upper limit).
 LONGEST_STEP = 1e-3
 
@@ -115,34 +116,27 @@ def line_error(reference: np.ndarray, other: np.ndarray, fs: float, lines: np.nd
     return float(np.max(np.abs(amp[keep, 1] - amp[keep, 0]) / size[keep]))
 
 
-def _pilot(
-    prep, step: float, record_dt: float, oversample: int, n_record: int
-) -> np.ndarray | None:
-    """Housing acceleration (y) of a pilot run at ``step``, at the output rate (None: diverged)."""
-    dt, n_steps, t_first = rk4_schedule(step, record_dt, prep.settings.settle_time, n_record)
-    state = np.zeros((n_record, K.N_OUT_STATE))
-    accel = np.zeros((n_record, K.N_OUT_ACCEL))
-    loads = np.zeros((1, 2, prep.geometry.ball_count))
-    status, _, _ = _integrators._rk4(
-        prep.scene_code,
-        int(prep.ehl),
-        prep.y0,
-        prep.p,
-        prep.wav,
-        0.0,
-        dt,
-        n_steps,
-        t_first,
-        record_dt,
-        n_record,
-        state,
-        accel,
-        loads,
-        False,
+def _pilot(prep, step: float, oversample: int, n_out: int) -> np.ndarray | None:
+    """Housing acceleration (y) of ``prep`` run at ``step``, as the run itself is made.
+
+    ``n_out`` output samples after its settling, recorded and decimated by
+    :func:`generators.model.integrate` (None: it diverged).
+    """
+    from .model import integrate  # model -> prepared -> here: imported when a pilot runs
+
+    settings = dataclasses.replace(
+        prep.settings,
+        step=step,
+        error_bound=None,
+        duration=n_out / prep.settings.fs,
+        oversample=oversample,
+        channels=(PILOT_CHANNEL,),
+        record_contact_loads=False,
     )
-    if status != K.STATUS_OK:
+    try:
+        return integrate(dataclasses.replace(prep, settings=settings))[PILOT_CHANNEL]
+    except SimulationDivergedError:
         return None
-    return decimate(state, accel, oversample, ("housing_acceleration_y",))["housing_acceleration_y"]
 
 
 def _key(prep, bound: float, oversample: int) -> str:
@@ -182,13 +176,11 @@ def error_bound_step(prep, bound: float, oversample: int) -> tuple[float, float]
     slowest = float(lines.min()) if lines.size else 10.0
     window = max(min(prep.settings.duration, PILOT_MAX_DURATION), PILOT_PERIODS / slowest)
     n_out = int(math.ceil(window * fs))
-    record_dt = 1.0 / (fs * oversample)
-    n_record = n_out * oversample
     stable = stability_step(prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0)
     step = min(LONGEST_STEP, stable, defect_step(prep.p, prep.wav))
     error, order = math.inf, 4.0
     for trial in range(MAX_TRIALS + 8):
-        runs = [_pilot(prep, step / 2**k, record_dt, oversample, n_record) for k in range(3)]
+        runs = [_pilot(prep, step / 2**k, oversample, n_out) for k in range(3)]
         if any(r is None for r in runs):
             step *= 0.5
             continue
