@@ -83,20 +83,9 @@ def _fit(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
     return 1.0 / slope, -intercept / slope
 
 
-def expected_calibration_error(confidence: np.ndarray, correct: np.ndarray, bins: int = 10):
-    """Mean |accuracy - confidence| over equal-width confidence bins, weighted by count."""
-    edges = np.linspace(0.0, 1.0, bins + 1)
-    index = np.clip(np.digitize(confidence, edges) - 1, 0, bins - 1)
-    total = 0.0
-    for b in range(bins):
-        inside = index == b
-        if inside.any():
-            total += inside.mean() * abs(correct[inside].mean() - confidence[inside].mean())
-    return total
-
-
 def main() -> None:
     from cmtool import diagnose as D
+    from cmtool.classifier import expected_calibration_error
 
     calibration = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "out" / "calibration"
     benchmark = Path(sys.argv[2]) if len(sys.argv) > 2 else ROOT / "out" / "detector-bench"

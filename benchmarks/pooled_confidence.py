@@ -17,13 +17,9 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-from calibrate_confidence import expected_calibration_error  # noqa: E402
-
 
 def main(model_path: str, dataset: str) -> None:
-    from cmtool.classifier import load_model
+    from cmtool.classifier import expected_calibration_error, load_model
     from cmtool.datasets import read_dataset
     from cmtool.diagnose import CANONICAL, diagnose_signal
 

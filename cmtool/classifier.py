@@ -59,6 +59,7 @@ __all__ = [
     "training_overlap",
     "TRUSTED_TYPES",
     "pooled_calibration",
+    "expected_calibration_error",
 ]
 
 #: Version of the model file layout (2: skops archive with a training-data fingerprint; 1 was
@@ -287,14 +288,32 @@ def pooled_calibration(
         "slope": float(fit.coef_[0, 0]),
         "intercept": float(fit.intercept_[0]),
         "signals": int(right.size),
-        "ece_pooled": _ece(top, right),
-        "ece_calibrated": _ece(calibrated, right),
+        "ece_pooled": expected_calibration_error(top, right),
+        "ece_calibrated": expected_calibration_error(calibrated, right),
     }
 
 
-def _ece(confidence: np.ndarray, correct: np.ndarray, bins: int = 10) -> float:
-    """Expected calibration error: mean |accuracy - confidence| over equal-width bins."""
-    index = np.clip((confidence * bins).astype(int), 0, bins - 1)
+def expected_calibration_error(
+    confidence: np.ndarray, correct: np.ndarray, bins: int = 10
+) -> float:
+    """Mean |accuracy - confidence| over equal-width confidence bins, weighted by count.
+
+    Parameters
+    ----------
+    confidence : ndarray
+        Stated confidences in [0, 1].
+    correct : ndarray of bool
+        Whether each answer was right.
+    bins : int
+        Equal-width bins over [0, 1].
+
+    Returns
+    -------
+    float
+        The expected calibration error (0: calibrated).
+    """
+    edges = np.linspace(0.0, 1.0, bins + 1)
+    index = np.clip(np.digitize(confidence, edges) - 1, 0, bins - 1)
     total = 0.0
     for b in range(bins):
         inside = index == b
