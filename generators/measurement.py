@@ -124,15 +124,44 @@ LEAD_IN_S = 0.25
 
 
 def _causal(sos: np.ndarray, x: np.ndarray, fs: float) -> np.ndarray:
-    """``sosfilt`` as if the signal had been running: over a lead-in, started in steady state."""
+    """``sosfilt`` as if the signal had been running: over a lead-in, started in steady state.
+
+    ``x`` is one record or a stack of records (filtered along the last axis).
+    """
     x = np.asarray(x, dtype=float)
-    pad = min(x.size - 1, int(round(LEAD_IN_S * fs)))
+    n = x.shape[-1]
+    pad = min(n - 1, int(round(LEAD_IN_S * fs)))
     if pad < 1:
-        return sp_signal.sosfilt(sos, x)
-    lead = 2.0 * x[0] - x[pad:0:-1]
-    padded = np.concatenate([lead, x])
-    zi = sp_signal.sosfilt_zi(sos) * padded[0]
-    return sp_signal.sosfilt(sos, padded, zi=zi)[0][pad:]
+        return sp_signal.sosfilt(sos, x, axis=-1)
+    lead = 2.0 * x[..., :1] - x[..., pad:0:-1]
+    padded = np.concatenate([lead, x], axis=-1)
+    zi = sp_signal.sosfilt_zi(sos)  # (sections, 2)
+    zi = zi.reshape(zi.shape[:1] + (1,) * (x.ndim - 1) + zi.shape[1:]) * padded[None, ..., :1]
+    return sp_signal.sosfilt(sos, padded, axis=-1, zi=zi)[0][..., pad:]
+
+
+def _bilinear_biquad(num: tuple[float, float], den: tuple[float, float], fs: float) -> np.ndarray:
+    """One second-order section of H(s) = (num[0] s + num[1]) / (s^2 + den[0] s + den[1]).
+
+    The bilinear transform s = 2 fs (1 - 1/z) / (1 + 1/z) in closed form (what
+    ``scipy.signal.bilinear`` and ``tf2sos`` give, without their polynomial arithmetic).
+    """
+    k = 2.0 * fs
+    b1, b0 = num
+    a1, a0 = den
+    norm = k * k + a1 * k + a0
+    return np.array(
+        [
+            [
+                (b1 * k + b0) / norm,
+                2.0 * b0 / norm,
+                (b0 - b1 * k) / norm,
+                1.0,
+                (2.0 * a0 - 2.0 * k * k) / norm,
+                (k * k - a1 * k + a0) / norm,
+            ]
+        ]
+    )
 
 
 def _prewarped(frequency: float, fs: float) -> float:
@@ -146,8 +175,7 @@ def _band_pass(fs: float, frequency: float, damping: float) -> np.ndarray:
     Bilinear, with w pre-warped so that the digital peak lies at ``frequency`` [Hz].
     """
     w = _prewarped(frequency, fs)
-    b, a = sp_signal.bilinear([2 * damping * w, 0.0], [1.0, 2 * damping * w, w * w], fs)
-    return sp_signal.tf2sos(b, a)
+    return _bilinear_biquad((2.0 * damping * w, 0.0), (2.0 * damping * w, w * w), fs)
 
 
 def transfer_path(x: np.ndarray, fs: float, modes: tuple[StructuralMode, ...]) -> np.ndarray:
@@ -156,7 +184,8 @@ def transfer_path(x: np.ndarray, fs: float, modes: tuple[StructuralMode, ...]) -
     Parameters
     ----------
     x : ndarray
-        Signal at the bearing (any unit) sampled at ``fs`` [Hz].
+        Signal at the bearing (any unit) sampled at ``fs`` [Hz], or a stack of such signals
+        (time along the last axis).
     fs : float
         Sample rate [Hz].
     modes : tuple of StructuralMode
@@ -202,8 +231,7 @@ def sensor_response(x: np.ndarray, fs: float, resonance: float, damping: float) 
     if resonance >= 0.45 * fs:
         return np.asarray(x, dtype=float).copy()
     w = _prewarped(resonance, fs)
-    b, a = sp_signal.bilinear([w * w], [1.0, 2 * damping * w, w * w], fs)
-    return _causal(sp_signal.tf2sos(b, a), x, fs)
+    return _causal(_bilinear_biquad((0.0, w * w), (2.0 * damping * w, w * w), fs), x, fs)
 
 
 def anti_alias_filter(x: np.ndarray, fs: float, cutoff: float, order: int = 8) -> np.ndarray:
@@ -307,6 +335,23 @@ def machine_background(
     return y
 
 
+def _welch(x: np.ndarray, fs: float, nperseg: int) -> tuple[np.ndarray, np.ndarray]:
+    """One-sided Welch PSD as ``scipy.signal.welch(x, fs, nperseg=nperseg)`` computes it.
+
+    Periodic Hann window, half overlap, each segment's mean removed, density scaling, segments
+    averaged: every segment at once (scipy 1.17's Welch detrends segment by segment in Python,
+    which made it most of the measurement chain's cost).
+    """
+    x = np.asarray(x, dtype=float)
+    step = nperseg - nperseg // 2
+    frames = np.lib.stride_tricks.sliding_window_view(x, nperseg)[::step]
+    window = sp_signal.get_window("hann", nperseg)
+    spectra = np.fft.rfft((frames - frames.mean(axis=1, keepdims=True)) * window, axis=1)
+    psd = np.mean(spectra.real**2 + spectra.imag**2, axis=0) / (fs * float(np.sum(window**2)))
+    psd[1 : nperseg // 2 + (nperseg % 2)] *= 2.0  # one-sided: all but DC (and Nyquist)
+    return np.fft.rfftfreq(nperseg, 1.0 / fs), psd
+
+
 def band_power(x: np.ndarray, fs: float, band: tuple[float, float]) -> float:
     """Mean power of ``x`` in ``band`` [Hz] (Welch PSD integrated over the band).
 
@@ -324,7 +369,7 @@ def band_power(x: np.ndarray, fs: float, band: tuple[float, float]) -> float:
     float
         Power in the band, in the unit of ``x`` squared.
     """
-    f, psd = sp_signal.welch(x, fs, nperseg=min(512, len(x)))
+    f, psd = _welch(x, fs, min(512, len(x)))
     keep = (f >= band[0]) & (f <= band[1])
     return float(np.sum(psd[keep]) * (f[1] - f[0]))
 
@@ -347,7 +392,7 @@ def fault_band(signature: np.ndarray, fs: float) -> tuple[float, float]:
     (float, float)
         Band edges [Hz].
     """
-    f, psd = sp_signal.welch(signature, fs, nperseg=min(512, len(signature)))
+    f, psd = _welch(signature, fs, min(512, len(signature)))
     usable = (f > 0.02 * fs) & (f < 0.45 * fs)
     centre = float(f[usable][np.argmax(psd[usable])])
     low, high = centre / math.sqrt(2.0), centre * math.sqrt(2.0)

@@ -254,8 +254,10 @@ def _finish_realistic(
         )
         for _ in range(_pick(sensor.get("modes"), rng, 0, integer=True))
     )
-    at_sensor = transfer_path(x, fs, modes)
-    healthy_at_sensor = at_sensor if healthy is x else transfer_path(healthy, fs, modes)
+    if healthy is x:
+        at_sensor = healthy_at_sensor = transfer_path(x, fs, modes)
+    else:  # both records through the structure in one pass
+        at_sensor, healthy_at_sensor = transfer_path(np.stack([x, healthy]), fs, modes)
     reference = float(np.sqrt(np.mean(healthy_at_sensor**2))) or 1e-12
 
     def level(key: str, default_db: float | None) -> float:
