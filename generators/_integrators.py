@@ -27,6 +27,7 @@ from generators._kernels import (
     STATUS_TOO_MANY_STEPS,
     _advance,
     _check,
+    _defect_near,
     _phase_steps,
     _phases,
     _record,
@@ -100,11 +101,14 @@ def _rk4_impl(
     out_accel,
     out_loads,
     record_loads,
+    fine_steps,
 ):
     """Classical RK4 with a fixed step and cubic Hermite dense output.
 
     Records at ``t_first + k * record_dt`` (k < n_record), interpolating inside the step that
     contains each record time, so the step may be longer or shorter than the record interval.
+    A step in which a contact meets a local defect (:func:`_defect_near`) is taken as
+    ``fine_steps`` shorter ones (1: never).
     The right-hand side at the end of a step is the first stage of the next (computed once).
     Returns (status, time, state): the state at that time (a later call continues from it).
     """
@@ -126,10 +130,12 @@ def _rk4_impl(
     loads = np.zeros((2, z))
     loads_start = np.zeros((2, z))
     scratch = _scratch(z)
-    half = 0.5 * dt
     next_rec = 0
     trig = _trig(wav)
-    inc = _phase_steps(p, wav, half)
+    inc = _phase_steps(p, wav, 0.5 * dt)
+    # steps in which a contact meets a local defect are taken as fine_steps shorter ones
+    inc_fine = _phase_steps(p, wav, 0.5 * dt / fine_steps) if fine_steps > 1 else inc
+    anchor = False
     _time_terms_at(t0, p, wav, trig, scratch)
     _rhs(scene, ehl, y, p, wav, k1, loads, scratch)
     if record_loads:
@@ -137,48 +143,59 @@ def _rk4_impl(
     t = t0
     for step in range(n_steps):
         t = t0 + step * dt
-        if step % PHASE_ANCHOR == 0:
+        if step % PHASE_ANCHOR == 0 or anchor:
             _phases(t, p, wav, trig)  # exact every PHASE_ANCHOR steps, rotated between
-        for stage in range(4):
-            if stage == 0:
-                _advance(trig, inc)
-                _time_terms(t + half, p, wav, trig, scratch)
-                for i in range(n):
-                    tmp[i] = y[i] + half * ks[0, i]
-            elif stage == 1:
-                for i in range(n):
-                    tmp[i] = y[i] + half * ks[1, i]
-            elif stage == 2:
-                _advance(trig, inc)
-                _time_terms(t + dt, p, wav, trig, scratch)
-                for i in range(n):
-                    tmp[i] = y[i] + dt * ks[2, i]
-            else:
-                for i in range(n):
-                    tmp[i] = y[i] + dt / 6.0 * (
-                        ks[0, i] + 2.0 * ks[1, i] + 2.0 * ks[2, i] + ks[3, i]
-                    )
-            _rhs_inline(scene, ehl, tmp, p, wav, ks[stage + 1], loads, scratch)
-        for i in range(n):
-            y1[i] = tmp[i]
-        while next_rec < n_record:
-            theta = (t_first + next_rec * record_dt - t) / dt
-            if theta >= 1.0 - 1e-9:
-                break
-            if theta < 0.0:
-                theta = 0.0
-            _hermite_record(y, k1, y1, f1, dt, theta, nd, next_rec, out_state, out_accel, tmp, acc)
+        subs = 1
+        if fine_steps > 1 and _defect_near(wav, p, t, 1.5 * dt, scratch):
+            subs = fine_steps
+        anchor = subs > 1
+        h = dt / subs
+        half = 0.5 * h
+        step_inc = inc_fine if subs > 1 else inc
+        for sub in range(subs):
+            ts = t + sub * h
+            for stage in range(4):
+                if stage == 0:
+                    _advance(trig, step_inc)
+                    _time_terms(ts + half, p, wav, trig, scratch)
+                    for i in range(n):
+                        tmp[i] = y[i] + half * ks[0, i]
+                elif stage == 1:
+                    for i in range(n):
+                        tmp[i] = y[i] + half * ks[1, i]
+                elif stage == 2:
+                    _advance(trig, step_inc)
+                    _time_terms(ts + h, p, wav, trig, scratch)
+                    for i in range(n):
+                        tmp[i] = y[i] + h * ks[2, i]
+                else:
+                    for i in range(n):
+                        tmp[i] = y[i] + h / 6.0 * (
+                            ks[0, i] + 2.0 * ks[1, i] + 2.0 * ks[2, i] + ks[3, i]
+                        )
+                _rhs_inline(scene, ehl, tmp, p, wav, ks[stage + 1], loads, scratch)
+            for i in range(n):
+                y1[i] = tmp[i]
+            while next_rec < n_record:
+                theta = (t_first + next_rec * record_dt - ts) / h
+                if theta >= 1.0 - 1e-9:
+                    break
+                if theta < 0.0:
+                    theta = 0.0
+                _hermite_record(
+                    y, k1, y1, f1, h, theta, nd, next_rec, out_state, out_accel, tmp, acc
+                )
+                if record_loads:
+                    for j in range(z):  # loads at the nearer end of the step
+                        src = loads_start if theta < 0.5 else loads
+                        out_loads[next_rec, 0, j] = src[0, j]
+                        out_loads[next_rec, 1, j] = src[1, j]
+                next_rec += 1
+            for i in range(n):
+                y[i] = y1[i]
+                k1[i] = f1[i]
             if record_loads:
-                for j in range(z):  # loads at the nearer end of the step
-                    src = loads_start if theta < 0.5 else loads
-                    out_loads[next_rec, 0, j] = src[0, j]
-                    out_loads[next_rec, 1, j] = src[1, j]
-            next_rec += 1
-        for i in range(n):
-            y[i] = y1[i]
-            k1[i] = f1[i]
-        if record_loads:
-            loads_start[:, :] = loads
+                loads_start[:, :] = loads
         if step % 64 == 0 or next_rec >= n_record:
             status = _check(y, nd, limit)
             if status != STATUS_OK:
@@ -427,6 +444,7 @@ def _rk4_entry(scene: int, ehl: int):
         out_accel,
         out_loads,
         record_loads,
+        fine_steps,
     ):
         return _rk4_impl(
             scene,
@@ -444,6 +462,7 @@ def _rk4_entry(scene: int, ehl: int):
             out_accel,
             out_loads,
             record_loads,
+            fine_steps,
         )
 
     return _specialised(entry, "rk4", scene, ehl)

@@ -486,6 +486,53 @@ def _defect(wav, r, surface, z, theta0, shaft_angle, t, wc, ws, wb, slipping, ou
             _pit(delta, half, depth, radius, bridge, rate - ws, 1.0, 0.0, out, 2, j)
 
 
+@numba.njit(**_JIT)
+def _defect_near(wav, p, t, horizon, scratch):
+    """Whether a contact is over a local defect at ``t`` or can reach one within ``horizon`` [s].
+
+    The contact angles of :func:`_defect` at ``t`` (slip angles and rates from ``scratch``,
+    which must hold the time terms of ``t``): a contact at angle delta from a pit of half width
+    w moving at rate r is near when |delta| < w + |r| horizon. The RK4 loop subdivides the steps
+    in which one is (``fine_steps``): the pit's path is resolved where it acts, and the step
+    elsewhere is the scene's.
+    """
+    z = int(p[P_BALL_COUNT])
+    wc, ws, wb = p[P_CAGE_SPEED], p[P_SHAFT_SPEED], p[P_BALL_SPIN_SPEED]
+    theta0 = p[P_CAGE_ANGLE0] + wc * t
+    shaft_angle = p[P_SHAFT_ANGLE0] + ws * t
+    slipping = wav.shape[0] > 0 and int(wav[wav.shape[0] - 1, W_SURFACE]) == SURF_SLIP
+    pitch = 2.0 * math.pi / z
+    for r in range(wav.shape[0]):
+        surface = int(wav[r, W_SURFACE])
+        if surface < SURF_OUTER_DEFECT or surface == SURF_SLIP:
+            continue
+        half, pos = wav[r, W_HALF_WIDTH], wav[r, W_POSITION]
+        if surface == SURF_BALL_DEFECT_OUTER or surface == SURF_BALL_DEFECT_INNER:
+            j = int(wav[r, W_BALL])
+            if _track_factor(wav, r, t)[0] == 0.0:  # off the contact track (it turns slowly)
+                continue
+            chi = wb * t if surface == SURF_BALL_DEFECT_OUTER else wb * t + math.pi
+            spin = wb
+            if slipping:
+                chi -= scratch[SLIP_LAG, j] * wb / wc
+                spin -= scratch[SLIP_LAG + 1, j] * wb / wc
+            if abs(_wrap(chi - pos)) < half + abs(spin) * horizon:
+                return True
+            continue
+        for j in range(z):
+            theta = theta0 + j * pitch
+            rate = wc
+            if slipping:
+                theta -= scratch[SLIP_LAG, j]
+                rate -= scratch[SLIP_LAG + 1, j]
+            if surface == SURF_INNER_DEFECT:
+                theta -= shaft_angle
+                rate -= ws
+            if abs(_wrap(theta - pos)) < half + abs(rate) * horizon:
+                return True
+    return False
+
+
 @numba.njit(**_JIT_INLINE)
 def _waviness(wav, z, theta0, shaft_angle, t, p, trig, out):
     """Waviness seen by ball j: ``out[:, j] = [w_o, dw_o, w_i, dw_i, wb_o, dwb_o, wb_i, dwb_i]``.

@@ -248,8 +248,11 @@ def _run_rk4(prep: Prepared, plan: Plan, record: _Record) -> tuple[int, float, d
         record.accel,
         record.loads,
         record.with_loads,
+        plan.fine_steps,
     )
     stats = {"step_s": plan.dt, "steps": plan.n_steps}
+    if plan.fine_steps > 1:
+        stats["defect_step_s"] = plan.dt / plan.fine_steps  # near a local defect
     if prep.settings.error_bound and prep.settings.step is None:
         stats["error_bound"] = prep.settings.error_bound
         stats["line_error_estimate"] = plan.error_estimate

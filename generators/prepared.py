@@ -37,7 +37,7 @@ from .params import (
 )
 from .start import static_state
 from .static import static_load_distribution
-from .steps import default_oversample, default_step, rk4_schedule
+from .steps import default_oversample, default_step, defect_substeps, rk4_schedule
 
 SCENE_CODES = {"shaft": K.SCENE_SHAFT, "shaft+housing": K.SCENE_SHAFT_HOUSING, "full": K.SCENE_FULL}
 
@@ -293,6 +293,7 @@ class Plan:
     n_steps: int
     t_first: float
     error_estimate: float = math.nan  # relative line error at dt, when chosen for a bound
+    fine_steps: int = 1  # steps near a local defect split into this many (automatic step only)
 
 
 def plan_run(prep: Prepared) -> Plan:
@@ -300,6 +301,7 @@ def plan_run(prep: Prepared) -> Plan:
     settings = prep.settings
     step = None
     error = math.nan
+    refine = False
     oversample = settings.oversample
     if settings.integrator == "rk4" and settings.step is None and settings.error_bound:
         from .accuracy import error_bound_step  # the pilots need the kernels' entry points
@@ -312,6 +314,7 @@ def plan_run(prep: Prepared) -> Plan:
         step = settings.step or default_step(
             prep.scene_name, prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0
         )
+        refine = settings.step is None  # an explicit step is taken everywhere, as given
     oversample = oversample or default_oversample(step, settings.fs)
     record_dt = 1.0 / (settings.fs * oversample)
     n_out = int(round(settings.duration * settings.fs))
@@ -319,7 +322,8 @@ def plan_run(prep: Prepared) -> Plan:
     if step is None:
         return Plan(oversample, record_dt, n_out, n_record, math.nan, 0, settings.settle_time)
     dt, n_steps, t_first = rk4_schedule(step, record_dt, settings.settle_time, n_record)
-    return Plan(oversample, record_dt, n_out, n_record, dt, n_steps, t_first, error)
+    fine = defect_substeps(dt, prep.p, prep.wav) if refine else 1
+    return Plan(oversample, record_dt, n_out, n_record, dt, n_steps, t_first, error, fine)
 
 
 def diverged_error(prep: Prepared, status: int, t_fail: float) -> SimulationDivergedError:

@@ -100,7 +100,8 @@ class SignalStream:
         self.frequencies = prep.freqs or BearingFrequencies(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
         plan = self.plan_run
         extra = {
-            "integrator_stats": {"step_s": plan.dt, "steps": plan.n_steps},
+            "integrator_stats": {"step_s": plan.dt, "steps": plan.n_steps}
+            | ({"defect_step_s": plan.dt / plan.fine_steps} if plan.fine_steps > 1 else {}),
             "oversample": plan.oversample,
             "first_sample_time_s": plan.t_first,
             "max_static_ball_load_n": prep.max_ball_load,
@@ -205,6 +206,7 @@ class SignalStream:
             out_accel,
             out_loads,
             record_loads,
+            self.plan_run.fine_steps,
         )
         if status != K.STATUS_OK:
             raise diverged_error(prep, int(status), float(t_end))

@@ -314,6 +314,7 @@ def rk4_records(prep, record_dt, n_record, substeps, *, y0=None, ehl=None):
         ac,
         ld,
         False,
+        1,  # uniform steps
     )
     assert status == K.STATUS_OK, status
     return st, ac
