@@ -88,8 +88,8 @@ def build_parser() -> argparse.ArgumentParser:
         type=float,
         default=None,
         help="RK4 without --step: the longest step whose relative error in the bearing's "
-        "characteristic line amplitudes is at most this (e.g. 0.01), measured by pilot runs; "
-        "--step wins",
+        "characteristic line amplitudes and in each octave of the spectrum above 500 Hz is at "
+        "most this (e.g. 0.01), measured by pilot runs; --step wins",
     )
     p.add_argument("--out", help="output file (.parquet or .csv)")
     p.add_argument("--plot", help="spectrum plot (.png)")

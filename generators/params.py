@@ -589,9 +589,10 @@ class SimulationSettings:
         save the anti-alias decimation time.
     error_bound : float or None
         RK4 only, when ``step`` is None: the longest step whose relative error in the
-        amplitudes of the bearing's characteristic lines is at most this, measured by pilot
-        runs at h and h / 2 (:mod:`generators.accuracy`) [-]; ``None`` keeps the scene's
-        default step. An explicit ``step`` wins.
+        amplitudes of the bearing's characteristic lines and in each octave band of the
+        spectrum above 500 Hz is at most this, measured by pilot runs at h, h / 2 and h / 4
+        (:mod:`generators.accuracy`) [-]; ``None`` keeps the scene's default step. An
+        explicit ``step`` wins.
     """
 
     fs: float = 25600.0

@@ -472,7 +472,7 @@ def _print_run(run, settings, geometry, operating, film: bool) -> None:
     if "line_error_estimate" in stats:
         print(
             f"RK4 step {stats['step_s']:.3g} s for the error bound {stats['error_bound']:g} "
-            f"(estimated line error {stats['line_error_estimate']:.2g})"
+            f"(estimated error of the lines and bands {stats['line_error_estimate']:.2g})"
         )
     f = run.frequencies
     print(
