@@ -36,7 +36,7 @@ import pyarrow.parquet as pq
 
 from generators.cases import CASE_COLUMNS, Case, case_count, column_kind, iter_cases
 from generators.recipe import validate_recipe
-from generators.synthesis import generate_cases
+from generators.synthesis import bound_steps, generate_cases
 
 from . import __version__
 from .io import atomic_write, to_jsonable
@@ -230,6 +230,15 @@ def generate_dataset(
     if resume:
         _remove_stale_temporaries(out)
     atomic_write(stamp, lambda tmp: tmp.write_text(text))
+    steps: list[dict] = []
+    if recipe["model"].get("error_bound") is not None:
+        # one step per bearing, rate and condition, from pilots of its stiffest case
+        groups = bound_steps(recipe, iter_cases(recipe))
+        recipe["model"]["group_steps"] = groups
+        steps = [
+            {"bearing": b, "fs_hz": fs, "label": label, "step_s": h, "error_estimate": e}
+            for (b, fs, label), (h, e) in groups.items()
+        ]
     total = case_count(recipe)
     feed = _ChunkFeed(recipe, out)
     done, written, failed = 0, 0, 0
@@ -253,6 +262,7 @@ def generate_dataset(
         "cmtool_version": __version__,
         "schema_version": DATASET_SCHEMA_VERSION,
         "chunks": feed.chunks,
+        **({"error_bound_steps": steps} if steps else {}),
     }
     atomic_write(out / "_dataset.json", lambda tmp: tmp.write_text(json.dumps(summary, indent=2)))
     return summary

@@ -293,7 +293,7 @@ class Plan:
     n_steps: int
     t_first: float
     error_estimate: float = math.nan  # relative line error at dt, when chosen for a bound
-    fine_steps: int = 1  # steps near a local defect split into this many (automatic step only)
+    fine_steps: int = 1  # steps near a local defect split into this many (1: none)
 
 
 def plan_run(prep: Prepared) -> Plan:
@@ -314,7 +314,7 @@ def plan_run(prep: Prepared) -> Plan:
         step = settings.step or default_step(
             prep.scene_name, prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0
         )
-        refine = settings.step is None  # an explicit step is taken everywhere, as given
+        refine = True  # never step over a pit, whatever the step
     oversample = oversample or default_oversample(step, settings.fs)
     record_dt = 1.0 / (settings.fs * oversample)
     n_out = int(round(settings.duration * settings.fs))

@@ -128,6 +128,13 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
     Key("model.ehl", "flag", default=True, doc="lubricant film in the contacts"),
     Key("model.integrator", "choice", default="rk4", choices=INTEGRATORS, doc="time integrator"),
     Key("model.step_s", "any", unit="s", doc="RK4 step (default: the scene's own)"),
+    Key(
+        "model.error_bound",
+        "number",
+        1e-6,
+        0.5,
+        doc="RK4 step per bearing, rate and condition for this relative error (no step_s)",
+    ),
     Key("model.rtol", "any", doc="DOPRI5 relative tolerance"),
     Key(
         "sensor.quantity",
@@ -531,6 +538,12 @@ def validate_recipe(recipe: dict) -> dict:
         if not isinstance(table, dict):
             raise _fail(section, table, "a table is required")
         _walk(table, section, f"{section}.")
+    model = r["model"]
+    if model.get("error_bound") is not None:
+        if model.get("step_s") is not None:
+            raise _fail("model.error_bound", model["error_bound"], "give error_bound or step_s")
+        if model.get("integrator") != "rk4":
+            raise _fail("model.error_bound", model["error_bound"], "needs integrator = 'rk4'")
     sensor = r["sensor"]
     _noise_rules(sensor)
     _chain_rules(r, min(sensor["fs_hz"]["grid"]))

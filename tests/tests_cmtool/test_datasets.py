@@ -89,12 +89,63 @@ def test_shipped_recipes_validate():
             ('surface = "outer"', 'surface = "outer"\ndefect = "localized"'),
             "conditions\\[1\\].amplitude_m = .* not a key of a localized defect",
         ),
+        (("[sensor]", "[model]\nerror_bound = 0.7\n[sensor]"), "model.error_bound = 0.7"),
+        (
+            ("[sensor]", "[model]\nerror_bound = 0.01\nstep_s = 1e-5\n[sensor]"),
+            "give error_bound or step_s",
+        ),
+        (
+            ("[sensor]", '[model]\nerror_bound = 0.01\nintegrator = "dopri5"\n[sensor]'),
+            "needs integrator = 'rk4'",
+        ),
     ],
 )
 def test_recipe_errors_name_key_and_value(patch, match):
     raw = tomllib.loads(TINY.replace(*patch, 1))
     with pytest.raises(ParameterError, match=match):
         validate_recipe(raw)
+
+
+def test_a_recipe_error_bound_gives_each_group_a_step_that_meets_it(tmp_path):
+    """model.error_bound: one step per bearing, rate and condition, from pilots of the group's
+    extremes; every case of the group (not only those) within the bound at it, against the
+    same run at an eighth of the step, in lines and octave bands (generators.accuracy)."""
+    import dataclasses
+
+    from generators.accuracy import _lines, _pilot, band_error, line_error
+    from generators.synthesis import _setup, bound_steps, step_group
+
+    bound = 0.02
+    text = (
+        TINY.replace("[sensor]", f"[model]\nerror_bound = {bound}\n[sensor]")
+        .replace("rpm = [1500, 2100]", "rpm = [1200, 2400, 3600]")
+        .replace("duration_s = 0.1", "duration_s = 0.3")
+        .replace("count = 3", "count = 4")
+    )
+    path = tmp_path / "bounded.toml"
+    path.write_text(text)
+    summary = generate_dataset(path, tmp_path / "ds")
+    groups = {row["label"]: row for row in summary["error_bound_steps"]}
+    assert set(groups) == {"healthy", "outer"}
+    assert all(row["error_estimate"] <= bound for row in groups.values())
+    frame = read_dataset(tmp_path / "ds")
+    for label, row in groups.items():
+        assert (frame.loc[frame["label"] == label, "step_s"] == row["step_s"]).all()
+    recipe = validate_recipe(tomllib.loads(text))
+    cases = expand_cases(recipe)
+    steps = bound_steps(recipe, cases)
+    assert {k[2]: v[0] for k, v in steps.items()} == {k: v["step_s"] for k, v in groups.items()}
+    shared: dict = {}
+    for case in cases:
+        prep = _setup(recipe, case, "housing_acceleration_y", shared).run
+        prep = dataclasses.replace(prep, settings=dataclasses.replace(prep.settings, step=None))
+        step = steps[step_group(case)][0]
+        n = int(0.3 * case.fs_hz)
+        x, reference = _pilot(prep, step, 4, n), _pilot(prep, step / 8, 4, n)
+        error = max(
+            line_error(reference, x, case.fs_hz, _lines(prep)), band_error(reference, x, case.fs_hz)
+        )
+        assert error <= bound, (case.label, case.rpm, case.radial_load_n, step, error)
 
 
 def test_generate_writes_labelled_parquet(tiny, tmp_path):

@@ -96,7 +96,8 @@ def test_line_error_reads_line_amplitudes():
     lines = np.array([30.0, 107.5])
     a = np.cos(2 * np.pi * 30.0 * t) + 0.5 * np.sin(2 * np.pi * 107.5 * t)
     b = np.cos(2 * np.pi * 30.0 * t) + 0.505 * np.sin(2 * np.pi * 107.5 * t)
-    assert line_error(a, b, FS, lines) == pytest.approx(0.01, rel=1e-6)
-    # a line under LINE_RANGE of the strongest does not count
+    # the change of each line as a fraction of the strongest: 0.005 / 1
+    assert line_error(a, b, FS, lines) == pytest.approx(0.005, rel=1e-6)
+    # a weak line that changes by all of itself counts by its size beside the strongest
     c = a + 1e-4 * np.cos(2 * np.pi * 60.0 * t)
-    assert line_error(a, c, FS, np.array([30.0, 60.0])) < 1e-9
+    assert line_error(a, c, FS, np.array([30.0, 60.0, 107.5])) == pytest.approx(1e-4, rel=1e-6)
