@@ -117,7 +117,8 @@ def build_parser() -> argparse.ArgumentParser:
         "--error-bound",
         type=float,
         default=0.01,
-        help="band amplitude error bound for the recommendation [-]",
+        help="band amplitude error bound for the recommendation, and the bound each level's "
+        "error-bound step is chosen for (rows chosen_for_bound) [-]",
     )
     p.add_argument("--out", help="table as CSV")
     p.add_argument("--plot", help="runtime against error plot (.png)")

@@ -52,6 +52,7 @@ FIDELITY_COLUMNS = (
     "spectrum_error",
     "stable",
     "pareto",
+    "chosen_for_bound",
 )
 DEFAULT_RK4_STEPS = (2.5e-6, 5e-6, 7.5e-6, 1e-5, 2e-5, 5e-5, 1e-4, 2e-4)
 DEFAULT_DOPRI5_RTOLS = (1e-4, 1e-6, 1e-8)
@@ -111,6 +112,7 @@ def fidelity_study(
     reference_step: float = 1e-6,
     f_max: float = 5000.0,
     seed: int = 0,
+    error_bound: float | None = None,
     progress: Callable[[int, int, str], None] | None = None,
 ) -> pd.DataFrame:
     """Run one scene at every model level and integrator setting and compare with a reference.
@@ -136,6 +138,11 @@ def fidelity_study(
         Upper frequency of the spectrum error [Hz].
     seed : int
         Seed of the random waviness phases (the same for every run).
+    error_bound : float, optional
+        Also run each level and film at the RK4 step ``SimulationSettings(error_bound=...)``
+        chooses for it (:mod:`generators.accuracy`: the integration error alone, in lines and
+        octave bands); those rows have ``chosen_for_bound`` True, the chosen step, and the
+        wall time of a run once the pilots are cached (their cost is not counted).
     progress : callable, optional
         ``progress(done, total, label)`` after each run.
 
@@ -165,35 +172,45 @@ def fidelity_study(
     ref_norm = float(np.linalg.norm(ref_spec[band]))
     runs = [(lvl, ehl, "rk4", s) for lvl in levels for ehl in ehl_options for s in rk4_steps]
     runs += [(lvl, ehl, "dopri5", r) for lvl in levels for ehl in ehl_options for r in dopri5_rtols]
+    if error_bound is not None:
+        runs += [(lvl, ehl, "bound", error_bound) for lvl in levels for ehl in ehl_options]
     rows = []
     for i, (level, ehl, integrator, value) in enumerate(runs):
         scene = Scene(level=level, ehl=ehl)
         if integrator == "rk4":
             st = dataclasses.replace(settings, integrator="rk4", step=value)
+        elif integrator == "bound":
+            st = dataclasses.replace(settings, integrator="rk4", step=None, error_bound=value)
         else:
             st = dataclasses.replace(settings, integrator="dopri5", rtol=value)
+        chosen = integrator == "bound"
         try:
             wall, result = _measure(geometry, operating, defects, scene, rig, st, seed)
             _, spec = features.amplitude_spectrum(result[CHANNEL], result.fs)
             amp = features.band_amplitude(freqs, spec, f_line, half_width=1.5)
+            step_or_tolerance = result.parameters["integrator_stats"]["step_s"] if chosen else value
             rows.append(
                 (
                     level,
                     ehl,
-                    integrator,
-                    value,
+                    "rk4" if chosen else integrator,
+                    step_or_tolerance,
                     wall,
                     abs(amp / ref_amp - 1.0),
                     float(np.linalg.norm(spec[band] - ref_spec[band]) / ref_norm),
                     True,
+                    chosen,
                 )
             )
         except SimulationDivergedError:
-            rows.append((level, ehl, integrator, value, math.nan, math.nan, math.nan, False))
+            rows.append(
+                (level, ehl, "rk4" if chosen else integrator, value, *[math.nan] * 3, False, chosen)
+            )
         if progress is not None:
             progress(i + 1, len(runs), f"{scene.label} {integrator} {value:g}")
-    table = pd.DataFrame(rows, columns=list(FIDELITY_COLUMNS[:-1]))
-    table["pareto"] = _pareto(table)
+    columns = [c for c in FIDELITY_COLUMNS if c != "pareto"]
+    table = pd.DataFrame(rows, columns=columns)
+    table.insert(len(FIDELITY_COLUMNS) - 2, "pareto", _pareto(table))
     table.attrs.update(
         {
             "band_frequency_hz": f_line,

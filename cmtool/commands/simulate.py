@@ -565,6 +565,7 @@ def cmd_fidelity(args: argparse.Namespace) -> int:
         settings=settings,
         levels=levels,
         f_max=args.f_max,
+        error_bound=args.error_bound,
         progress=progress,
         **kwargs,
     )

@@ -24,12 +24,25 @@ def table():
         rk4_steps=(2e-5, 1e-4),
         dopri5_rtols=(1e-6,),
         f_max=2000.0,
+        error_bound=0.02,
     )
 
 
 def test_table_contract(table):
     assert tuple(table.columns) == FIDELITY_COLUMNS
-    assert len(table) == 2 * 2 * 3
+    assert len(table) == 2 * 2 * 3 + 2 * 2  # the grid, and each level's error-bound step
+
+
+def test_each_level_at_the_step_its_error_bound_chooses(table):
+    chosen = table[table.chosen_for_bound]
+    assert len(chosen) == 4 and chosen.stable.all() and (chosen.integrator == "rk4").all()
+    # the full model with EHL is the reference's physics: its error is the integrator's alone
+    full = chosen[(chosen.scene == "full") & chosen.ehl].iloc[0]
+    assert full.band_amplitude_error <= 0.02
+    # the massless scenes' steps are an order of magnitude longer than the ball mode allows
+    assert (
+        chosen[chosen.scene == "shaft+housing"].step_or_tolerance.min() > 5 * full.step_or_tolerance
+    )
     assert table.attrs["band_frequency_hz"] == pytest.approx(107.54, abs=0.01)
 
 
