@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import signal as sp_signal
 
+from . import _kernels as K
 from ._validate import ParameterError, SimulationDivergedError
 from .batches import lanes_supported, simulate_lanes
 from .cases import Case
@@ -65,6 +66,7 @@ class _Job:
     run: Prepared | None = None  # the case's simulation
     healthy: Prepared | None = None  # its healthy twin (background noise), if needed
     error: str | None = None
+    untouched: bool = False  # a local defect the run never meets: simulated as healthy
 
 
 def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
@@ -205,9 +207,51 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
                 np.random.default_rng(case.seed),
                 freqs,
             )
+        if case.defect_kind == "localized" and _untouched(job.run, settings):
+            # a ball pit that stays off the contact track for the whole run changes nothing:
+            # the run is its healthy twin (integrated with the others, in SIMD lanes)
+            job.untouched = True
+            job.run = job.healthy or prepare_checked(
+                geometry,
+                operating,
+                (),
+                scene,
+                rig,
+                settings,
+                np.random.default_rng(case.seed),
+                freqs,
+            )
     except ParameterError as err:  # e.g. no static equilibrium for this case's geometry
         job.error = f"not simulated: {err}"
     return job
+
+
+def _untouched(prep: Prepared, settings: SimulationSettings) -> bool:
+    """Whether every local defect of a run is a ball pit the races never meet.
+
+    A ball pit at latitude lat(t) = lat0 + drift t meets the races only while |sin lat| is
+    under the contact track's half width (``_kernels._track_factor``); over the run, from 0 to
+    the settling plus the record, lat(t) sweeps one interval, and the pit stays untouched when
+    that interval comes nowhere within asin(track) of a multiple of pi.
+    """
+    rows = prep.wav[prep.wav[:, K.W_SURFACE] >= K.SURF_OUTER_DEFECT]
+    rows = rows[rows[:, K.W_SURFACE] != K.SURF_SLIP]
+    if not rows.size:
+        return False
+    end = settings.settle_time + settings.duration + 1e-3  # and the last step
+    for row in rows:
+        if row[K.W_SURFACE] not in (K.SURF_BALL_DEFECT_OUTER, K.SURF_BALL_DEFECT_INNER):
+            return False
+        reach = math.asin(min(row[K.W_TRACK], 1.0))
+        start, stop = sorted((row[K.W_LATITUDE], row[K.W_LATITUDE] + row[K.W_DRIFT] * end))
+        # distance from the swept interval to the nearest multiple of pi (the rolling circle)
+        gap = min(
+            max(start - math.pi * k, math.pi * k - stop, 0.0)
+            for k in range(math.floor(start / math.pi), math.ceil(stop / math.pi) + 1)
+        )
+        if gap < reach:
+            return False
+    return True
 
 
 def _measured(recipe: dict, case: Case, x: np.ndarray) -> np.ndarray:
@@ -320,6 +364,8 @@ def _finish_realistic(
             meta["fault_snr_db"] = 10.0 * math.log10(max(gain * gain * own, 1e-300) / rest)
         chain["fault_gain"] = gain
         y = y + gain * signature
+    if job.untouched and not math.isnan(case.fault_snr_db):
+        meta["fault_snr_db"] = -math.inf  # nothing of the fault reaches the sensor
     resonance = _pick(sensor.get("sensor_resonance_hz"), rng, None)
     if resonance is not None:
         zeta = _pick(sensor.get("sensor_damping"), rng, 0.03)

@@ -208,3 +208,72 @@ def test_fault_band_finds_the_ringing_resonance():
     ring = sp_signal.lfilter(*sp_signal.iirpeak(3500.0, 20.0, fs), impacts)
     low, high = fault_band(ring, fs)
     assert low < 3500.0 < high and high / low == pytest.approx(2.0, rel=1e-9)
+
+
+BALL_PITS = """
+name = "ball-pits"
+seed = 5
+chunk_size = 16
+[operating]
+rpm = 1797
+load_n = { min = 100, max = 500 }
+random_slip = 0.01
+ball_jitter_rad = 0.005
+[sensor]
+fs_hz = 12000
+duration_s = 0.2
+settle_s = 0.05
+background_db = 10
+fault_snr_db = 0
+modes = 2
+mode_hz = { min = 1000, max = 5000 }
+[[conditions]]
+label = "ball"
+surface = "ball"
+defect = "localized"
+length_m = 0.3e-3
+depth_m = 0.1e-3
+axis_drift_rad_s = { min = 0, max = 0.2 }
+count = 16
+"""
+
+
+def test_an_untouched_ball_pit_runs_as_its_healthy_twin_and_reaches_no_snr():
+    """A ball pit the races never meet over the run (docs/realism.md 5) is simulated as the
+    healthy bearing it is: the generator decides it from the latitude the pit sweeps, which
+    must agree with the kernel's contact-track factor at every instant of the run."""
+    import tomllib
+
+    from generators.cases import expand_cases
+    from generators.recipe import validate_recipe
+    from generators.synthesis import _setup, _untouched, generate_cases
+
+    recipe = validate_recipe(tomllib.loads(BALL_PITS))
+    cases = expand_cases(recipe)
+    shared: dict = {}
+    untouched = []
+    for case in cases:
+        job = _setup(recipe, case, "housing_acceleration_y", shared)
+        faulty = prepare(
+            G6205,
+            OperatingCondition.from_rpm(case.rpm, case.radial_load_n, random_slip=0.01),
+            LocalizedDefect(
+                surface="ball",
+                length=0.3e-3,
+                depth=0.1e-3,
+                latitude=None,
+                axis_drift=case.defect_axis_drift_rad_s,
+            ),
+            settings=job.healthy.settings,
+            random_state=np.random.default_rng(case.seed),
+        )
+        rows = [r for r in range(faulty.wav.shape[0]) if faulty.wav[r, K.W_SURFACE] >= 5]
+        rows = [r for r in rows if faulty.wav[r, K.W_SURFACE] != K.SURF_SLIP]
+        t = np.linspace(0.0, 0.25 + 1e-3, 5001)
+        touched = any(K._track_factor(faulty.wav, r, ti)[0] > 0.0 for r in rows for ti in t)
+        assert _untouched(faulty, job.healthy.settings) == (not touched)
+        untouched.append(job.run is job.healthy)
+    assert 0 < sum(untouched) < len(cases)  # both kinds in the draw
+    frame = generate_cases(recipe, cases)
+    for row, inert in zip(frame, untouched, strict=True):
+        assert (row["fault_snr_db"] == -math.inf) == inert, (row["fault_snr_db"], inert)
