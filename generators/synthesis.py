@@ -191,36 +191,23 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
     if scene is None:
         scene = shared["scene"] = Scene(level=model["scene"], ehl=model["ehl"])
     rig = default_instance(Rig)
+
+    def healthy() -> Prepared:
+        # the same case without its defects (prepare() without re-checking these objects)
+        rng = np.random.default_rng(case.seed)
+        return prepare_checked(geometry, operating, (), scene, rig, settings, rng, freqs)
+
     try:
-        # prepare() without re-checking the objects built here
         job.run = prepare_checked(
             geometry, operating, tuple(defects), scene, rig, settings, job.rng, freqs
         )
         if not math.isnan(case.background_db) and defects:
-            job.healthy = prepare_checked(
-                geometry,
-                operating,
-                (),
-                scene,
-                rig,
-                settings,
-                np.random.default_rng(case.seed),
-                freqs,
-            )
+            job.healthy = healthy()
         if case.defect_kind == "localized" and _untouched(job.run, settings):
             # a ball pit that stays off the contact track for the whole run changes nothing:
             # the run is its healthy twin (integrated with the others, in SIMD lanes)
             job.untouched = True
-            job.run = job.healthy or prepare_checked(
-                geometry,
-                operating,
-                (),
-                scene,
-                rig,
-                settings,
-                np.random.default_rng(case.seed),
-                freqs,
-            )
+            job.run = job.healthy or healthy()
     except ParameterError as err:  # e.g. no static equilibrium for this case's geometry
         job.error = f"not simulated: {err}"
     return job
