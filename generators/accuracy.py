@@ -31,6 +31,14 @@ first candidate step and three times it at each further candidate; the choice is
 run configuration (parameters, defects, start, rate, window, bound), so repeated runs and long
 runs gain most.
 
+Where halving the step does not shrink a measure over the bound (``NOT_CONVERGING``), the
+response does not converge pointwise: a preloaded bearing's band converges at order 0.7, a
+chaotic one not at all. The band is then judged by its octaves' levels (``band_error(...,
+levels=True)``), and if that too stalls, or the step reaches ``SHORTEST_FRACTION`` of the
+first candidate, the search stops with a ``RuntimeWarning`` and the scene's default step
+(before this, a CWRU-rig recipe with the bound halved its pilots' step to 1e-8 s and ran for
+hours).
+
 The chosen step and its error estimate are recorded in the result's parameter record
 (``integrator_stats``). An explicit ``SimulationSettings.step`` always wins.
 """
@@ -40,13 +48,14 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import math
+import warnings
 from collections import OrderedDict
 from functools import partial
 
 import numpy as np
 
 from ._validate import SimulationDivergedError
-from .steps import defect_step, stability_step
+from .steps import DEFAULT_STEP_MASSLESS, defect_step, stability_step
 
 __all__ = [
     "PILOT_PERIODS",
@@ -73,6 +82,13 @@ BAND_LOW = 500.0
 #: Octave bands weaker than this fraction of the strongest one's power are left out (a record's
 #: dynamic range: numerically empty bands would have a relative error of 1 at any step).
 BAND_RANGE = 1e-6
+#: A measure that halving the step does not shrink to this fraction is not converging: the
+#: band's waveform then is judged by its octave levels (a chaotic response: a lightly loaded
+#: bearing with clearance, whose trajectories part whatever the step).
+NOT_CONVERGING = 0.7
+#: Shortest pilot step as a fraction of the first candidate: the search stops there (with a
+#: warning and the estimate it reached) rather than chase an error the step cannot reduce.
+SHORTEST_FRACTION = 1.0 / 32.0
 #: The channel the pilots compare.
 PILOT_CHANNEL = "housing_acceleration_y"
 #: Longest step considered [s] (the settings' own upper limit).
@@ -136,7 +152,9 @@ def line_error(reference: np.ndarray, other: np.ndarray, fs: float, lines: np.nd
     return float(np.max(np.abs(amp[:, 1] - amp[:, 0])) / strongest)
 
 
-def band_error(reference: np.ndarray, other: np.ndarray, fs: float) -> float:
+def band_error(
+    reference: np.ndarray, other: np.ndarray, fs: float, *, levels: bool = False
+) -> float:
     """Largest relative spectral difference of two records over octave bands above BAND_LOW.
 
     Parameters
@@ -151,7 +169,9 @@ def band_error(reference: np.ndarray, other: np.ndarray, fs: float) -> float:
     float
         max over the octaves [0.45 fs / 2^(k+1), 0.45 fs / 2^k] above ``BAND_LOW`` Hz of
         ||X_o - X_r|| / ||X_r|| (Hann-windowed spectra), octaves weaker than ``BAND_RANGE``
-        of the strongest left out; 0 when none lies above ``BAND_LOW``.
+        of the strongest left out; 0 when none lies above ``BAND_LOW``. With ``levels``,
+        the octaves' RMS levels are compared instead, |(P_o / P_r)^(1/2) - 1|: what can be
+        bounded where the waveform itself does not converge (a chaotic response).
     """
     window = np.hanning(reference.size)
     ref = np.fft.rfft(reference * window)
@@ -162,7 +182,11 @@ def band_error(reference: np.ndarray, other: np.ndarray, fs: float) -> float:
     while high / 2.0 >= BAND_LOW:
         band = (f >= high / 2.0) & (f < high)
         power.append(float(np.sum(np.abs(ref[band]) ** 2)))
-        change.append(float(np.sum(np.abs(diff[band]) ** 2)))
+        if levels:
+            moved = float(np.sum(np.abs(ref[band] + diff[band]) ** 2))
+            change.append((math.sqrt(moved) - math.sqrt(power[-1])) ** 2)
+        else:
+            change.append(float(np.sum(np.abs(diff[band]) ** 2)))
         high /= 2.0
     if not power or max(power) <= 0.0:
         return 0.0
@@ -232,15 +256,25 @@ def error_bound_step(prep, bound: float, oversample: int) -> tuple[float, float]
     n_out = int(math.ceil(window * fs))
     stable = stability_step(prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0)
     step = min(LONGEST_STEP, stable, defect_step(prep.p, prep.wav))
+    shortest = step * SHORTEST_FRACTION
+    measures = [partial(line_error, fs=fs, lines=lines), partial(band_error, fs=fs)]
+    levels = False
     error, order = math.inf, 4.0
     for trial in range(MAX_TRIALS + 8):
         runs = [_pilot(prep, step / 2**k, oversample, n_out) for k in range(3)]
         if any(r is None for r in runs):
             step *= 0.5
             continue
-        estimates = []
-        for measure in (partial(line_error, fs=fs, lines=lines), partial(band_error, fs=fs)):
+        estimates, stalled = [], []
+        for index, measure in enumerate(measures):
             first, second = measure(runs[1], runs[0]), measure(runs[2], runs[1])
+            if index == 1 and not levels and first > bound and second > NOT_CONVERGING * first:
+                # the waveform parts whatever the step: bound the octaves' levels instead
+                levels = True
+                measure = measures[1] = partial(band_error, fs=fs, levels=True)
+                first, second = measure(runs[1], runs[0]), measure(runs[2], runs[1])
+            # a measure over the bound that halving the step does not shrink
+            stalled.append(second > NOT_CONVERGING * first if first > bound else None)
             # the order the run shows (a contact that opens, a pit's edges: less than RK4's 4)
             p = 4.0
             if second > 0.0 and first > 0.0:
@@ -249,10 +283,24 @@ def error_bound_step(prep, bound: float, oversample: int) -> tuple[float, float]
         error, order = max(estimates)
         if error <= bound:
             break
+        blocking = [x for x in stalled if x is not None]
+        if (blocking and all(blocking)) or step / 2.0 < shortest:
+            # no step would do: keep the scene's own default and say so
+            step = min(step, DEFAULT_STEP_MASSLESS, stable)
+            warnings.warn(
+                f"error_bound = {bound:g} cannot be met by a shorter step: the pilots' "
+                f"differences do not shrink when the step is halved (estimate {error:.3g}; a "
+                "response that does not converge pointwise, such as a lightly loaded bearing "
+                f"with clearance); the run uses {step:.3g} s",
+                RuntimeWarning,
+                stacklevel=2,
+            )
+            break
         if trial < MAX_TRIALS:
             step *= max(0.125, min(0.95, MARGIN * (bound / error) ** (1.0 / order)))
         else:
             step *= 0.5
+        step = max(step, shortest)
     _CACHE[key] = (step, error)
     while len(_CACHE) > 64:
         _CACHE.popitem(last=False)

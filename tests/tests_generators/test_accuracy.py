@@ -101,3 +101,62 @@ def test_line_error_reads_line_amplitudes():
     # a weak line that changes by all of itself counts by its size beside the strongest
     c = a + 1e-4 * np.cos(2 * np.pi * 60.0 * t)
     assert line_error(a, c, FS, np.array([30.0, 60.0, 107.5])) == pytest.approx(1e-4, rel=1e-6)
+
+
+def test_band_levels_compare_octave_power_not_waveforms():
+    t = np.arange(int(FS)) / FS
+    rng = np.random.default_rng(4)
+    a, b = rng.standard_normal(t.size), rng.standard_normal(t.size)
+    # two draws of the same noise: waveforms apart (about sqrt 2), octave levels within 6 %
+    assert band_error(a, b, FS) > 1.2
+    assert band_error(a, b, FS, levels=True) < 0.06
+    assert band_error(a, 1.03 * a, FS, levels=True) == pytest.approx(0.03, rel=1e-9)
+
+
+def test_a_response_that_does_not_converge_stops_the_search_with_a_warning(monkeypatch):
+    """Pilots whose differences do not shrink when the step is halved (a response that does
+    not converge pointwise): the search stops at once with the scene's default step and a
+    warning instead of halving the step towards zero (a CWRU-rig recipe with the bound ran its
+    pilots at 1e-8 s for hours before this)."""
+    from generators import accuracy
+    from generators.steps import DEFAULT_STEP_MASSLESS
+
+    prep = prepare(G, OP, None, settings=SimulationSettings(fs=FS, duration=0.25))
+    rng = np.random.default_rng(5)
+    steps = []
+
+    def pilot(prep, step, oversample, n_out):
+        steps.append(step)
+        return rng.standard_normal(n_out)  # another waveform at every step
+
+    monkeypatch.setattr(accuracy, "_pilot", pilot)
+    accuracy._CACHE.clear()
+    with pytest.warns(RuntimeWarning, match="cannot be met by a shorter step"):
+        step, error = accuracy.error_bound_step(prep, 0.01, 4)
+    assert len(steps) == 3  # one trial: h, h/2, h/4
+    assert step == pytest.approx(min(steps[0], DEFAULT_STEP_MASSLESS))  # the scene's default
+    assert error > 0.01  # the estimate says the bound was not met
+
+
+def test_a_preloaded_bearing_gets_a_bounded_search():
+    """A preloaded 6205 (clearance -9.5 um; the CWRU-rig recipe draws such): its band's
+    waveform converges slowly (order about 0.7) while its octave levels converge; the search
+    ends within its trials, never below 1/32 of its first step."""
+    import warnings
+
+    from generators import accuracy
+
+    g = bearing("6205", radial_internal_clearance=-9.5e-6)
+    op = OperatingCondition.from_rpm(1750, 310.0)
+    settings = SimulationSettings(fs=12000.0, duration=0.5, channels=("housing_acceleration_y",))
+    prep = prepare(g, op, None, settings=settings)
+    accuracy._CACHE.clear()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        step, error = accuracy.error_bound_step(prep, 0.01, 4)
+    first = min(
+        accuracy.LONGEST_STEP,
+        accuracy.stability_step(prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0),
+    )
+    assert first * accuracy.SHORTEST_FRACTION <= step <= first
+    assert np.isfinite(error)
