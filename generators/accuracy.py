@@ -288,10 +288,15 @@ def error_bound_step(prep, bound: float, oversample: int) -> tuple[float, float]
             # no step would do: keep the scene's own default and say so
             step = min(step, DEFAULT_STEP_MASSLESS, stable)
             warnings.warn(
-                f"error_bound = {bound:g} cannot be met by a shorter step: the pilots' "
-                f"differences do not shrink when the step is halved (estimate {error:.3g}; a "
-                "response that does not converge pointwise, such as a lightly loaded bearing "
-                f"with clearance); the run uses {step:.3g} s",
+                f"error_bound = {bound:g} not met: the error estimate is {error:.3g}, and "
+                + (
+                    "halving the step does not shrink the pilots' differences (a response "
+                    "that does not converge pointwise: a preloaded or chaotic bearing)"
+                    if blocking and all(blocking)
+                    else f"the step reached 1/{round(1 / SHORTEST_FRACTION)} of its first "
+                    "candidate, where the search stops"
+                )
+                + f"; the run uses {step:.3g} s",
                 RuntimeWarning,
                 stacklevel=2,
             )

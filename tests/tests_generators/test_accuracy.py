@@ -131,7 +131,7 @@ def test_a_response_that_does_not_converge_stops_the_search_with_a_warning(monke
 
     monkeypatch.setattr(accuracy, "_pilot", pilot)
     accuracy._CACHE.clear()
-    with pytest.warns(RuntimeWarning, match="cannot be met by a shorter step"):
+    with pytest.warns(RuntimeWarning, match="halving the step does not shrink"):
         step, error = accuracy.error_bound_step(prep, 0.01, 4)
     assert len(steps) == 3  # one trial: h, h/2, h/4
     assert step == pytest.approx(min(steps[0], DEFAULT_STEP_MASSLESS))  # the scene's default
