@@ -387,13 +387,16 @@ def dataset_complete(path: str | os.PathLike) -> bool:
     """Whether a dataset folder's generation finished (its ``_dataset.json`` was written).
 
     ``path`` may be the dataset folder or its ``data/`` folder. A folder of parquet files that
-    ``cmtool generate`` did not make (no ``recipe.toml``) counts as complete.
+    ``cmtool generate`` did not make (no ``recipe.toml``) counts as complete; a folder that
+    does not exist, or holds no parquet file, does not.
     """
     path = Path(path)
     root = path.parent if path.name == "data" and not (path / "data").is_dir() else path
     if (root / "_dataset.json").is_file():
         return True
-    return not (root / "recipe.toml").is_file()
+    if (root / "recipe.toml").is_file():
+        return False
+    return any(root.glob("*.parquet")) or any((root / "data").glob("*.parquet"))
 
 
 def read_dataset(

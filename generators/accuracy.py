@@ -35,7 +35,7 @@ Where halving the step does not shrink a measure over the bound (``NOT_CONVERGIN
 response does not converge pointwise: a preloaded bearing's band converges at order 0.7, a
 chaotic one not at all. The band is then judged by its octaves' levels (``band_error(...,
 levels=True)``), and if that too stalls, or the step reaches ``SHORTEST_FRACTION`` of the
-first candidate, the search stops with a ``RuntimeWarning`` and the scene's default step
+first candidate (or of the default step), the search stops with a ``RuntimeWarning``
 (before this, a CWRU-rig recipe with the bound halved its pilots' step to 1e-8 s and ran for
 hours).
 
@@ -86,9 +86,10 @@ BAND_RANGE = 1e-6
 #: band's waveform then is judged by its octave levels (a chaotic response: a lightly loaded
 #: bearing with clearance, whose trajectories part whatever the step).
 NOT_CONVERGING = 0.7
-#: Shortest pilot step as a fraction of the first candidate: the search stops there (with a
-#: warning and the estimate it reached) rather than chase an error the step cannot reduce.
-SHORTEST_FRACTION = 1.0 / 32.0
+#: Shortest pilot step as a fraction of the first candidate or the massless scenes' default
+#: step, whichever is shorter: the search stops there (with a warning and the estimate it
+#: reached) rather than chase an error the step cannot reduce.
+SHORTEST_FRACTION = 1.0 / 16.0
 #: The channel the pilots compare.
 PILOT_CHANNEL = "housing_acceleration_y"
 #: Longest step considered [s] (the settings' own upper limit).
@@ -256,7 +257,7 @@ def error_bound_step(prep, bound: float, oversample: int) -> tuple[float, float]
     n_out = int(math.ceil(window * fs))
     stable = stability_step(prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0)
     step = min(LONGEST_STEP, stable, defect_step(prep.p, prep.wav))
-    shortest = step * SHORTEST_FRACTION
+    shortest = min(step, DEFAULT_STEP_MASSLESS) * SHORTEST_FRACTION
     measures = [partial(line_error, fs=fs, lines=lines), partial(band_error, fs=fs)]
     levels = False
     error, order = math.inf, 4.0
@@ -293,8 +294,7 @@ def error_bound_step(prep, bound: float, oversample: int) -> tuple[float, float]
                     "halving the step does not shrink the pilots' differences (a response "
                     "that does not converge pointwise: a preloaded or chaotic bearing)"
                     if blocking and all(blocking)
-                    else f"the step reached 1/{round(1 / SHORTEST_FRACTION)} of its first "
-                    "candidate, where the search stops"
+                    else f"the step reached {step:.3g} s, where the search stops"
                 )
                 + f"; the run uses {step:.3g} s",
                 RuntimeWarning,

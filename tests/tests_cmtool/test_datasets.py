@@ -494,3 +494,19 @@ def test_every_schema_key_is_checked_against_its_range():
             checked += 1
             break
     assert checked >= 35, checked
+
+
+def test_a_missing_or_empty_folder_is_not_a_complete_dataset(tmp_path):
+    import pandas as pd
+
+    from cmtool.datasets import dataset_complete
+
+    assert not dataset_complete(tmp_path / "nowhere")
+    assert not dataset_complete(tmp_path)  # exists, holds nothing
+    (tmp_path / "data").mkdir()
+    pd.DataFrame({"x": [1.0]}).to_parquet(tmp_path / "data" / "part-0.parquet")
+    assert dataset_complete(tmp_path) and dataset_complete(tmp_path / "data")  # not ours: as is
+    (tmp_path / "recipe.toml").write_text("name = 'x'\n")
+    assert not dataset_complete(tmp_path)  # ours, interrupted
+    (tmp_path / "_dataset.json").write_text("{}")
+    assert dataset_complete(tmp_path)
