@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _kernels as K
+from . import _static_kernels as SK
 from ._validate import ParameterError, check_real
 from .contact import load_deflection_constants
 from .params import BearingGeometry
@@ -143,11 +143,11 @@ def solve_equilibrium(
         force_scale = max(fr, 1.0)
         length_scale = max(float(np.abs(gap).max()), (force_scale / k) ** (2.0 / 3.0), 1e-9)
         start = max(float(gap.max()), 0.0) + (force_scale / k) ** (2.0 / 3.0)
-        x, y = K._static_newton(
+        x, y = SK._static_newton(
             cos_t, sin_t, gap, k, fx, fy, start * ex, start * ey, length_scale, force_scale
         )
     loads = np.empty(gap.size)
-    gx, gy, hxx, hxy, hyy, _ = K._static_sums(x, y, cos_t, sin_t, gap, k, fx, fy, False, loads)
+    gx, gy, hxx, hxy, hyy, _ = SK._static_sums(x, y, cos_t, sin_t, gap, k, fx, fy, False, loads)
     # the residual is judged against the largest force in play: the load, or the preload's
     # ball forces (a preloaded bearing under a few newtons carries tens of newtons per ball,
     # and rounding leaves ~1e-8 of those)
