@@ -261,6 +261,35 @@ def test_rk4_stability_radius_matches_the_analytic_limits():
             assert bool(abs(1 + z + z**2 / 2 + z**3 / 6 + z**4 / 24) <= 1.0) == inside
 
 
+def test_default_step_skips_tracing_rays_only_where_that_changes_nothing():
+    """``default_step`` skips RK4's ray tracing when even the narrowest radius allows the
+    accuracy step: the step must equal min(accuracy step, stability step) every time, in
+    scenes where the accuracy step wins and where stability does (the full scene)."""
+    from generators.prepared import prepare
+    from generators.steps import (
+        DEFAULT_STEP_MASSLESS,
+        _narrowest_radius,
+        default_step,
+        rk4_stability_radius,
+        stability_step,
+    )
+
+    # the bound is below the radius along every ray
+    rays = np.linspace(np.pi / 2, np.pi, 20001)
+    assert _narrowest_radius() < rk4_stability_radius(rays).min()
+    seen = set()
+    for level in ("shaft", "shaft+housing", "full"):
+        for ehl in (False, True):
+            for name, load in (("6205", 50.0), ("6308", 20000.0), ("6002", 500.0)):
+                op = OperatingCondition.from_rpm(3000, load)
+                prep = prepare(bearing(name), op, None, scene=Scene(level=level, ehl=ehl))
+                args = (prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0)
+                expected = min(DEFAULT_STEP_MASSLESS, stability_step(*args))
+                assert default_step(level, *args) == expected
+                seen.add(expected == DEFAULT_STEP_MASSLESS)
+    assert seen == {True, False}  # both branches met
+
+
 def test_default_step_is_stable_and_twice_that_is_not():
     # full/dry: the ball radial mode sets the step; RK4 at the default step runs, at 1.6 times
     # it (twice the stability limit's safety margin of 0.8) diverges
