@@ -83,8 +83,8 @@ BAND_LOW = 500.0
 #: dynamic range: numerically empty bands would have a relative error of 1 at any step).
 BAND_RANGE = 1e-6
 #: A measure that halving the step does not shrink to this fraction is not converging: the
-#: band's waveform then is judged by its octave levels (a chaotic response: a lightly loaded
-#: bearing with clearance, whose trajectories part whatever the step).
+#: band's waveform then is judged by its octave levels (a preloaded 6205's band converges at
+#: order 0.7; a chaotic response's trajectories part whatever the step).
 NOT_CONVERGING = 0.7
 #: Shortest pilot step as a fraction of the first candidate or the massless scenes' default
 #: step, whichever is shorter: the search stops there (with a warning and the estimate it
