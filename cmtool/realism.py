@@ -9,6 +9,10 @@ recording has segments on both sides of a split; each simulated signal is its ow
 out-of-fold ROC AUC is the gauge: 0.5 means the two cannot be told apart, 1.0 that every
 recording is recognised. The features the forest leans on most are what gives the simulation
 away.
+
+The gauge judges signals, not operating points: features that only repeat the context (the
+shaft frequency in Hz, ``CONTEXT_UNITS``) are left out, or the forest would tell a recipe's
+speed grid from the recordings' speeds however real the signals look.
 """
 
 from __future__ import annotations
@@ -25,7 +29,11 @@ from generators import characteristic_frequencies
 from .bench import MANIFEST_BEARINGS
 from .io import read_recording
 
-__all__ = ["realism", "recording_segments", "plot_realism"]
+__all__ = ["realism", "recording_segments", "plot_realism", "CONTEXT_UNITS"]
+
+#: Units of the features that repeat a signal's context instead of measuring the signal
+#: (``features.feature_units``): the gauge leaves them out.
+CONTEXT_UNITS = frozenset({"Hz"})
 
 
 def recording_segments(folder: str | Path, duration_s: float) -> pd.DataFrame:
@@ -108,14 +116,15 @@ def realism(
     -------
     dict
         ``auc``, ``folds``, ``recordings``, ``segments``, ``simulated``, ``roc`` (false and
-        true positive rates), ``features`` (name, importance) most telling first, and the
+        true positive rates), ``features`` (name, importance) most telling first,
+        ``context_left_out`` (features that only repeat the context, not used) and the
         out-of-fold ``scores``.
     """
     from sklearn.ensemble import RandomForestClassifier
     from sklearn.metrics import roc_auc_score, roc_curve
     from sklearn.model_selection import GroupKFold
 
-    from features import FeatureExtractor
+    from features import FeatureExtractor, feature_units
 
     groups_measured = measured["group"].astype(str).to_numpy()
     recordings = len(set(groups_measured))
@@ -127,8 +136,12 @@ def realism(
     columns += ["bsf_hz", "two_bsf_hz"]
     both = pd.concat([simulated[columns], measured[columns]], ignore_index=True)
     extractor = FeatureExtractor(feature_set=feature_set, n_jobs=n_jobs).fit(both)
-    X = extractor.transform(both)
+    units = feature_units(extractor.faults, extractor.n_harmonics)
     names = list(extractor.get_feature_names_out())
+    keep = [i for i, name in enumerate(names) if units.get(name) not in CONTEXT_UNITS]
+    left_out = [name for i, name in enumerate(names) if i not in set(keep)]
+    X = extractor.transform(both)[:, keep]
+    names = [names[i] for i in keep]
     y = np.r_[np.zeros(len(simulated)), np.ones(len(measured))]
     groups = np.r_[[f"sim-{i}" for i in range(len(simulated))], groups_measured]
     folds = min(5, recordings)
@@ -152,6 +165,7 @@ def realism(
         "segments": int(len(measured)),
         "simulated": int(len(simulated)),
         "feature_set": feature_set,
+        "context_left_out": left_out,
         "roc": {"false_positive_rate": fpr.tolist(), "true_positive_rate": tpr.tolist()},
         "features": [(name, float(value)) for name, value in ranked],
         "scores": scores.tolist(),

@@ -135,6 +135,11 @@ def cmd_realism(args: argparse.Namespace) -> int:
         f"{result['recordings']} recordings against {result['simulated']} simulated signals, "
         f"{result['folds']}-fold cross-validation grouped by recording, "
         f"{result['feature_set']} features"
+        + (
+            f" (left out, they repeat the context: {', '.join(result['context_left_out'])})"
+            if result["context_left_out"]
+            else ""
+        )
     )
     print("what gives the simulation away (random-forest importance):")
     for name, value in result["features"][:10]:

@@ -71,3 +71,38 @@ def test_cli_realism_on_the_measured_recordings(shared_data, tmp_path, capsys):
     result = json.loads((tmp_path / "realism.json").read_text())
     assert 0.0 <= result["auc"] <= 1.0 and result["recordings"] == 6
     assert (tmp_path / "realism.png").stat().st_size > 10000
+
+
+def test_gauge_judges_signals_not_the_speed_grid(tmp_path):
+    """The same white noise, 'simulated' at 1800 rpm and 'measured' at 1900 rpm: nothing in the
+    signals differs, so the gauge must not tell them apart (with the shaft frequency among its
+    features a forest separates them perfectly: AUC 1.0). The speeds are close enough that the
+    kurtogram's narrowest band (3 x the fastest fault rate) falls on the same level of its tree:
+    its band width carries the speed too (at 3000 rpm the gauge reaches 0.97 on this noise)."""
+    from generators import bearing, characteristic_frequencies
+
+    rng = np.random.default_rng(17)
+    fs = 6400.0
+    f = characteristic_frequencies(bearing("6205"), 1800.0 / 60.0)
+    simulated = pd.DataFrame(
+        {
+            "signal": [rng.standard_normal(6400) for _ in range(60)],
+            "fs_hz": fs,
+            "shaft_frequency_hz": f.shaft,
+            "ftf_hz": f.ftf,
+            "bpfo_hz": f.bpfo,
+            "bpfi_hz": f.bpfi,
+            "bsf_hz": f.bsf,
+            "two_bsf_hz": f.two_bsf,
+        }
+    )
+    measured = _recordings(
+        tmp_path / "fast",
+        [[rng.standard_normal(6400) for _ in range(3)] for _ in range(10)],
+        [1900.0] * 10,
+        fs,
+    )
+    result = realism(simulated, recording_segments(measured, 1.0))
+    assert result["context_left_out"] == ["shaft_frequency"]
+    assert "shaft_frequency" not in dict(result["features"])
+    assert result["auc"] < 0.75, result["auc"]
