@@ -277,6 +277,13 @@ def test_default_step_skips_tracing_rays_only_where_that_changes_nothing():
     # the bound is below the radius along every ray
     rays = np.linspace(np.pi / 2, np.pi, 20001)
     assert _narrowest_radius() < rk4_stability_radius(rays).min()
+    # the bound comes from the companion-matrix roots: the same boundary as the scan's
+    from generators.steps import _boundary_radius_by_roots
+
+    some = rays[::97]
+    by_roots = _boundary_radius_by_roots(some)
+    np.testing.assert_allclose(by_roots, rk4_stability_radius(some), atol=1e-8)
+    assert _narrowest_radius() > 0.998 * rk4_stability_radius(rays).min()  # and a close one
     seen = set()
     for level in ("shaft", "shaft+housing", "full"):
         for ehl in (False, True):
