@@ -17,6 +17,9 @@ import numpy as np
 from generators._kernels import (
     _JIT,
     _JIT_INLINE,
+    DEFECTS_ALL,
+    DEFECTS_NONE,
+    DEFECTS_SLIP,
     FILM_NAMES,
     P_BALL_COUNT,
     P_MAX_DISPLACEMENT,
@@ -145,9 +148,12 @@ def _rk4_impl(
         t = t0 + step * dt
         if step % PHASE_ANCHOR == 0 or anchor:
             _phases(t, p, wav, trig)  # exact every PHASE_ANCHOR steps, rotated between
-        subs = 1
-        if fine_steps > 1 and _defect_near(wav, p, t, 1.5 * dt, scratch):
-            subs = fine_steps
+        # a contact near a local defect: the step is split and the pit's rows evaluated;
+        # elsewhere they add nothing and are skipped (fine_steps 1: no defects, or never split)
+        near = fine_steps <= 1 or _defect_near(wav, p, t, 1.5 * dt, scratch)
+        subs = fine_steps if near else 1
+        at_half = DEFECTS_ALL if near else DEFECTS_NONE
+        at_end = DEFECTS_ALL if near else DEFECTS_SLIP
         anchor = subs > 1
         h = dt / subs
         half = 0.5 * h
@@ -157,7 +163,7 @@ def _rk4_impl(
             for stage in range(4):
                 if stage == 0:
                     _advance(trig, step_inc)
-                    _time_terms(ts + half, p, wav, trig, scratch)
+                    _time_terms(ts + half, p, wav, trig, scratch, at_half)
                     for i in range(n):
                         tmp[i] = y[i] + half * ks[0, i]
                 elif stage == 1:
@@ -165,7 +171,7 @@ def _rk4_impl(
                         tmp[i] = y[i] + half * ks[1, i]
                 elif stage == 2:
                     _advance(trig, step_inc)
-                    _time_terms(ts + h, p, wav, trig, scratch)
+                    _time_terms(ts + h, p, wav, trig, scratch, at_end)
                     for i in range(n):
                         tmp[i] = y[i] + h * ks[2, i]
                 else:

@@ -127,6 +127,10 @@ SURF_BALL_DEFECT_INNER = 6
 SURF_SLIP = 7
 # rows of the time-terms work array (:func:`_scratch`) that hold each ball's slip angle and rate
 SLIP_LAG = 9
+#: What :func:`_waviness` evaluates of the local defects: nothing, the slip angles only (a
+#: step's end away from any pit: the next step's :func:`_defect_near` reads them), or the slip
+#: angles and the pits' rows.
+DEFECTS_NONE, DEFECTS_SLIP, DEFECTS_ALL = 0, 1, 2
 (
     W_SURFACE,
     W_BALL,
@@ -453,12 +457,16 @@ def _defect_near(wav, p, t, horizon, scratch):
 
 
 @numba.njit(**_JIT_INLINE)
-def _waviness(wav, z, theta0, shaft_angle, t, p, trig, out):
+def _waviness(wav, z, theta0, shaft_angle, t, p, trig, out, defects):
     """Waviness seen by ball j: ``out[:, j] = [w_o, dw_o, w_i, dw_i, wb_o, dwb_o, wb_i, dwb_i]``.
 
     Values in m, rates in m/s. ``trig[r + 1]`` holds cos and sin of row r's argument at time
     ``t`` (:func:`_phases`). Race harmonics are evaluated for ball 0 and rotated by k times the
-    ball pitch for the others (no cos/sin per ball).
+    ball pitch for the others (no cos/sin per ball). ``defects`` (``DEFECTS_*``): whether the
+    local defects' rows and the slip angles they use are evaluated. Where no contact can be over
+    a local defect (:func:`_defect_near` said so for the step) the rows add nothing
+    (:func:`_pit` writes only inside a pit) and are skipped; the slip angles are then needed
+    only at the step's end, for the next step's :func:`_defect_near`.
     """
     for i in range(8):
         for j in range(z):
@@ -468,7 +476,7 @@ def _waviness(wav, z, theta0, shaft_angle, t, p, trig, out):
     wb = p[P_BALL_SPIN_SPEED]
     # slip rows come last in the table
     slipping = wav.shape[0] > 0 and int(wav[wav.shape[0] - 1, W_SURFACE]) == SURF_SLIP
-    if slipping:
+    if slipping and defects != DEFECTS_NONE:
         _slip_lags(wav, trig, z, out)
     for r in range(wav.shape[0]):
         surface = int(wav[r, W_SURFACE])
@@ -477,7 +485,8 @@ def _waviness(wav, z, theta0, shaft_angle, t, p, trig, out):
         if surface == SURF_SLIP:
             break
         if surface >= SURF_OUTER_DEFECT:
-            _defect(wav, r, surface, z, theta0, shaft_angle, t, wc, ws, wb, slipping, out)
+            if defects == DEFECTS_ALL:
+                _defect(wav, r, surface, z, theta0, shaft_angle, t, wc, ws, wb, slipping, out)
             continue
         if surface == SURF_BALL:
             j = int(wav[r, W_BALL])
@@ -545,7 +554,7 @@ def _start_waviness(p, wav, z, out):
     """:func:`_waviness` at t = 0 into ``out`` (11, z): one call for the static start."""
     trig = _trig(wav)
     _phases(0.0, p, wav, trig)
-    _waviness(wav, z, p[P_CAGE_ANGLE0], p[P_SHAFT_ANGLE0], 0.0, p, trig, out)
+    _waviness(wav, z, p[P_CAGE_ANGLE0], p[P_SHAFT_ANGLE0], 0.0, p, trig, out, DEFECTS_ALL)
 
 
 @numba.njit(**_JIT)
@@ -594,7 +603,7 @@ def _advance(trig, inc):
 
 
 @numba.njit(**_JIT)
-def _time_terms(t, p, wav, trig, scratch):
+def _time_terms(t, p, wav, trig, scratch, defects):
     """Fill ``scratch`` with the terms of the right-hand side that depend on time only.
 
     ``trig`` must hold the cos/sin of the arguments at ``t`` (:func:`_phases`, or rotated to
@@ -602,14 +611,15 @@ def _time_terms(t, p, wav, trig, scratch):
     row 8: the time ``t`` [s], cos and sin of the cage angle, and the shaft angle [rad]; rows
     9-10: each ball's slip angle and rate (local defects with random slip only).
     Called once per distinct stage time by the integrators (RK stages that share a time share
-    them). Not inlined: the waviness code would otherwise sit in the right-hand side's hot
-    loop and slow it down (measured: 62 ns against 33 ns per shaft-scene evaluation).
+    them). ``defects``: which local-defect terms to evaluate (``DEFECTS_*``, :func:`_waviness`).
+    Not inlined: the waviness code would otherwise sit in the right-hand side's hot loop and
+    slow it down (measured: 62 ns against 33 ns per shaft-scene evaluation).
     """
     z = int(p[P_BALL_COUNT])
     theta0 = p[P_CAGE_ANGLE0] + p[P_CAGE_SPEED] * t
     shaft_angle = p[P_SHAFT_ANGLE0] + p[P_SHAFT_SPEED] * t
     if wav.shape[0] > 0:
-        _waviness(wav, z, theta0, shaft_angle, t, p, trig, scratch)
+        _waviness(wav, z, theta0, shaft_angle, t, p, trig, scratch, defects)
     scratch[8, 0] = t
     scratch[8, 1] = trig[0, 0]
     scratch[8, 2] = trig[0, 1]
@@ -620,7 +630,7 @@ def _time_terms(t, p, wav, trig, scratch):
 def _time_terms_at(t, p, wav, trig, scratch):
     """:func:`_phases` then :func:`_time_terms`: the time terms at ``t``, computed directly."""
     _phases(t, p, wav, trig)
-    _time_terms(t, p, wav, trig, scratch)
+    _time_terms(t, p, wav, trig, scratch, DEFECTS_ALL)
 
 
 @numba.njit(**_JIT_INLINE)
