@@ -12,23 +12,29 @@ left out on both sides, as ``cmtool train`` leaves them out by default: a label 
 fault is there when nothing in the signal can show it (a pit outside the load zone) teaches a
 model to call quiet machines faulty, and scores a detector on what no detector can see.
 
+The classes are weighed as ``cmtool train`` weighs them (``cmtool.classifier.CLASS_WEIGHT``);
+``--class-weight none`` compares the unweighted forest, and ``--classifiers`` runs every
+candidate of ``cmtool train`` on the default feature set instead of the forest on every set.
+
 Run (after generating the datasets; feature tables are cached in CACHE):
     cmtool generate datasets/cwru-rig.toml --out data/cwru-rig --workers 2
     cmtool generate datasets/mfpt-rig.toml --out data/mfpt-rig --workers 2
     .venv/bin/python benchmarks/cross_domain.py data/cwru-rig data/mfpt-rig
+    [--class-weight none] [--classifiers]
 """
 
-import sys
+import argparse
 import time
 from itertools import permutations
 from pathlib import Path
 
 import numpy as np
 from sklearn.ensemble import RandomForestClassifier
-from sklearn.metrics import balanced_accuracy_score, confusion_matrix
+from sklearn.metrics import balanced_accuracy_score, confusion_matrix, recall_score
 from sklearn.pipeline import make_pipeline
 from sklearn.preprocessing import StandardScaler
 
+from cmtool import classifier
 from cmtool.datasets import read_dataset
 from features import FEATURE_SETS, FeatureExtractor
 
@@ -36,11 +42,15 @@ MIN_FAULT_SNR_DB = -10.0
 CACHE = Path(".cache/cross_domain")
 
 
-def main(paths: list[str]) -> None:
+def main(paths: list[str], class_weight: str | None, all_classifiers: bool) -> None:
     frames = {Path(p).name: read_dataset(p) for p in paths}
+    sets = (classifier.DEFAULT_FEATURE_SET,) if all_classifiers else FEATURE_SETS
     tables: dict[tuple[str, str], np.ndarray] = {}
     CACHE.mkdir(parents=True, exist_ok=True)
-    for feature_set in FEATURE_SETS:
+    for feature_set in FEATURE_SETS:  # the union sets need their parts
+        if all_classifiers and feature_set not in classifier.DEFAULT_FEATURE_SET.split("+"):
+            if feature_set != classifier.DEFAULT_FEATURE_SET:
+                continue
         start = time.perf_counter()
         for name, frame in frames.items():
             if "+" in feature_set:  # a union: the columns of its parts, in order
@@ -72,21 +82,43 @@ def main(paths: list[str]) -> None:
     )
     print("|---|" + "---|" * (len(frames) * (len(frames) - 1) + 1))
     labels = sorted(set.union(*(set(f["label"]) for f in frames.values())))
-    for feature_set in FEATURE_SETS:
-        scores = []
-        for a, b in permutations(frames, 2):
-            model = make_pipeline(
-                StandardScaler(), RandomForestClassifier(n_estimators=300, random_state=0)
+    if all_classifiers:
+        classifier.CLASS_WEIGHT = class_weight
+        models = classifier.candidate_classifiers(0)
+    else:
+        models = {
+            "random_forest": RandomForestClassifier(
+                n_estimators=300, random_state=0, class_weight=class_weight
             )
-            model.fit(tables[feature_set, a][keep[a]], frames[a]["label"].to_numpy()[keep[a]])
-            predicted = model.predict(tables[feature_set, b][keep[b]])
-            truth = frames[b]["label"].to_numpy()[keep[b]]
-            scores.append(balanced_accuracy_score(truth, predicted))
-            print(f"  ({feature_set} {a} -> {b} confusion, rows {labels}):")
-            print("  " + str(confusion_matrix(truth, predicted, labels=labels).tolist()))
-        cells = " | ".join(f"{s:.3f}" for s in scores)
-        print(f"| {feature_set} | {cells} | {np.mean(scores):.3f} |")
+        }
+    for feature_set in sets:
+        for name, estimator in models.items():
+            scores = []
+            for a, b in permutations(frames, 2):
+                model = make_pipeline(StandardScaler(), estimator)
+                model.fit(tables[feature_set, a][keep[a]], frames[a]["label"].to_numpy()[keep[a]])
+                predicted = model.predict(tables[feature_set, b][keep[b]])
+                truth = frames[b]["label"].to_numpy()[keep[b]]
+                scores.append(balanced_accuracy_score(truth, predicted))
+                recall = recall_score(truth, predicted, labels=labels, average=None)
+                print(f"  ({feature_set}, {name}, {a} -> {b}: rows {labels}):")
+                print("  " + str(confusion_matrix(truth, predicted, labels=labels).tolist()))
+                pairs = zip(labels, recall, strict=True)
+                print("  recall " + ", ".join(f"{k} {r:.2f}" for k, r in pairs))
+            cells = " | ".join(f"{s:.3f}" for s in scores)
+            row = feature_set if not all_classifiers else f"{feature_set}, {name}"
+            print(f"| {row} | {cells} | {np.mean(scores):.3f} |")
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("datasets", nargs="+", help="dataset folders of different rig recipes")
+    parser.add_argument(
+        "--class-weight", choices=("balanced", "none"), default=classifier.CLASS_WEIGHT or "none"
+    )
+    parser.add_argument(
+        "--classifiers", action="store_true", help="every cmtool train candidate, default set"
+    )
+    args = parser.parse_args()
+    weight = None if args.class_weight == "none" else args.class_weight
+    main(args.datasets, weight, args.classifiers)

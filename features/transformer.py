@@ -27,8 +27,8 @@ __all__ = ["FeatureExtractor", "CONTEXT_COLUMNS", "FEATURE_SETS"]
 #: fault rate shows most clearly, searched within the slip, with sidebands and the margin
 #: over the detection threshold; ratios at the bearing's own rates only.
 #: ``evidence+scale-free``: both; the set that carried over best between simulated rigs
-#: (benchmarks/cross_domain.py: mean balanced accuracy 0.95 from the CWRU to the MFPT rig
-#: recipe and back, against 0.80 for scale-free and 0.75 for evidence alone), the default of
+#: (benchmarks/cross_domain.py: mean balanced accuracy 0.85 from the CWRU to the MFPT rig
+#: recipe and back, against 0.79 for scale-free and 0.81 for evidence alone), the default of
 #: ``cmtool train``.
 FEATURE_SETS = ("all", "scale-free", "envelope", "evidence", "evidence+scale-free")
 

@@ -145,6 +145,10 @@ def waviness_table(
 #: each ball's pocket offset over [POCKET_BAND[0], POCKET_BAND[1]] times the cage frequency.
 SLIP_COMPONENTS = 12
 SLIP_BAND = (1.0 / 8.0, 2.0)
+#: How the cage components' frequencies are spread over SLIP_BAND: "log" (equal power per
+#: log band, the default) or "linear" (equal power per Hz: a white speed fluctuation, whose
+#: integral wanders like a random walk; benchmarks/slip_discreteness.py compares them).
+SLIP_SPACING = "log"
 POCKET_COMPONENTS = 4
 POCKET_BAND = (0.5, 4.0)
 
@@ -188,9 +192,12 @@ def slip_rows(
     ):
         if sigma == 0.0 or wc == 0.0:
             continue
-        edges = np.linspace(np.log(band[0] * wc), np.log(band[1] * wc), count + 1)
+        linear = SLIP_SPACING == "linear" and balls == (-1,)
+        scale = (lambda v: v) if linear else np.log
+        edges = np.linspace(scale(band[0] * wc), scale(band[1] * wc), count + 1)
         for ball in balls:
-            rates = np.exp(rng.uniform(edges[:-1], edges[1:]))
+            drawn = rng.uniform(edges[:-1], edges[1:])
+            rates = drawn if linear else np.exp(drawn)
             phases = rng.uniform(0.0, 2 * np.pi, count)
             share = sigma * np.sqrt(2.0 / count)
             # the cage's speed fluctuation integrates to an angle; a pocket offset is one

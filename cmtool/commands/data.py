@@ -65,6 +65,8 @@ def cmd_dataset_info(args: argparse.Namespace) -> int:
 
 def cmd_train(args: argparse.Namespace) -> int:
     """Train classifiers with grouped cross-validation and save the best."""
+    import numpy as np
+
     from ..classifier import save_model, train
     from ..datasets import read_dataset
 
@@ -81,10 +83,18 @@ def cmd_train(args: argparse.Namespace) -> int:
         f"trained on {len(frame) - bundle['left_out']} signals ({bundle['left_out']} faulty "
         f"ones below the fault SNR floor left out), {frame['operating_point_id'].nunique()} "
         f"operating points, features {bundle['feature_set']}; grouped "
-        f"{bundle['n_splits']}-fold accuracy (no operating point in both train and test):"
+        f"{bundle['n_splits']}-fold balanced accuracy (the mean of the per-class recalls; no "
+        "operating point in both train and test):"
     )
     for name, score in sorted(bundle["scores"].items(), key=lambda kv: -kv[1]):
         print(f"  {name:<22s} {score:.3f}{'  <- kept' if name == bundle['best'] else ''}")
+    truth = np.asarray(bundle["cv_labels"])
+    predicted = np.asarray(bundle["cv_predictions"])
+    recalls = ", ".join(
+        f"{label} {np.mean(predicted[truth == label] == label):.2f}"
+        for label in bundle["classes"]
+    )
+    print(f"  recall per class of the kept model (out of fold): {recalls}")
     for key, value in bundle["extrapolation"].items():
         print(f"  extrapolation {key:<28s} {value:.3f}")
     print(f"wrote {save_model(bundle, args.out)}")
