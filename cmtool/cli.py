@@ -168,6 +168,20 @@ def build_parser() -> argparse.ArgumentParser:
         help="leave out faulty signals whose fault SNR is below DB (nothing in them shows the "
         "fault; default -10 dB)",
     )
+    p.add_argument(
+        "--classifier",
+        default="extra_trees",
+        choices=[
+            "extra_trees",
+            "random_forest",
+            "gradient_boosting",
+            "logistic_regression",
+            "best-cv",
+        ],
+        help="classifier kept (default: extra_trees, the one that carried over best between "
+        "simulated rigs: benchmarks/cross_domain.py --classifiers); best-cv: the best grouped "
+        "cross-validation score on this dataset",
+    )
     _add_allow_incomplete(p)
     p.set_defaults(func=cmd_train)
 

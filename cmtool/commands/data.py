@@ -78,6 +78,7 @@ def cmd_train(args: argparse.Namespace) -> int:
         random_state=args.seed,
         feature_set=args.feature_set,
         min_fault_snr_db=None if args.min_fault_snr is None else float(args.min_fault_snr),
+        classifier=None if args.classifier == "best-cv" else args.classifier,
     )
     print(
         f"trained on {len(frame) - bundle['left_out']} signals ({bundle['left_out']} faulty "
