@@ -160,15 +160,21 @@ def training_overlap(bundle: dict[str, Any], frame: pd.DataFrame) -> float:
 #: 0.824 -> 0.848, extra trees 0.871 -> 0.894, gradient boosting 0.877 -> 0.895, logistic
 #: regression 0.790 -> 0.789; healthy recall 0.94-1.00 (docs/realism.md 6).
 CLASS_WEIGHT = "balanced"
-#: The classifier :func:`train` keeps by default: the candidate that carried over best between
-#: the simulated rigs while keeping their healthy signals healthy (``benchmarks/
-#: cross_domain.py --classifiers``, CWRU-rig and MFPT-rig recipes, evidence+scale-free, mean
-#: balanced accuracy of both directions, healthy recall of each): extra trees 0.940 (healthy
-#: 1.00, 1.00), random forest 0.933 (0.98, 1.00), gradient boosting 0.899 (0.80, 1.00),
-#: logistic regression 0.768 (0.00, 0.98); with the ball class four times smaller 0.894,
-#: 0.848, 0.895, 0.789. Grouped cross-validation on one recipe ranks them otherwise (gradient
-#: boosting first) because it never leaves the rig: ``classifier=None`` keeps its best.
-DEFAULT_CLASSIFIER = "extra_trees"
+#: :func:`train`'s default choice of classifier: the one the dataset's recipe names in
+#: ``[training] classifier`` (the rig recipes name the one that carried over best between the
+#: simulated rigs: docs/realism.md 6), else the best grouped cross-validation score.
+FROM_RECIPE = "recipe"
+
+
+def recipe_classifier(recipe: str) -> str | None:
+    """The classifier a recipe's text names in ``[training] classifier`` (None: none named)."""
+    import tomllib
+
+    try:
+        named = tomllib.loads(recipe).get("training", {}).get("classifier")
+    except (tomllib.TOMLDecodeError, AttributeError):
+        return None
+    return named if isinstance(named, str) else None
 
 
 def candidate_classifiers(random_state: int = 0) -> dict[str, Any]:
@@ -361,7 +367,7 @@ def train(
     n_splits: int | None = None,
     feature_set: str = DEFAULT_FEATURE_SET,
     min_fault_snr_db: float | None = MIN_FAULT_SNR_DB,
-    classifier: str | None = DEFAULT_CLASSIFIER,
+    classifier: str | None = FROM_RECIPE,
 ) -> dict[str, Any]:
     """Score the candidates with grouped cross-validation; keep ``classifier`` (or the best).
 
@@ -384,8 +390,9 @@ def train(
         Faulty signals with a ``fault_snr_db`` below this are left out [dB] (None: none);
         the count left out is in the bundle (``left_out``).
     classifier : str or None
-        The candidate kept (``candidate_classifiers``); default ``DEFAULT_CLASSIFIER``, the one
-        that carried over best between simulated rigs; None keeps the best grouped-CV score.
+        The candidate kept (``candidate_classifiers``); ``FROM_RECIPE`` (default): the one
+        ``recipe`` names in ``[training] classifier``, else the best grouped-CV score, which
+        None always keeps.
 
     Returns
     -------
@@ -411,6 +418,8 @@ def train(
     for name, clf in candidate_classifiers(random_state).items():
         est = make_pipeline(StandardScaler(), clf)
         scores[name], cv_predictions[name] = _grouped_cv(X, y, groups, est, n_splits)
+    if classifier == FROM_RECIPE:
+        classifier = recipe_classifier(recipe)
     if classifier is not None and classifier not in scores:
         raise ValueError(
             f"classifier = {classifier!r} is not one of {sorted(scores)} (or None: the best "

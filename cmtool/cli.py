@@ -170,17 +170,18 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--classifier",
-        default="extra_trees",
+        default="recipe",
         choices=[
+            "recipe",
+            "best-cv",
             "extra_trees",
             "random_forest",
             "gradient_boosting",
             "logistic_regression",
-            "best-cv",
         ],
-        help="classifier kept (default: extra_trees, the one that carried over best between "
-        "simulated rigs: benchmarks/cross_domain.py --classifiers); best-cv: the best grouped "
-        "cross-validation score on this dataset",
+        help="classifier kept (default: the one the dataset's recipe names in [training] "
+        "classifier, the rig recipes the one that carried over best between simulated rigs; "
+        "else best-cv: the best grouped cross-validation score on this dataset)",
     )
     _add_allow_incomplete(p)
     p.set_defaults(func=cmd_train)

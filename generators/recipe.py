@@ -34,6 +34,7 @@ __all__ = [
     "QUANTITIES",
     "DIRECTIONS",
     "DEFAULT_CHUNK_SIZE",
+    "TRAINING_CLASSIFIERS",
 ]
 
 #: cases per parquet file (and per worker task) when a recipe does not say: four 32-signal SIMD
@@ -41,6 +42,9 @@ __all__ = [
 DEFAULT_CHUNK_SIZE = 128
 
 QUANTITIES = ("displacement", "velocity", "acceleration")
+#: The classifiers ``cmtool train`` compares (``cmtool.classifier.candidate_classifiers``): a
+#: recipe's ``[training] classifier`` names the one to keep on its datasets.
+TRAINING_CLASSIFIERS = ("extra_trees", "random_forest", "gradient_boosting", "logistic_regression")
 DIRECTIONS = ("x", "y")
 DEFECT_KINDS = ("waviness", "localized")
 CONDITION_SURFACES = {"healthy": None, "inner": "inner", "outer": "outer", "ball": "ball"}
@@ -330,8 +334,14 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
         "rad/s",
         doc="ball pits: spin-axis turn rate (docs/realism.md 5)",
     ),
+    Key(
+        "training.classifier",
+        "choice",
+        choices=TRAINING_CLASSIFIERS,
+        doc="classifier cmtool train keeps on this dataset (default: best grouped CV score)",
+    ),
 )
-_SECTIONS = ("operating", "model", "sensor", "background")
+_SECTIONS = ("operating", "model", "sensor", "background", "training")
 #: Keys of [sensor] that describe the realistic measurement chain (docs/realism.md).
 _CHAIN_SENSOR_KEYS = (
     "modes",
@@ -533,7 +543,7 @@ def validate_recipe(recipe: dict) -> dict:
     r.update(top)
     for section in _SECTIONS:
         table = r.setdefault(section, {}) if section == "model" else r.get(section)
-        if section == "background" and table is None:
+        if section in ("background", "training") and table is None:
             continue
         if not isinstance(table, dict):
             raise _fail(section, table, "a table is required")

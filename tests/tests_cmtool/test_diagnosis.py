@@ -483,3 +483,31 @@ def test_the_pooled_verdicts_confidence_is_calibrated_at_training(bundle, small)
     assert calibrated_confidence(0.37, None) == 0.37
     values = [calibrated_confidence(p, calibration) for p in (0.3, 0.5, 0.7, 0.9, 0.99)]
     assert all(0.0 < v < 1.0 for v in values) and values == sorted(values)
+
+
+def test_a_recipe_names_the_classifier_train_keeps(small):
+    """``[training] classifier`` in the dataset's recipe is what ``train`` keeps by default
+    (the rig recipes name the one that carried over between simulated rigs); without it, or
+    with ``classifier=None``, the best grouped cross-validation score; a name that is not a
+    candidate is refused, by ``train`` and by the recipe validator, naming the key."""
+    import tomllib
+
+    from cmtool.classifier import recipe_classifier, train
+    from generators.recipe import validate_recipe
+
+    part = small.groupby("label").head(16).reset_index(drop=True)
+    named = '[training]\nclassifier = "random_forest"\n'
+    assert recipe_classifier(named) == "random_forest" and recipe_classifier("x = [") is None
+    kept = train(part, recipe=named, n_splits=3)
+    assert kept["best"] == "random_forest"
+    best = train(part, recipe=named, n_splits=3, classifier=None)
+    assert best["best"] == max(best["scores"], key=best["scores"].get)
+    assert kept["scores"] == best["scores"]  # every candidate is scored either way
+    with pytest.raises(ValueError, match="classifier = 'svm'"):
+        train(part, n_splits=3, classifier="svm")
+    for name in ("cwru-rig", "mfpt-rig", "universal"):
+        text = (REPO / "datasets" / f"{name}.toml").read_text()
+        assert recipe_classifier(text) == "extra_trees"
+        bad = tomllib.loads(text.replace('classifier = "extra_trees"', 'classifier = "svm"'))
+        with pytest.raises(ValueError, match="training.classifier"):
+            validate_recipe(bad)
