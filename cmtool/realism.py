@@ -29,11 +29,33 @@ from generators import characteristic_frequencies
 from .bench import MANIFEST_BEARINGS
 from .io import read_recording
 
-__all__ = ["realism", "recording_segments", "plot_realism", "CONTEXT_UNITS"]
+__all__ = ["realism", "recording_segments", "plot_realism", "context_columns", "CONTEXT_UNITS"]
 
 #: Units of the features that repeat a signal's context instead of measuring the signal
 #: (``features.feature_units``): the gauge leaves them out.
 CONTEXT_UNITS = frozenset({"Hz"})
+
+
+def context_columns(frequencies, fs: float) -> dict[str, float]:
+    """The feature extractor's context columns of a signal (``features.CONTEXT_COLUMNS``).
+
+    Parameters
+    ----------
+    frequencies : generators.BearingFrequencies
+        The bearing's characteristic frequencies at the signal's speed [Hz].
+    fs : float
+        Sample rate [Hz].
+    """
+    f = frequencies
+    return {
+        "fs_hz": float(fs),
+        "shaft_frequency_hz": f.shaft,
+        "ftf_hz": f.ftf,
+        "bpfo_hz": f.bpfo,
+        "bpfi_hz": f.bpfi,
+        "bsf_hz": f.bsf,
+        "two_bsf_hz": f.two_bsf,
+    }
 
 
 def recording_segments(folder: str | Path, duration_s: float) -> pd.DataFrame:
@@ -71,19 +93,8 @@ def recording_segments(folder: str | Path, duration_s: float) -> pd.DataFrame:
         n = max(1, int(round(duration_s * fs)))
         count = max(1, x.size // n)
         for i in range(count):
-            rows.append(
-                {
-                    "signal": x[i * n : (i + 1) * n] if x.size >= n else x,
-                    "group": str(entry["file"]),
-                    "fs_hz": fs,
-                    "shaft_frequency_hz": f.shaft,
-                    "ftf_hz": f.ftf,
-                    "bpfo_hz": f.bpfo,
-                    "bpfi_hz": f.bpfi,
-                    "bsf_hz": f.bsf,
-                    "two_bsf_hz": f.two_bsf,
-                }
-            )
+            segment = x[i * n : (i + 1) * n] if x.size >= n else x
+            rows.append({"signal": segment, "group": str(entry["file"]), **context_columns(f, fs)})
     if not rows:
         raise ValueError(f"{manifest}: lists no recordings")
     return pd.DataFrame(rows)

@@ -92,8 +92,7 @@ def cmd_train(args: argparse.Namespace) -> int:
     truth = np.asarray(bundle["cv_labels"])
     predicted = np.asarray(bundle["cv_predictions"])
     recalls = ", ".join(
-        f"{label} {np.mean(predicted[truth == label] == label):.2f}"
-        for label in bundle["classes"]
+        f"{label} {np.mean(predicted[truth == label] == label):.2f}" for label in bundle["classes"]
     )
     print(f"  recall per class of the kept model (out of fold): {recalls}")
     for key, value in bundle["extrapolation"].items():

@@ -9,7 +9,7 @@ import pytest
 
 from cmtool.cli import main
 from cmtool.datasets import read_dataset
-from cmtool.realism import realism, recording_segments
+from cmtool.realism import context_columns, realism, recording_segments
 
 SMALL = Path(__file__).resolve().parents[2] / "datasets" / "small"
 
@@ -85,16 +85,7 @@ def test_gauge_judges_signals_not_the_speed_grid(tmp_path):
     fs = 6400.0
     f = characteristic_frequencies(bearing("6205"), 1800.0 / 60.0)
     simulated = pd.DataFrame(
-        {
-            "signal": [rng.standard_normal(6400) for _ in range(60)],
-            "fs_hz": fs,
-            "shaft_frequency_hz": f.shaft,
-            "ftf_hz": f.ftf,
-            "bpfo_hz": f.bpfo,
-            "bpfi_hz": f.bpfi,
-            "bsf_hz": f.bsf,
-            "two_bsf_hz": f.two_bsf,
-        }
+        {"signal": [rng.standard_normal(6400) for _ in range(60)], **context_columns(f, fs)}
     )
     measured = _recordings(
         tmp_path / "fast",
