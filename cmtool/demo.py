@@ -92,7 +92,7 @@ def run_demo(out: Path, *, recipe: Path = SMALL_RECIPE, workers: int = 1) -> int
     model_path = save_model(bundle, out / "model.skops")
     best = bundle["best"]
     print(
-        f"  trained {best}: grouped-CV accuracy on held-out operating points "
+        f"  trained {best}: grouped-CV balanced accuracy on held-out operating points "
         f"{bundle['scores'][best]:.3f}"
     )
     labels = sorted(set(bundle["cv_labels"]))

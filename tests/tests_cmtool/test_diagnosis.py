@@ -270,7 +270,7 @@ def test_measured_recordings_get_their_labelled_fault(shared_data, name, bearing
 def test_demo_runs_end_to_end(tmp_path, capsys):
     assert main(["demo", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
-    assert "grouped-CV accuracy" in out
+    assert "grouped-CV balanced accuracy" in out
     assert (tmp_path / "confusion.png").exists()
     assert (tmp_path / "diagnosis_simulated" / "report.md").exists()
     assert (tmp_path / "diagnosis_local_defect" / "report.md").exists()
