@@ -511,3 +511,24 @@ def test_a_recipe_names_the_classifier_train_keeps(small):
         bad = tomllib.loads(text.replace('classifier = "extra_trees"', 'classifier = "svm"'))
         with pytest.raises(ValueError, match="training.classifier"):
             validate_recipe(bad)
+
+
+def test_candidates_are_weighed_by_class_and_ranked_by_balanced_accuracy():
+    """Every candidate weighs classes by their counts (a ball class thinned by the fault-SNR
+    filter must not lose to "healthy" by its size), and the grouped CV score is the balanced
+    accuracy: a model that calls everything the majority class scores 1 / classes, not the
+    majority's share."""
+    from sklearn.dummy import DummyClassifier
+
+    from cmtool.classifier import CLASS_WEIGHT, _grouped_cv, candidate_classifiers
+
+    assert CLASS_WEIGHT == "balanced"
+    for name, clf in candidate_classifiers().items():
+        assert clf.get_params()["class_weight"] == CLASS_WEIGHT, name
+    rng = np.random.default_rng(0)
+    y = np.array(["healthy"] * 80 + ["ball"] * 10 + ["inner"] * 10)
+    X = rng.normal(size=(y.size, 3))
+    groups = np.arange(y.size) % 10
+    score, predicted = _grouped_cv(X, y, groups, DummyClassifier(strategy="most_frequent"), 5)
+    assert (predicted == "healthy").all()
+    assert score == pytest.approx(1 / 3)  # plain accuracy would be 0.8
