@@ -47,10 +47,9 @@ def main(paths: list[str], class_weight: str | None, all_classifiers: bool) -> N
     sets = (classifier.DEFAULT_FEATURE_SET,) if all_classifiers else FEATURE_SETS
     tables: dict[tuple[str, str], np.ndarray] = {}
     CACHE.mkdir(parents=True, exist_ok=True)
-    for feature_set in FEATURE_SETS:  # the union sets need their parts
-        if all_classifiers and feature_set not in classifier.DEFAULT_FEATURE_SET.split("+"):
-            if feature_set != classifier.DEFAULT_FEATURE_SET:
-                continue
+    # a union set is the columns of its parts: compute those first
+    needed = {part for feature_set in sets for part in feature_set.split("+")} | set(sets)
+    for feature_set in (f for f in FEATURE_SETS if f in needed):
         start = time.perf_counter()
         for name, frame in frames.items():
             if "+" in feature_set:  # a union: the columns of its parts, in order
@@ -83,8 +82,7 @@ def main(paths: list[str], class_weight: str | None, all_classifiers: bool) -> N
     print("|---|" + "---|" * (len(frames) * (len(frames) - 1) + 1))
     labels = sorted(set.union(*(set(f["label"]) for f in frames.values())))
     if all_classifiers:
-        classifier.CLASS_WEIGHT = class_weight
-        models = classifier.candidate_classifiers(0)
+        models = classifier.candidate_classifiers(0, class_weight)
     else:
         models = {
             "random_forest": RandomForestClassifier(

@@ -177,9 +177,14 @@ def recipe_classifier(recipe: str) -> str | None:
     return named if isinstance(named, str) else None
 
 
-def candidate_classifiers(random_state: int = 0) -> dict[str, Any]:
-    """The classifiers compared by :func:`train` (after a scaler), weighed by CLASS_WEIGHT."""
-    weight = CLASS_WEIGHT
+def candidate_classifiers(
+    random_state: int = 0, class_weight: str | None = CLASS_WEIGHT
+) -> dict[str, Any]:
+    """The classifiers compared by :func:`train` (after a scaler).
+
+    Classes are weighed by ``class_weight`` (None: unweighted).
+    """
+    weight = class_weight
     return {
         "random_forest": RandomForestClassifier(
             n_estimators=300, random_state=random_state, n_jobs=-1, class_weight=weight

@@ -150,7 +150,7 @@ def realism(
     units = feature_units(extractor.faults, extractor.n_harmonics)
     names = list(extractor.get_feature_names_out())
     keep = [i for i, name in enumerate(names) if units.get(name) not in CONTEXT_UNITS]
-    left_out = [name for i, name in enumerate(names) if i not in set(keep)]
+    left_out = [name for name in names if units.get(name) in CONTEXT_UNITS]
     X = extractor.transform(both)[:, keep]
     names = [names[i] for i in keep]
     y = np.r_[np.zeros(len(simulated)), np.ones(len(measured))]
