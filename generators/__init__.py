@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 # line's --help or a parameter check does not pay for the compiler (PEP 562)
 from ._validate import ParameterError, SimulationDivergedError
 from .catalog import BEARINGS, bearing
+from .form import form_waviness
 from .kinematics import (
     BearingFrequencies,
     WavinessLine,
@@ -114,6 +115,7 @@ __all__ = [
     "Waviness",
     "WavinessLine",
     "bearing",
+    "form_waviness",
     "characteristic_frequencies",
     "contact_geometry",
     "contact_static_capacity",

@@ -67,6 +67,9 @@ class CaseRecord:
     wpf_hz: float
     random_slip: float
     ball_jitter_rad: float
+    inner_form_waviness_m: float
+    outer_form_waviness_m: float
+    ball_form_waviness_m: float
     fault_band_low_hz: float
     fault_band_high_hz: float
     chain: str
@@ -121,6 +124,9 @@ class Case:
     resonance_hz: float = math.nan
     random_slip: float = 0.0
     ball_jitter_rad: float = 0.0
+    inner_form_waviness_m: float = 0.0
+    outer_form_waviness_m: float = 0.0
+    ball_form_waviness_m: float = 0.0
 
 
 def _draw(spec: dict, rng: np.random.Generator, cycle: int, *, integer: bool = False):
@@ -221,6 +227,12 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
             # drawn last, so that recipes without them draw every other value as before
             slip = _draw(op["random_slip"], rng, k) if "random_slip" in op else 0.0
             jitter = _draw(op["ball_jitter_rad"], rng, k) if "ball_jitter_rad" in op else 0.0
+            form = [0.0, 0.0, 0.0]  # inner, outer, ball: after the others, for the same reason
+            if "race_form_waviness_m" in op:
+                form[0] = _draw(op["race_form_waviness_m"], rng, k)
+                form[1] = _draw(op["race_form_waviness_m"], rng, k)
+            if "ball_form_waviness_m" in op:
+                form[2] = _draw(op["ball_form_waviness_m"], rng, k)
             yield Case(
                 index=index,
                 label=cond["label"],
@@ -246,5 +258,8 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                 fault_snr_db=fault_snr,
                 random_slip=slip,
                 ball_jitter_rad=jitter,
+                inner_form_waviness_m=form[0],
+                outer_form_waviness_m=form[1],
+                ball_form_waviness_m=form[2],
             )
             index += 1

@@ -123,6 +123,22 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
     Key("operating.random_slip", "values", 0.0, 0.1, "", doc="cage speed fluctuation, std"),
     Key("operating.ball_jitter_rad", "values", 0.0, 0.1, "rad", doc="cage pocket play, std"),
     Key(
+        "operating.race_form_waviness_m",
+        "values",
+        0.0,
+        2e-6,
+        "m",
+        doc="form error of each race: waviness at order Z, drawn per race (generators.form)",
+    ),
+    Key(
+        "operating.ball_form_waviness_m",
+        "values",
+        0.0,
+        2e-6,
+        "m",
+        doc="form error of the balls: waviness at order 2 (generators.form)",
+    ),
+    Key(
         "model.scene",
         "choice",
         default="shaft+housing",

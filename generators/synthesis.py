@@ -21,6 +21,7 @@ from ._validate import ParameterError, SimulationDivergedError
 from .batches import lanes_supported, simulate_lanes
 from .cases import Case
 from .catalog import bearing
+from .form import form_waviness
 from .kinematics import characteristic_frequencies, passage_lines
 from .measurement import (
     MachineBackground,
@@ -89,6 +90,14 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         case.radial_load_n,
         random_slip=case.random_slip,
         ball_jitter=case.ball_jitter_rad,
+    )
+    # the bearing's own form errors come first: a case and its healthy twin draw the same
+    # phases for them (generators.form)
+    form = form_waviness(
+        geometry.ball_count,
+        case.inner_form_waviness_m,
+        case.outer_form_waviness_m,
+        case.ball_form_waviness_m,
     )
     defects: list = []
     if case.defect_kind == "localized":
@@ -182,6 +191,9 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         "wpf_hz": wpf,
         "random_slip": case.random_slip,
         "ball_jitter_rad": case.ball_jitter_rad,
+        "inner_form_waviness_m": case.inner_form_waviness_m,
+        "outer_form_waviness_m": case.outer_form_waviness_m,
+        "ball_form_waviness_m": case.ball_form_waviness_m,
         "fault_band_low_hz": math.nan,
         "fault_band_high_hz": math.nan,
         "chain": "",
@@ -195,11 +207,11 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
     def healthy() -> Prepared:
         # the same case without its defects (prepare() without re-checking these objects)
         rng = np.random.default_rng(case.seed)
-        return prepare_checked(geometry, operating, (), scene, rig, settings, rng, freqs)
+        return prepare_checked(geometry, operating, form, scene, rig, settings, rng, freqs)
 
     try:
         job.run = prepare_checked(
-            geometry, operating, tuple(defects), scene, rig, settings, job.rng, freqs
+            geometry, operating, form + tuple(defects), scene, rig, settings, job.rng, freqs
         )
         if not math.isnan(case.background_db) and defects:
             job.healthy = healthy()
@@ -515,7 +527,9 @@ def bound_steps(recipe: dict, cases: Iterable[Case]) -> dict[tuple, tuple[float,
         if prep is None:
             continue
         if job.healthy is None and case.defect_kind == "localized":
-            prep = dataclasses.replace(prep, wav=prep.wav[:0], defects=())
+            # the form errors' rows stay (they come before any local defect's)
+            waviness = prep.wav[prep.wav[:, K.W_SURFACE] <= K.SURF_BALL]
+            prep = dataclasses.replace(prep, wav=np.ascontiguousarray(waviness), defects=())
         limit = stability_step(prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0)
         members.append(
             ((limit, -case.rpm, case.rpm, -case.radial_load_n, case.radial_load_n), prep)
