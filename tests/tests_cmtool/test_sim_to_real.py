@@ -43,7 +43,8 @@ def sim_model(tmp_path_factory):
     generate_dataset(recipe, tmp / "data", workers=2)
     frame = read_dataset(tmp / "data")
     assert len(frame) == 4 * COUNT
-    return train(frame, n_splits=3)
+    # the recipe goes with the data, as `cmtool train` passes it: its named classifier is kept
+    return train(frame, recipe=small, n_splits=3)
 
 
 def test_sim_trained_model_on_measured_recordings(sim_model, shared_data):
