@@ -162,7 +162,7 @@ def training_overlap(bundle: dict[str, Any], frame: pd.DataFrame) -> float:
 CLASS_WEIGHT = "balanced"
 #: :func:`train`'s default choice of classifier: the one the dataset's recipe names in
 #: ``[training] classifier`` (the rig recipes name the one that carried over best between the
-#: simulated rigs: docs/realism.md 6 and 8), else the best grouped cross-validation score.
+#: simulated rigs: docs/realism.md 6), else the best grouped cross-validation score.
 FROM_RECIPE = "recipe"
 
 

@@ -507,8 +507,8 @@ def test_a_recipe_names_the_classifier_train_keeps(small):
         train(part, n_splits=3, classifier="svm")
     for name in ("cwru-rig", "mfpt-rig", "universal"):
         text = (REPO / "datasets" / f"{name}.toml").read_text()
-        assert recipe_classifier(text) == "random_forest"
-        bad = tomllib.loads(text.replace('classifier = "random_forest"', 'classifier = "svm"'))
+        assert recipe_classifier(text) == "extra_trees"
+        bad = tomllib.loads(text.replace('classifier = "extra_trees"', 'classifier = "svm"'))
         with pytest.raises(ValueError, match="training.classifier"):
             validate_recipe(bad)
 
