@@ -12,7 +12,9 @@ SNR >= -10 dB, printing per class the share of right verdicts (``ok``) and of an
 called (``det``).
 
 Modes: ``none`` (the shipped separation), ``shaft`` (+ f_s series offset by +/- q BPFO, q = 1,
-2), ``cage`` (+ f_c series offset by p 2 f_b, p = 1, 2), ``all`` (both).
+2), ``cage`` (+ f_c series offset by p 2 f_b, p = 1, 2), ``all`` (both), ``bpfo`` (+ BPFO
+series offset by +/- k f_s, k = 1, 2: the ball-pass train modulated by the shaft angle),
+``bpfo+cage`` (and the f_c series, plain and offset by +/- 2 f_b).
 
 Run: .venv/bin/python benchmarks/lattice_separation.py DATASET MODE
 """
@@ -98,6 +100,13 @@ def main(path: str, mode: str) -> None:
             families += [(shaft, (s * q * bpfo) % shaft) for q in (1, 2) for s in (1, -1)]
         if mode in ("cage", "all"):
             families += [(rates["ftf"], (p * rates["two_bsf"]) % rates["ftf"]) for p in (1, 2)]
+        if mode.startswith("bpfo"):
+            # the ball-pass train modulated by the shaft angle: n BPFO +/- k f_s, k = 1, 2
+            families += [(bpfo, (s * k * shaft) % bpfo) for k in (1, 2) for s in (1, -1)]
+        if mode == "bpfo+cage":
+            # each ball's own events at the cage rate, modulated by its spin
+            ftf, two_bsf = rates["ftf"], rates["two_bsf"]
+            families += [(ftf, 0.0)] + [(ftf, (s * two_bsf) % ftf) for s in (1, -1)]
         return shipped_separation(remove_lines(x, fs, families), fs, fundamentals=(), **kw)
 
     def fault_evidence(x, fs, fault_frequencies):
