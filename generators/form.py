@@ -11,14 +11,17 @@ perfect one (docs/realism.md 8). :func:`form_waviness` lists them for one bearin
 
 from __future__ import annotations
 
+from ._validate import check_int, check_real
 from .params import Waviness
 
-__all__ = ["FORM_RACE_HARMONICS", "FORM_BALL_ORDERS", "form_waviness"]
+__all__ = ["FORM_RACE_HARMONICS", "FORM_BALL_ORDERS", "MAX_FORM_WAVINESS", "form_waviness"]
 
 #: Race orders q Z - 1, q Z, q Z + 1 for q = 1 .. FORM_RACE_HARMONICS.
 FORM_RACE_HARMONICS = 2
 #: Ball waviness orders (even orders squeeze the ball between its two contacts).
 FORM_BALL_ORDERS = (2, 4)
+#: Largest form error accepted [m]: more is damage (``Waviness`` of one order), not form.
+MAX_FORM_WAVINESS = 2e-6
 
 
 def form_waviness(
@@ -36,20 +39,29 @@ def form_waviness(
     ball_count : int
         Number of balls Z [-].
     inner_m, outer_m : float
-        Inner and outer race waviness amplitude at order Z [m] (0: none).
+        Inner and outer race waviness amplitude at order Z [m] (0: none; at most
+        ``MAX_FORM_WAVINESS``).
     ball_m : float
-        Ball waviness amplitude at order 2 [m] (0: none).
+        Ball waviness amplitude at order 2 [m] (0: none; at most ``MAX_FORM_WAVINESS``).
 
     Returns
     -------
     tuple of Waviness
         Inner race rows, then outer race, then balls (phases drawn by the simulation).
 
+    Raises
+    ------
+    ParameterError
+        An amplitude outside [0, ``MAX_FORM_WAVINESS``] or a ball count outside [3, 60].
+
     Examples
     --------
     >>> [w.order for w in form_waviness(9, 1e-7, 0.0, 0.0)]
     [8, 9, 10, 17, 18, 19]
     """
+    check_int("ball_count", ball_count, low=3, high=60)
+    for name, value in (("inner_m", inner_m), ("outer_m", outer_m), ("ball_m", ball_m)):
+        check_real(name, value, low=0.0, high=MAX_FORM_WAVINESS, unit="m")
     rows: list[Waviness] = []
     for surface, amplitude in (("inner", inner_m), ("outer", outer_m)):
         if amplitude > 0.0:

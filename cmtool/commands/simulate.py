@@ -20,7 +20,9 @@ from generators import (
     Waviness,
     bearing,
     characteristic_frequencies,
+    form_waviness,
 )
+from generators.form import MAX_FORM_WAVINESS
 from generators.params import check_shaft_speed_rpm
 
 from .common import CliError, progress_bar
@@ -113,6 +115,32 @@ def parse_defect(spec: str) -> LocalizedDefect:
     return LocalizedDefect(surface=surface, **fields)  # type: ignore[arg-type]
 
 
+def parse_form_waviness(spec: str) -> tuple[float, float, float]:
+    """Parse ``INNER,OUTER,BALL`` form-error amplitudes [m] (each at least 0).
+
+    Examples
+    --------
+    >>> parse_form_waviness("1e-7,0,5e-8")
+    (1e-07, 0.0, 5e-08)
+    """
+    parts = [v.strip() for v in spec.split(",")]
+    try:
+        values = tuple(float(v) for v in parts)
+    except ValueError:
+        values = ()
+    if len(values) != 3:
+        raise argparse.ArgumentTypeError(
+            f"--form-waviness {spec!r}: expected INNER,OUTER,BALL, three amplitudes [m]"
+        )
+    for name, value in zip(("INNER", "OUTER", "BALL"), values, strict=True):
+        if not 0.0 <= value <= MAX_FORM_WAVINESS:
+            raise argparse.ArgumentTypeError(
+                f"--form-waviness {spec!r}: {name} = {value:g} m is outside the allowed range "
+                f"[0, {MAX_FORM_WAVINESS:g}] m"
+            )
+    return values  # type: ignore[return-value]
+
+
 def _default(cls: type, name: str):
     """The default of a parameter object's field (the one place it is written)."""
     import dataclasses
@@ -173,6 +201,14 @@ def add_model_arguments(p: argparse.ArgumentParser) -> None:
         metavar="SPEC",
         help="surface:order=N:amplitude=A[:phase=P|random][:ball=J], repeatable; "
         "surface outer|inner|ball, amplitude [m]",
+    )
+    g.add_argument(
+        "--form-waviness",
+        type=parse_form_waviness,
+        default=(0.0, 0.0, 0.0),
+        metavar="INNER,OUTER,BALL",
+        help="the bearing's own form errors [m]: inner and outer race waviness at order Z, ball "
+        "waviness at order 2 (generators.form_waviness; a new bearing: about 1e-8 to 2e-7)",
     )
     g.add_argument(
         "--defect",
@@ -267,7 +303,8 @@ def _model_inputs(args: argparse.Namespace):
         random_slip=args.random_slip,
         ball_jitter=args.ball_jitter,
     )
-    defects = [parse_waviness(s) for s in args.waviness]
+    defects = list(form_waviness(geometry.ball_count, *args.form_waviness))
+    defects += [parse_waviness(s) for s in args.waviness]
     defects += [parse_defect(s) for s in args.defect]
     scene = Scene(level=args.scene, ehl=args.ehl, auto_error_bound=args.auto_error_bound)
     rig = Rig(

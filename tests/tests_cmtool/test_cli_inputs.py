@@ -274,3 +274,33 @@ def test_diagnose_reads_the_asked_variable_of_an_npz(outer_race_csv, tmp_path, c
     assert json.loads(capsys.readouterr().out)["verdict"] == "outer race"
     assert main([*base, "--variable", "nosuch"]) == 2
     assert "choose a variable" in _one_line_error(capsys)
+
+
+def test_form_waviness_flag_simulates_the_bearings_own_form_errors(tmp_path, capsys):
+    """``--form-waviness INNER,OUTER,BALL`` adds generators.form_waviness's rows (the lines of
+    a real bearing's form errors) to the run; amplitudes outside [0, 2 um] or not three are
+    refused naming the flag and the component."""
+    from cmtool.commands.simulate import parse_form_waviness
+    from cmtool.io import read_recording
+
+    assert parse_form_waviness("1e-7, 0, 5e-8") == (1e-7, 0.0, 5e-8)
+    argv = ["simulate", "--duration", "0.5", "--fs", "12000", "--rpm", "1797"]
+    argv += ["--load", "400", "--clearance", "5e-6", "--channels", "housing_acceleration_y"]
+    assert main([*argv, "--out", str(tmp_path / "perfect.parquet")]) == 0
+    form = ["--form-waviness", "1e-7,0,0", "--seed", "2"]
+    assert main([*argv, *form, "--out", str(tmp_path / "form.parquet")]) == 0
+    spectra = []
+    for name in ("perfect", "form"):
+        x, _ = read_recording(tmp_path / f"{name}.parquet", channel="housing_acceleration_y")
+        x = np.asarray(x, dtype=float)
+        spectra.append(np.abs(np.fft.rfft(x * np.hanning(x.size))))
+    # the inner race's order-Z form error: a line at BPFI (162.2 Hz; 2 Hz bins) 20 dB up
+    i = round(162.19 / 2.0)
+    assert 20 * np.log10(spectra[1][i - 1 : i + 2].max() / spectra[0][i - 1 : i + 2].max()) > 20
+    capsys.readouterr()
+    with pytest.raises(SystemExit):
+        main([*argv, "--form-waviness", "1e-7,0,1e-3", "--out", str(tmp_path / "x.parquet")])
+    assert "BALL = 0.001 m is outside the allowed range [0, 2e-06] m" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        main([*argv, "--form-waviness", "1e-7,0", "--out", str(tmp_path / "x.parquet")])
+    assert "expected INNER,OUTER,BALL" in capsys.readouterr().err
