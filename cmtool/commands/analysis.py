@@ -113,6 +113,8 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
             )
         if diagnosis.model_verdict:
             print(f"  model: {diagnosis.model_verdict}")
+        if diagnosis.severity:
+            print(f"  fault size: {diagnosis.severity['reason']}")
         for w in diagnosis.warnings:
             print(f"  warning: {w}")
     return 0

@@ -18,7 +18,7 @@ from cmtool.classifier import (
     save_model,
 )
 from cmtool.cli import main
-from cmtool.diagnose import DETECTION_DB, diagnose_signal
+from cmtool.diagnose import DETECTION_DB, SEVERITY_NOT_ESTIMATED, diagnose_signal
 from cmtool.io import read_recording
 
 REPO = Path(__file__).resolve().parents[2]
@@ -188,8 +188,35 @@ def test_diagnose_synthetic_impulses_and_noise(rng):
     d = diagnose_signal(x / x.std() + rng.standard_normal(n), fs, 1800.0, "6205")
     assert d.verdict == "inner race"
     assert d.candidates[0]["envelope_snr_db"][0] >= DETECTION_DB
+    # a fault verdict says that its size is not estimated, and why; a healthy one says nothing
+    assert d.to_dict()["severity"] == {"estimated": False, "reason": SEVERITY_NOT_ESTIMATED}
     noise = diagnose_signal(rng.standard_normal(n), fs, 1800.0, "6205")
     assert noise.verdict == "healthy"
+    assert noise.severity is None and "severity" not in noise.to_dict()
+
+
+def test_cli_diagnose_says_a_faults_size_is_not_estimated(tmp_path, capsys, rng):
+    """Text and report of a fault verdict carry the size statement (docs/diagnosis.md)."""
+    from generators import bearing, characteristic_frequencies
+
+    fs, n = 12000.0, 24000
+    f = characteristic_frequencies(bearing("6205"), 1800 / 60)
+    x = np.zeros(n)
+    # impacts at BPFO whose spacing jitters by 1 % (slip): a pit's train is not periodic
+    spacing = (1 + 0.01 * rng.standard_normal(400)) / f.bpfo
+    times = np.cumsum(spacing)
+    x[(times[times < n / fs] * fs).astype(int)] = 1.0
+    t = np.arange(120) / fs
+    x = np.convolve(x, np.exp(-t * 1500) * np.sin(2 * np.pi * 3000 * t))[:n]
+    x = x / x.std() + rng.standard_normal(n)
+    npy = tmp_path / "rec.npy"
+    np.save(npy, x)
+    args = ["diagnose", str(npy), "--fs", "12000", "--rpm", "1800", "--bearing", "6205"]
+    assert main([*args, "--report", str(tmp_path / "rep")]) == 0
+    out = capsys.readouterr().out
+    assert "outer race" in out and "fault size: not estimated" in out
+    report = (tmp_path / "rep" / "report.md").read_text()
+    assert "## Fault size" in report and SEVERITY_NOT_ESTIMATED in report
 
 
 def test_diagnose_bad_input(rng):
