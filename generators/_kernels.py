@@ -259,16 +259,30 @@ def _hertz_ehl_table(
         return _hertz_ehl(
             delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max
         )
-    u = x - i
     base = P_SIZE + 2 * (table * nodes + i)
+    d = _film_hermite(x - i, step, p[base], p[base + 1], p[base + 2], p[base + 3])
+    return _film_force(d, delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_max)
+
+
+@numba.njit(**_JIT_INLINE)
+def _film_hermite(u, step, d0, slope0, d1, slope1):
+    """Cubic Hermite interpolation of the film table between two nodes (u in [0, 1))."""
     u2 = u * u
     u3 = u2 * u
-    d = (
-        (2.0 * u3 - 3.0 * u2 + 1.0) * p[base]
-        + (u3 - 2.0 * u2 + u) * step * p[base + 1]
-        + (-2.0 * u3 + 3.0 * u2) * p[base + 2]
-        + (u3 - u2) * step * p[base + 3]
+    return (
+        (2.0 * u3 - 3.0 * u2 + 1.0) * d0
+        + (u3 - 2.0 * u2 + u) * step * slope0
+        + (-2.0 * u3 + 3.0 * u2) * d1
+        + (u3 - u2) * step * slope1
     )
+
+
+@numba.njit(**_JIT_INLINE)
+def _film_force(d, delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_max):
+    """The contact force [N] from the elastic approach d [m] read from a film table.
+
+    Hertz, the dry and the squeeze-film damping, clipped at zero (as :func:`_hertz_ehl`).
+    """
     if d <= 0.0:
         return 0.0
     h = d - delta

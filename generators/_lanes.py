@@ -98,6 +98,8 @@ from generators._kernels import (
     W_STEP_COS,
     W_STEP_SIN,
     W_SURFACE,
+    _film_force,
+    _film_hermite,
     _hertz_ehl,
 )
 
@@ -336,8 +338,7 @@ def _series_film(delta, delta_rate, c, b, tab, nodes):
     The same arithmetic as :func:`generators._kernels._hertz_ehl_table` (the same bytes), but
     the lane's table is one contiguous row: an evaluation's four values share a cache line,
     where in ``p`` (rows of parameters, lanes across) they lie four rows apart. The lanes'
-    EHL kernel spends most of its time here: a 6205 at 12 kHz, 1.1 s, 26.4 -> 21.8 ms per
-    signal (docs/performance.md).
+    EHL kernel spends most of its time here (docs/performance.md, "The film in the lanes").
     """
     h_max = c[C_MAX, b]
     x = delta + h_max
@@ -358,30 +359,21 @@ def _series_film(delta, delta_rate, c, b, tab, nodes):
             c[C_REF, b],
             h_max,
         )
-    u = x - i
     base = 2 * i
-    u2 = u * u
-    u3 = u2 * u
-    d = (
-        (2.0 * u3 - 3.0 * u2 + 1.0) * tab[b, base]
-        + (u3 - 2.0 * u2 + u) * step * tab[b, base + 1]
-        + (-2.0 * u3 + 3.0 * u2) * tab[b, base + 2]
-        + (u3 - u2) * step * tab[b, base + 3]
+    d = _film_hermite(
+        x - i, step, tab[b, base], tab[b, base + 1], tab[b, base + 2], tab[b, base + 3]
     )
-    if d <= 0.0:
-        return 0.0
-    h = d - delta
-    if h <= 0.0:
-        h = h_max
-    root = math.sqrt(d)
-    k_hertz = c[C_K, b]
-    q = k_hertz * d * root
-    floor = c[C_FLOOR, b]
-    c_damp = c[C_TAU, b] * 1.5 * k_hertz * root + q * c[C_SQUEEZE, b] * c[C_FILM, b] / (
-        (q + floor) * h
+    return _film_force(
+        d,
+        delta,
+        delta_rate,
+        c[C_K, b],
+        c[C_TAU, b],
+        c[C_FILM, b],
+        c[C_SQUEEZE, b],
+        c[C_FLOOR, b],
+        h_max,
     )
-    q = q + c_damp * delta_rate
-    return q if q > 0.0 else 0.0
 
 
 @numba.njit(**_JIT_INLINE)
