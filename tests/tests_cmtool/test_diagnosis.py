@@ -35,6 +35,23 @@ def bundle(small_bundle):
     return small_bundle
 
 
+@pytest.fixture
+def light_forests(monkeypatch):
+    """``train``'s candidates with forests of 30 trees instead of 300 and 500, for tests of
+    what is kept and written rather than of how well it classifies."""
+    import cmtool.classifier as classifier_module
+
+    shipped = classifier_module.candidate_classifiers
+
+    def lighter(random_state=0, class_weight=classifier_module.CLASS_WEIGHT):
+        candidates = shipped(random_state, class_weight)
+        for name in ("random_forest", "extra_trees"):
+            candidates[name].set_params(n_estimators=30)
+        return candidates
+
+    monkeypatch.setattr(classifier_module, "candidate_classifiers", lighter)
+
+
 def test_committed_small_dataset_matches_its_recipe(small):
     assert len(small) == 192
     assert small["label"].value_counts().to_dict() == {
@@ -143,7 +160,9 @@ def test_evaluate_metrics(bundle, small):
     pickle.dumps(result)
 
 
-def test_cli_train_evaluate(tmp_path, capsys):
+def test_cli_train_evaluate(tmp_path, capsys, light_forests):
+    """train, evaluate and bench through the CLI (forests of 30 trees: the test is about the
+    commands, not the model's quality)."""
     model = tmp_path / "model.skops"
     assert main(["train", str(SMALL), "--out", str(model), "--feature-set", "envelope"]) == 0
     out = capsys.readouterr().out
@@ -537,11 +556,12 @@ def test_the_pooled_verdicts_confidence_is_calibrated_at_training(bundle, small)
     assert all(0.0 < v < 1.0 for v in values) and values == sorted(values)
 
 
-def test_a_recipe_names_the_classifier_train_keeps(small):
+def test_a_recipe_names_the_classifier_train_keeps(small, light_forests):
     """``[training] classifier`` in the dataset's recipe is what ``train`` keeps by default
     (the rig recipes name the one that carried over between simulated rigs); without it, or
     with ``classifier=None``, the best grouped cross-validation score; a name that is not a
-    candidate is refused, by ``train`` and by the recipe validator, naming the key."""
+    candidate is refused, by ``train`` and by the recipe validator, naming the key. (The
+    forests have 30 trees here: the test is about which candidate is kept, not how well.)"""
     import tomllib
 
     from cmtool.classifier import recipe_classifier, train
