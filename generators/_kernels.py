@@ -33,6 +33,8 @@ import math
 import numba
 import numpy as np
 
+from generators import _cache_guard
+
 # ------------------------------------------------------------------- parameter vector layout
 (
     P_BALL_COUNT,
@@ -831,3 +833,8 @@ def _check(y, nd, limit):
         if abs(y[i]) > limit:
             return STATUS_RUNAWAY
     return STATUS_OK
+
+
+# The cached machine code of every kernel module inlines functions of this one: drop it when
+# any kernel source changed since it was written (generators/_cache_guard.py).
+_cache_guard.guard(_hertz_dry)

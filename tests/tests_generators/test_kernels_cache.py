@@ -66,3 +66,38 @@ def test_a_second_process_loads_every_specialisation_from_the_cache(kernel_warme
     second = _child()
     missed = {key: value for key, value in second.items() if value[1:] != [1, 0]}
     assert not missed, missed
+
+
+def test_a_changed_kernel_source_drops_the_cached_code_of_every_kernel_module(tmp_path):
+    """numba keys a cached function on its own file; the kernel modules inline each other's
+    functions, so a change of any kernel source must remove all their cache files (and only
+    theirs), once (generators/_cache_guard.py)."""
+    from generators import _cache_guard as guard
+
+    names = [
+        "_kernels._hertz_dry-195.py311.1.nbc",
+        "_kernels._hertz_dry-195.py311.nbi",
+        "_lanes._rk4_impl-542.py311.nbi",
+        "_integrators._rk4_full_ehl-439.py311.2.nbc",
+        "_static_kernels._static_newton-57.py311.nbi",
+        "model.something-1.py311.nbi",  # another module's: kept
+        "_kernels.cpython-311.pyc",  # bytecode: kept
+    ]
+    for name in names:
+        (tmp_path / name).write_bytes(b"x")
+    assert guard.clear_stale(tmp_path, "a" * 64) == 5
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        ["model.something-1.py311.nbi", "_kernels.cpython-311.pyc", guard.STAMP]
+    )
+    (tmp_path / names[0]).write_bytes(b"x")  # compiled again under the same sources
+    assert guard.clear_stale(tmp_path, "a" * 64) == 0 and (tmp_path / names[0]).exists()
+    assert guard.clear_stale(tmp_path, "b" * 64) == 1  # another source change
+
+
+def test_the_kernel_sources_digest_is_recorded_beside_the_live_cache():
+    """After the kernels are imported, their cache directory records the current sources."""
+    from generators import _cache_guard as guard
+
+    cache = Path(K._hertz_dry._cache._cache_path)
+    package = Path(K.__file__).parent
+    assert (cache / guard.STAMP).read_text().strip() == guard.sources_digest(package)
