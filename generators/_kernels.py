@@ -86,9 +86,8 @@ from generators import _cache_guard
     P_SIZE,
 ) = range(47)
 # Film tables (EHL scenes): from P_SIZE on, three tables (inner, outer, series contact) of
-# P_TABLE_NODES nodes each, every node [r, dr/ds]: the root r = sqrt(d) of the elastic
-# approach d solving d = delta + h(K d^1.5), on a grid uniform in s = sqrt(delta + h_max)
-# (delta >= -h_max; r ~ s near contact onset).
+# P_TABLE_NODES nodes each, every node [d, dd/ds]: the elastic approach d solving
+# d = delta + h(K d^1.5) on a grid uniform in s = sqrt(delta + h_max) (delta >= -h_max).
 TABLE_INNER, TABLE_OUTER, TABLE_SERIES = 0, 1, 2
 # P_FILM_*: h_c = P_FILM_* * (Q + floor)^FILM_EXPONENT [m] (Hamrock-Dowson, docs/model.md 4.2).
 # P_SQUEEZE_*: squeeze-film damping c = P_SQUEEZE_* * (Q + floor)^-FILM_EXPONENT [N s/m]
@@ -247,8 +246,7 @@ def _hertz_ehl_table(
     """:func:`_hertz_ehl` with the film equation read from the precomputed table ``table``.
 
     The nodes are uniform in s = sqrt(delta + h_max), dense near contact onset where d(delta)
-    bends most; cubic Hermite interpolation of the root sqrt(d) in s (values and exact slopes:
-    C1, O(step^4));
+    bends most; cubic Hermite interpolation of d(s) (values and exact slopes: C1, O(step^4));
     outside the table the Newton solution of :func:`_hertz_ehl` is used. Same damping and
     clipping as :func:`_hertz_ehl`.
     """
@@ -264,8 +262,8 @@ def _hertz_ehl_table(
             delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max
         )
     base = P_SIZE + 2 * (table * nodes + i)
-    root = _film_hermite(x - i, step, p[base], p[base + 1], p[base + 2], p[base + 3])
-    return _film_force(root, delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_max)
+    d = _film_hermite(x - i, step, p[base], p[base + 1], p[base + 2], p[base + 3])
+    return _film_force(d, delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_max)
 
 
 @numba.njit(**_JIT_INLINE)
@@ -282,18 +280,17 @@ def _film_hermite(u, step, d0, slope0, d1, slope1):
 
 
 @numba.njit(**_JIT_INLINE)
-def _film_force(root, delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_max):
-    """The contact force [N] from sqrt(d) [m^0.5], d the elastic approach read from a table.
+def _film_force(d, delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_max):
+    """The contact force [N] from the elastic approach d [m] read from a film table.
 
-    The table holds the root (one square root less per evaluation than holding d). Hertz,
-    the dry and the squeeze-film damping, clipped at zero (as :func:`_hertz_ehl`).
+    Hertz, the dry and the squeeze-film damping, clipped at zero (as :func:`_hertz_ehl`).
     """
-    if root <= 0.0:
+    if d <= 0.0:
         return 0.0
-    d = root * root
     h = d - delta
     if h <= 0.0:
         h = h_max
+    root = math.sqrt(d)
     q = k_hertz * d * root
     c = damping_time * 1.5 * k_hertz * root + q * squeeze * film / ((q + floor) * h)
     q = q + c * delta_rate

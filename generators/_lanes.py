@@ -360,11 +360,11 @@ def _series_film(delta, delta_rate, c, b, tab, nodes):
             h_max,
         )
     base = 2 * i
-    root = _film_hermite(
+    d = _film_hermite(
         x - i, step, tab[b, base], tab[b, base + 1], tab[b, base + 2], tab[b, base + 3]
     )
     return _film_force(
-        root,
+        d,
         delta,
         delta_rate,
         c[C_K, b],

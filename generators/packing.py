@@ -342,12 +342,8 @@ def with_film_tables(p: np.ndarray) -> np.ndarray:
         q = kc * d**1.5
         h = film * (q + floor) ** e
         slope = np.where(pos, -1.5 * e * h / np.where(pos, d, 1.0) * q / (q + floor), 0.0)
-        # the root r = sqrt(d) and dr/ds = (dd/ds) / (2 r), dd/ds = dd/d delta * 2 s; at the
-        # onset node (s = 0, d = 0) its limit: d ~ s^2 there, dr/ds -> 1
-        root = np.sqrt(d)
-        dd_ds = 2.0 * s_nodes / (1.0 + slope)
-        tables[c, :, 0] = root
-        tables[c, :, 1] = np.where(root > 0, dd_ds / (2.0 * np.where(root > 0, root, 1.0)), 1.0)
+        tables[c, :, 0] = d
+        tables[c, :, 1] = 2.0 * s_nodes / (1.0 + slope)  # dd/ds = dd/d delta * 2 s
         out[K.P_TABLE_STEP_INNER + c] = step
         out[K.P_TABLE_INV_STEP_INNER + c] = 1.0 / step
     out[K.P_TABLE_NODES] = n
