@@ -33,7 +33,7 @@ import math
 import numba
 import numpy as np
 
-from generators import _cache_guard
+from generators import kernel_cache
 
 # ------------------------------------------------------------------- parameter vector layout
 (
@@ -836,5 +836,5 @@ def _check(y, nd, limit):
 
 
 # The cached machine code of every kernel module inlines functions of this one: drop it when
-# any kernel source changed since it was written (generators/_cache_guard.py).
-_cache_guard.guard(_hertz_dry)
+# any kernel source changed since it was written (generators/kernel_cache.py).
+kernel_cache.guard(_hertz_dry)

@@ -71,8 +71,8 @@ def test_a_second_process_loads_every_specialisation_from_the_cache(kernel_warme
 def test_a_changed_kernel_source_drops_the_cached_code_of_every_kernel_module(tmp_path):
     """numba keys a cached function on its own file; the kernel modules inline each other's
     functions, so a change of any kernel source must remove all their cache files (and only
-    theirs), once (generators/_cache_guard.py)."""
-    from generators import _cache_guard as guard
+    theirs), once (generators/kernel_cache.py)."""
+    from generators import kernel_cache as guard
 
     names = [
         "_kernels._hertz_dry-195.py311.1.nbc",
@@ -96,7 +96,7 @@ def test_a_changed_kernel_source_drops_the_cached_code_of_every_kernel_module(tm
 
 def test_the_kernel_sources_digest_is_recorded_beside_the_live_cache():
     """After the kernels are imported, their cache directory records the current sources."""
-    from generators import _cache_guard as guard
+    from generators import kernel_cache as guard
 
     cache = Path(K._hertz_dry._cache._cache_path)
     package = Path(K.__file__).parent
