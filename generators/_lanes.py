@@ -432,7 +432,8 @@ def _rhs(scene, ehl, y, c, tab, nodes, tt, z, pitch, f, dydt, nl):
     """Right-hand side of every lane: ``dydt`` from the states ``y`` (both (8, lanes)).
 
     ``tt`` the time terms (:func:`_time_terms`), ``pitch`` (2, z) cos/sin of j times the ball
-    pitch, ``f`` a (6, lanes) work array. The balls are
+    pitch, ``f`` a (6, lanes) work array, ``tab`` (lanes, 2 ``nodes``) each lane's series film
+    table (EHL scenes, :func:`_series_film`). The balls are
     massless, so the housing carries the opposite of the shaft's contact force and each
     contact sees the shaft-to-housing displacement u: approach d = u . e_j + waviness - gap/2,
     its rate from the velocity relative to the rotating ball direction e_j.
