@@ -344,36 +344,18 @@ def _series_film(delta, delta_rate, c, b, tab, nodes):
     x = delta + h_max
     if x <= 0.0:
         return 0.0
+    k_hertz, tau, film = c[C_K, b], c[C_TAU, b], c[C_FILM, b]
+    squeeze, floor = c[C_SQUEEZE, b], c[C_FLOOR, b]
     step = c[C_TABLE_STEP, b]
     x = math.sqrt(x) * c[C_TABLE_INV_STEP, b]
     i = int(x)
     if i >= nodes - 1:
-        return _hertz_ehl(
-            delta,
-            delta_rate,
-            c[C_K, b],
-            c[C_TAU, b],
-            c[C_FILM, b],
-            c[C_SQUEEZE, b],
-            c[C_FLOOR, b],
-            c[C_REF, b],
-            h_max,
-        )
+        return _hertz_ehl(delta, delta_rate, k_hertz, tau, film, squeeze, floor, c[C_REF, b], h_max)
     base = 2 * i
     d = _film_hermite(
         x - i, step, tab[b, base], tab[b, base + 1], tab[b, base + 2], tab[b, base + 3]
     )
-    return _film_force(
-        d,
-        delta,
-        delta_rate,
-        c[C_K, b],
-        c[C_TAU, b],
-        c[C_FILM, b],
-        c[C_SQUEEZE, b],
-        c[C_FLOOR, b],
-        h_max,
-    )
+    return _film_force(d, delta, delta_rate, k_hertz, tau, film, squeeze, floor, h_max)
 
 
 @numba.njit(**_JIT_INLINE)
