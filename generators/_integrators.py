@@ -30,7 +30,7 @@ from generators._kernels import (
     STATUS_TOO_MANY_STEPS,
     _advance,
     _check,
-    _defect_near,
+    _defect_clear_steps,
     _phase_steps,
     _phases,
     _record,
@@ -139,6 +139,7 @@ def _rk4_impl(
     # steps in which a contact meets a local defect are taken as fine_steps shorter ones
     inc_fine = _phase_steps(p, wav, 0.5 * dt / fine_steps) if fine_steps > 1 else inc
     anchor = False
+    next_check = 0
     _time_terms_at(t0, p, wav, trig, scratch)
     _rhs(scene, ehl, y, p, wav, k1, loads, scratch)
     if record_loads:
@@ -149,11 +150,21 @@ def _rk4_impl(
         if step % PHASE_ANCHOR == 0 or anchor:
             _phases(t, p, wav, trig)  # exact every PHASE_ANCHOR steps, rotated between
         # a contact near a local defect: the step is split and the pit's rows evaluated;
-        # elsewhere they add nothing and are skipped (fine_steps 1: no defects, or never split)
-        near = fine_steps <= 1 or _defect_near(wav, p, t, 1.5 * dt, scratch)
+        # elsewhere they add nothing and are skipped (fine_steps 1: no defects, or never split).
+        # After a step with no contact in reach, the test is skipped for as many steps as no
+        # contact can come within reach (the same answers: _defect_clear_steps)
+        if fine_steps <= 1:
+            near = True
+        elif step < next_check:
+            near = False
+        else:
+            clear = _defect_clear_steps(wav, p, t, 1.5 * dt, scratch, dt)
+            near = clear < 0
+            next_check = step + 1 + clear
         subs = fine_steps if near else 1
         at_half = DEFECTS_ALL if near else DEFECTS_NONE
-        at_end = DEFECTS_ALL if near else DEFECTS_SLIP
+        # the slip angles at the step's end only for a test at the next step
+        at_end = DEFECTS_ALL if near else (DEFECTS_SLIP if step + 1 >= next_check else DEFECTS_NONE)
         anchor = subs > 1
         h = dt / subs
         half = 0.5 * h

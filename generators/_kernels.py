@@ -472,6 +472,85 @@ def _defect_near(wav, p, t, horizon, scratch):
     return False
 
 
+@numba.njit(**_JIT)
+def _defect_clear_steps(wav, p, t, horizon, scratch, dt):
+    """How many steps of ``dt`` [s] after ``t`` :func:`_defect_near` is sure to answer no.
+
+    -1 when :func:`_defect_near` says yes at ``t`` (the same test, the same arithmetic).
+    Otherwise each contact's distance from a pit's reach, |delta| - w - r_max ``horizon``,
+    over the fastest its angle can move, r_max: the nominal rate plus the largest rate of any
+    ball's slip rows (its own and the common ones), sum |a_m w_m| (for a ball pit scaled as
+    the spin is). An angle moves by at most
+    r_max s in s seconds, so the test cannot say yes before that many steps have passed; the
+    RK4 loop skips the test (and the slip angles it reads) until then. A ball pit off its
+    track counts as on it (the track turns slowly; counting it only makes the answer smaller).
+    """
+    z = int(p[P_BALL_COUNT])
+    wc, ws, wb = p[P_CAGE_SPEED], p[P_SHAFT_SPEED], p[P_BALL_SPIN_SPEED]
+    theta0 = p[P_CAGE_ANGLE0] + wc * t
+    shaft_angle = p[P_SHAFT_ANGLE0] + ws * t
+    slipping = wav.shape[0] > 0 and int(wav[wav.shape[0] - 1, W_SURFACE]) == SURF_SLIP
+    # the fastest a ball's slip angle can change: the common rows' sum plus the largest of
+    # the balls' own rows' sums
+    common_rate = 0.0
+    own_rate = 0.0
+    for j in range(-1, z):
+        rate_sum = 0.0
+        for r in range(wav.shape[0] - 1, -1, -1):
+            if int(wav[r, W_SURFACE]) != SURF_SLIP:
+                break
+            if int(wav[r, W_BALL]) == j:
+                rate_sum += abs(wav[r, W_SLIP_ANGLE] * wav[r, W_SLIP_RATE])
+        if j < 0:
+            common_rate = rate_sum
+        else:
+            own_rate = max(own_rate, rate_sum)
+    slip_rate = common_rate + own_rate
+    pitch = 2.0 * math.pi / z
+    clear = 1e9  # in steps
+    for r in range(wav.shape[0]):
+        surface = int(wav[r, W_SURFACE])
+        if surface < SURF_OUTER_DEFECT or surface == SURF_SLIP:
+            continue
+        half, pos = wav[r, W_HALF_WIDTH], wav[r, W_POSITION]
+        if surface == SURF_BALL_DEFECT_OUTER or surface == SURF_BALL_DEFECT_INNER:
+            j = int(wav[r, W_BALL])
+            chi = wb * t if surface == SURF_BALL_DEFECT_OUTER else wb * t + math.pi
+            spin = wb
+            fastest = abs(wb)
+            if slipping:
+                chi -= scratch[SLIP_LAG, j] * wb / wc
+                spin -= scratch[SLIP_LAG + 1, j] * wb / wc
+                fastest += slip_rate * abs(wb / wc)
+            distance = abs(_wrap(chi - pos))
+            on_track = _track_factor(wav, r, t)[0] != 0.0
+            if on_track and distance < half + abs(spin) * horizon:
+                return -1
+            gap = distance - half - fastest * horizon
+            if fastest > 0.0:
+                clear = min(clear, gap / (fastest * dt))
+            continue
+        fastest = abs(wc - ws) if surface == SURF_INNER_DEFECT else abs(wc)
+        fastest += slip_rate
+        for j in range(z):
+            theta = theta0 + j * pitch
+            rate = wc
+            if slipping:
+                theta -= scratch[SLIP_LAG, j]
+                rate -= scratch[SLIP_LAG + 1, j]
+            if surface == SURF_INNER_DEFECT:
+                theta -= shaft_angle
+                rate -= ws
+            distance = abs(_wrap(theta - pos))
+            if distance < half + abs(rate) * horizon:
+                return -1
+            gap = distance - half - fastest * horizon
+            if fastest > 0.0:
+                clear = min(clear, gap / (fastest * dt))
+    # a margin for rounding: one step fewer than the bound, and a thousandth off it
+    return max(int(0.999 * clear) - 1, 0)
+
+
 @numba.njit(**_JIT_INLINE)
 def _waviness(wav, z, theta0, shaft_angle, t, p, trig, out, defects):
     """Waviness seen by ball j: ``out[:, j] = [w_o, dw_o, w_i, dw_i, wb_o, dwb_o, wb_i, dwb_i]``.
