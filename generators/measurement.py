@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import signal as sp_signal
 
+from ._filters import sos_steady_state
 from ._validate import ParameterError, check_int, check_real
 
 __all__ = [
@@ -123,21 +124,31 @@ class MachineBackground:
 LEAD_IN_S = 0.25
 
 
-def _causal(sos: np.ndarray, x: np.ndarray, fs: float) -> np.ndarray:
+def _causal(
+    sos: np.ndarray, x: np.ndarray, fs: float, gains: np.ndarray | None = None
+) -> np.ndarray:
     """``sosfilt`` as if the signal had been running: over a lead-in, started in steady state.
 
-    ``x`` is one record or a stack of records (filtered along the last axis).
+    ``x`` is one record or a stack of records (filtered along the last axis). ``sos`` is one
+    cascade (sections, 6) or several (cascades, sections, 6) whose outputs are summed, each
+    weighted by ``gains`` (the structure's modes); the recursion is
+    :func:`generators._filters.sos_steady_state`'s (that of ``scipy.signal.sosfilt`` with
+    ``sosfilt_zi`` times the lead-in's first sample).
     """
     x = np.asarray(x, dtype=float)
     n = x.shape[-1]
     pad = min(n - 1, int(round(LEAD_IN_S * fs)))
+    cascades = np.asarray(sos, dtype=float)
+    if cascades.ndim == 2:
+        cascades = cascades[None]
+    weights = np.ones(cascades.shape[0]) if gains is None else np.asarray(gains, dtype=float)
     if pad < 1:
-        return sp_signal.sosfilt(sos, x, axis=-1)
-    lead = 2.0 * x[..., :1] - x[..., pad:0:-1]
-    padded = np.concatenate([lead, x], axis=-1)
-    zi = sp_signal.sosfilt_zi(sos)  # (sections, 2)
-    zi = zi.reshape(zi.shape[:1] + (1,) * (x.ndim - 1) + zi.shape[1:]) * padded[None, ..., :1]
-    return sp_signal.sosfilt(sos, padded, axis=-1, zi=zi)[0][..., pad:]
+        y = sum(
+            w * sp_signal.sosfilt(c, x, axis=-1) for w, c in zip(weights, cascades, strict=True)
+        )
+        return np.asarray(y, dtype=float)
+    rows = np.ascontiguousarray(x.reshape(-1, n))
+    return sos_steady_state(np.ascontiguousarray(cascades), rows, pad, weights).reshape(x.shape)
 
 
 def _bilinear_biquad(num: tuple[float, float], den: tuple[float, float], fs: float) -> np.ndarray:
@@ -200,10 +211,8 @@ def transfer_path(x: np.ndarray, fs: float, modes: tuple[StructuralMode, ...]) -
     kept = [m for m in modes if m.frequency < 0.45 * fs]
     if not kept:
         return x.copy()
-    y = np.zeros_like(x)
-    for mode in kept:
-        y += mode.gain * _causal(_band_pass(fs, mode.frequency, mode.damping), x, fs)
-    return y
+    sos = np.stack([_band_pass(fs, mode.frequency, mode.damping) for mode in kept])
+    return _causal(sos, x, fs, np.array([mode.gain for mode in kept]))
 
 
 def sensor_response(x: np.ndarray, fs: float, resonance: float, damping: float) -> np.ndarray:
@@ -255,8 +264,45 @@ def anti_alias_filter(x: np.ndarray, fs: float, cutoff: float, order: int = 8) -
     """
     check_real("cutoff", cutoff, low=0.0, high=0.5, low_inclusive=False, high_inclusive=False)
     check_int("order", order, low=1, high=16)
-    sos = sp_signal.butter(order, 2.0 * cutoff, btype="low", output="sos")
-    return _causal(sos, x, fs)
+    return _causal(butterworth_low_pass(order, cutoff), x, fs)
+
+
+def butterworth_low_pass(order: int, cutoff: float) -> np.ndarray:
+    """Second-order sections of a digital Butterworth low-pass (bilinear, pre-warped).
+
+    What ``scipy.signal.butter(order, 2 * cutoff, output="sos")`` designs, in closed form:
+    the analogue prototype's pole pairs at angles pi (2 m + 1) / (2 order) from the imaginary
+    axis, H(s) = w^2 / (s^2 + 2 sin(.) w s + w^2), and for an odd order the real pole,
+    H(s) = w / (s + w), each mapped by the bilinear transform with the cutoff pre-warped, unit
+    gain at DC (scipy's polynomial route costs 1.4 ms a design; this 20 us).
+
+    Parameters
+    ----------
+    order : int
+        Filter order (roll-off 6 x order dB per octave).
+    cutoff : float
+        -3 dB frequency over the sample rate [-], in (0, 0.5).
+
+    Returns
+    -------
+    ndarray, shape (ceil(order / 2), 6)
+        Rows [b0, b1, b2, 1, a1, a2].
+    """
+    check_real("cutoff", cutoff, low=0.0, high=0.5, low_inclusive=False, high_inclusive=False)
+    check_int("order", order, low=1, high=16)
+    fs = 1.0  # frequencies over the sample rate
+    w = _prewarped(cutoff, fs)
+    sections = [
+        _bilinear_biquad(
+            (0.0, w * w), (2.0 * math.sin(math.pi * (2 * m + 1) / (2 * order)) * w, w * w), fs
+        )[0]
+        for m in range(order // 2)
+    ]
+    if order % 2:
+        k = 2.0 * fs
+        b = w / (k + w)
+        sections.append(np.array([b, b, 0.0, 1.0, (w - k) / (k + w), 0.0]))
+    return np.array(sections)
 
 
 def digitise(x: np.ndarray, bits: int, full_scale: float) -> tuple[np.ndarray, float]:
@@ -316,17 +362,25 @@ def machine_background(
     ndarray
         ``n`` samples in the unit of the amplitudes. Lines at or above 0.45 fs are left out.
     """
-    t = np.arange(n) / fs
     y = np.zeros(n)
     lines = [(h * shaft_frequency, a) for h, a in enumerate(background.shaft_harmonics, 1)]
     lines += [
         (h * background.line_frequency, a) for h, a in enumerate(background.line_harmonics, 1)
     ]
     lines += list(background.other_lines)
+    # cos(w (k B + m) / fs + phase) from the cos and sin of the block starts k B and of the
+    # offsets m < B (angle addition: two products a sample instead of a cosine)
+    block = 256
+    starts = np.arange(0, n, block) / fs
+    offsets = np.arange(block) / fs
     for frequency, amplitude in lines:
         phase = rng.uniform(0.0, 2 * math.pi)
         if amplitude > 0.0 and frequency < 0.45 * fs:
-            y += amplitude * np.cos(2 * math.pi * frequency * t + phase)
+            w = 2 * math.pi * frequency
+            a = w * starts + phase
+            b = w * offsets
+            line = np.cos(a)[:, None] * np.cos(b) - np.sin(a)[:, None] * np.sin(b)
+            y += amplitude * line.ravel()[:n]
     if background.broadband_rms > 0.0:
         noise = transfer_path(rng.standard_normal(n), fs, modes)
         y += noise * (background.broadband_rms / max(float(np.std(noise)), 1e-300))
