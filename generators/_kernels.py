@@ -435,55 +435,22 @@ def _defect_near(wav, p, t, horizon, scratch):
     in which one is (``fine_steps``): the pit's path is resolved where it acts, and the step
     elsewhere is the scene's.
     """
-    z = int(p[P_BALL_COUNT])
-    wc, ws, wb = p[P_CAGE_SPEED], p[P_SHAFT_SPEED], p[P_BALL_SPIN_SPEED]
-    theta0 = p[P_CAGE_ANGLE0] + wc * t
-    shaft_angle = p[P_SHAFT_ANGLE0] + ws * t
-    slipping = wav.shape[0] > 0 and int(wav[wav.shape[0] - 1, W_SURFACE]) == SURF_SLIP
-    pitch = 2.0 * math.pi / z
-    for r in range(wav.shape[0]):
-        surface = int(wav[r, W_SURFACE])
-        if surface < SURF_OUTER_DEFECT or surface == SURF_SLIP:
-            continue
-        half, pos = wav[r, W_HALF_WIDTH], wav[r, W_POSITION]
-        if surface == SURF_BALL_DEFECT_OUTER or surface == SURF_BALL_DEFECT_INNER:
-            j = int(wav[r, W_BALL])
-            if _track_factor(wav, r, t)[0] == 0.0:  # off the contact track (it turns slowly)
-                continue
-            chi = wb * t if surface == SURF_BALL_DEFECT_OUTER else wb * t + math.pi
-            spin = wb
-            if slipping:
-                chi -= scratch[SLIP_LAG, j] * wb / wc
-                spin -= scratch[SLIP_LAG + 1, j] * wb / wc
-            if abs(_wrap(chi - pos)) < half + abs(spin) * horizon:
-                return True
-            continue
-        for j in range(z):
-            theta = theta0 + j * pitch
-            rate = wc
-            if slipping:
-                theta -= scratch[SLIP_LAG, j]
-                rate -= scratch[SLIP_LAG + 1, j]
-            if surface == SURF_INNER_DEFECT:
-                theta -= shaft_angle
-                rate -= ws
-            if abs(_wrap(theta - pos)) < half + abs(rate) * horizon:
-                return True
-    return False
+    return _defect_clear_steps(wav, p, t, horizon, scratch, 1.0) < 0
 
 
 @numba.njit(**_JIT)
 def _defect_clear_steps(wav, p, t, horizon, scratch, dt):
-    """How many steps of ``dt`` [s] after ``t`` :func:`_defect_near` is sure to answer no.
+    """-1 if a contact is within reach of a local defect at ``t``, else steps none can reach.
 
-    -1 when :func:`_defect_near` says yes at ``t`` (the same test, the same arithmetic).
-    Otherwise each contact's distance from a pit's reach, |delta| - w - r_max ``horizon``,
-    over the fastest its angle can move, r_max: the nominal rate plus the largest rate of any
-    ball's slip rows (its own and the common ones), sum |a_m w_m| (for a ball pit scaled as
-    the spin is). An angle moves by at most
-    r_max s in s seconds, so the test cannot say yes before that many steps have passed; the
-    RK4 loop skips the test (and the slip angles it reads) until then. A ball pit off its
-    track counts as on it (the track turns slowly; counting it only makes the answer smaller).
+    The steps are those of ``dt`` [s] after ``t``. Reach (:func:`_defect_near`): a contact at
+    angle delta from a pit of half width w moving at rate r is within reach when
+    |delta| < w + |r| ``horizon`` (a ball pit only while on its track). Otherwise its distance
+    from reach, |delta| - w - r_max ``horizon``, over the fastest its angle can move, r_max:
+    the nominal rate plus the largest rate of any ball's slip rows (its own and the common
+    ones), sum |a_m w_m| (for a ball pit scaled as the spin is); an angle moves by at most
+    r_max s in s seconds. The RK4 loop skips the test (and the slip angles it reads) for that
+    many steps. A ball pit off its track counts as on it for the bound (the track turns
+    slowly; counting it only makes the answer smaller).
     """
     z = int(p[P_BALL_COUNT])
     wc, ws, wb = p[P_CAGE_SPEED], p[P_SHAFT_SPEED], p[P_BALL_SPIN_SPEED]

@@ -217,11 +217,11 @@ def test_pit_rows_skipped_only_where_they_add_nothing(b6205, surface):
     [("outer", 0.02, 0.01), ("inner", 0.02, 0.01), ("ball", 0.02, 0.01), ("outer", 0.0, 0.0)],
 )
 def test_defect_test_skipped_only_where_it_would_say_no(b6205, surface, slip, jitter):
-    """After a step with no contact in reach, RK4 skips ``_defect_near`` for the steps
-    ``_defect_clear_steps`` promises: it must be -1 exactly where ``_defect_near`` says yes,
-    and ``_defect_near`` must say no at every one of the promised steps. Checked at each of
-    20,000 steps of 20 us, with random slip and pocket jitter, for a 0.5 mm pit; the skips
-    must also be long (the point of them)."""
+    """After a step with no contact in reach, RK4 skips the reach test for the steps
+    ``_defect_clear_steps`` promises: ``_defect_near`` (the test itself, checked against the
+    pit rows above) must say no at every one of them. Checked at each of 20,000 steps of 20 us,
+    with random slip and pocket jitter, for a 0.5 mm pit; the skips must also be long (the
+    point of them)."""
     op = OperatingCondition.from_rpm(1800, 500, random_slip=slip, ball_jitter=jitter)
     defect = LocalizedDefect(surface=surface, length=0.5e-3, depth=1e-4, latitude=0.0)
     prep = prepare(b6205, op, defect, random_state=4)
@@ -236,7 +236,6 @@ def test_defect_test_skipped_only_where_it_would_say_no(b6205, surface, slip, ji
         K._time_terms_at(t, p, wav, trig, scratch)
         near[n] = K._defect_near(wav, p, t, 1.5 * dt, scratch)
         promised[n] = K._defect_clear_steps(wav, p, t, 1.5 * dt, scratch, dt)
-    np.testing.assert_array_equal(promised < 0, near)
     for n in np.flatnonzero(promised > 0):
         assert not near[n + 1 : n + 1 + promised[n]].any(), (n, promised[n])
     # the steps RK4 tests: one after each skip
