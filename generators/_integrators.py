@@ -28,8 +28,11 @@ from generators._kernels import (
     STATUS_OK,
     STATUS_STEP_COLLAPSE,
     STATUS_TOO_MANY_STEPS,
+    SURF_OUTER_DEFECT,
+    W_SURFACE,
     _advance,
     _check,
+    _clock_terms,
     _defect_clear_steps,
     _phase_steps,
     _phases,
@@ -140,6 +143,14 @@ def _rk4_impl(
     inc_fine = _phase_steps(p, wav, 0.5 * dt / fine_steps) if fine_steps > 1 else inc
     anchor = False
     next_check = 0
+    # a table of local defects (and slip) only: away from the pits its rows add nothing, and
+    # once zeroed (a step's terms without the pits' rows) they need not be evaluated again
+    # until a step near a pit writes them (only the clock terms change)
+    defects_only = wav.shape[0] > 0
+    for r in range(wav.shape[0]):
+        if int(wav[r, W_SURFACE]) < SURF_OUTER_DEFECT:
+            defects_only = False
+    zeroed = False
     _time_terms_at(t0, p, wav, trig, scratch)
     _rhs(scene, ehl, y, p, wav, k1, loads, scratch)
     if record_loads:
@@ -174,7 +185,11 @@ def _rk4_impl(
             for stage in range(4):
                 if stage == 0:
                     _advance(trig, step_inc)
-                    _time_terms(ts + half, p, wav, trig, scratch, at_half)
+                    if zeroed and at_half == DEFECTS_NONE:
+                        _clock_terms(ts + half, p, trig, scratch)
+                    else:
+                        _time_terms(ts + half, p, wav, trig, scratch, at_half)
+                        zeroed = defects_only and at_half != DEFECTS_ALL
                     for i in range(n):
                         tmp[i] = y[i] + half * ks[0, i]
                 elif stage == 1:
@@ -182,7 +197,11 @@ def _rk4_impl(
                         tmp[i] = y[i] + half * ks[1, i]
                 elif stage == 2:
                     _advance(trig, step_inc)
-                    _time_terms(ts + h, p, wav, trig, scratch, at_end)
+                    if zeroed and at_end == DEFECTS_NONE:
+                        _clock_terms(ts + h, p, trig, scratch)
+                    else:
+                        _time_terms(ts + h, p, wav, trig, scratch, at_end)
+                        zeroed = defects_only and at_end != DEFECTS_ALL
                     for i in range(n):
                         tmp[i] = y[i] + h * ks[2, i]
                 else:

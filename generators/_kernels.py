@@ -679,13 +679,24 @@ def _time_terms(t, p, wav, trig, scratch, defects):
     """
     z = int(p[P_BALL_COUNT])
     theta0 = p[P_CAGE_ANGLE0] + p[P_CAGE_SPEED] * t
-    shaft_angle = p[P_SHAFT_ANGLE0] + p[P_SHAFT_SPEED] * t
     if wav.shape[0] > 0:
+        shaft_angle = p[P_SHAFT_ANGLE0] + p[P_SHAFT_SPEED] * t
         _waviness(wav, z, theta0, shaft_angle, t, p, trig, scratch, defects)
+    _clock_terms(t, p, trig, scratch)
+
+
+@numba.njit(**_JIT_INLINE)
+def _clock_terms(t, p, trig, scratch):
+    """Row 8 of the time terms (:func:`_time_terms`): the clock of a stage time ``t``.
+
+    ``t``, the cage angle's cos and sin (from ``trig``) and the shaft angle: all a stage needs
+    when the table holds only local defects (and slip) and no contact is near one, its rows
+    already zeroed (``generators._integrators._rk4_impl``).
+    """
     scratch[8, 0] = t
     scratch[8, 1] = trig[0, 0]
     scratch[8, 2] = trig[0, 1]
-    scratch[8, 3] = shaft_angle
+    scratch[8, 3] = p[P_SHAFT_ANGLE0] + p[P_SHAFT_SPEED] * t
 
 
 @numba.njit(**_JIT)
