@@ -305,22 +305,48 @@ FILM_TABLE_NODES = 2048
 
 
 def with_film_tables(p: np.ndarray) -> np.ndarray:
-    """Append the film tables d(delta) of the three contacts to ``p`` (EHL scenes)."""
-    floor = p[K.P_FILM_LOAD_FLOOR]
+    """Append the film tables d(delta) of the three contacts to ``p`` (EHL scenes).
+
+    The tables depend on nine of ``p``'s values only; a faulty case and its healthy twin (and
+    an untouched ball pit's two runs) share them, so the last few are kept
+    (:func:`_film_tables`).
+    """
+    keys = (
+        K.P_FILM_LOAD_FLOOR,
+        K.P_FILM_REFERENCE_LOAD,
+        K.P_K_INNER,
+        K.P_K_OUTER,
+        K.P_K_SERIES,
+        K.P_FILM_INNER,
+        K.P_FILM_OUTER,
+        K.P_FILM_INNER_MAX,
+        K.P_FILM_OUTER_MAX,
+    )
+    steps, tables = _film_tables(tuple(float(p[k]) for k in keys))
+    out = p.copy()
+    for c in range(3):
+        out[K.P_TABLE_STEP_INNER + c] = steps[c]
+        out[K.P_TABLE_INV_STEP_INNER + c] = 1.0 / steps[c]
+    out[K.P_TABLE_NODES] = FILM_TABLE_NODES
+    return np.concatenate([out, tables])
+
+
+@functools.lru_cache(maxsize=8)
+def _film_tables(values: tuple[float, ...]) -> tuple[tuple[float, ...], np.ndarray]:
+    """The node spacings and the flattened tables of :func:`with_film_tables` (read-only)."""
+    floor, reference, k_inner, k_outer, k_series, film_inner, film_outer, max_inner, max_outer = (
+        values
+    )
     e = K.FILM_EXPONENT
-    q_hi = 100.0 * (p[K.P_FILM_REFERENCE_LOAD] + 100.0)
+    q_hi = 100.0 * (reference + 100.0)
     specs = (
-        (p[K.P_K_INNER], p[K.P_FILM_INNER], p[K.P_FILM_INNER_MAX]),
-        (p[K.P_K_OUTER], p[K.P_FILM_OUTER], p[K.P_FILM_OUTER_MAX]),
-        (
-            p[K.P_K_SERIES],
-            p[K.P_FILM_INNER] + p[K.P_FILM_OUTER],
-            p[K.P_FILM_INNER_MAX] + p[K.P_FILM_OUTER_MAX],
-        ),
+        (k_inner, film_inner, max_inner),
+        (k_outer, film_outer, max_outer),
+        (k_series, film_inner + film_outer, max_inner + max_outer),
     )
     n = FILM_TABLE_NODES
     tables = np.zeros((3, n, 2))
-    out = p.copy()
+    steps = []
     for c, (kc, film, h_max) in enumerate(specs):
         delta_hi = (q_hi / kc) ** (2.0 / 3.0)
         step = math.sqrt(delta_hi + h_max) / (n - 1)  # uniform in s = sqrt(delta + h_max)
@@ -344,10 +370,10 @@ def with_film_tables(p: np.ndarray) -> np.ndarray:
         slope = np.where(pos, -1.5 * e * h / np.where(pos, d, 1.0) * q / (q + floor), 0.0)
         tables[c, :, 0] = d
         tables[c, :, 1] = 2.0 * s_nodes / (1.0 + slope)  # dd/ds = dd/d delta * 2 s
-        out[K.P_TABLE_STEP_INNER + c] = step
-        out[K.P_TABLE_INV_STEP_INNER + c] = 1.0 / step
-    out[K.P_TABLE_NODES] = n
-    return np.concatenate([out, tables.ravel()])
+        steps.append(step)
+    flat = tables.ravel()
+    flat.flags.writeable = False
+    return tuple(steps), flat
 
 
 def film_sum(p: np.ndarray, loads: np.ndarray) -> np.ndarray:
