@@ -29,6 +29,9 @@ from generators._kernels import (
     STATUS_STEP_COLLAPSE,
     STATUS_TOO_MANY_STEPS,
     SURF_OUTER_DEFECT,
+    SURF_SLIP,
+    W_PHASE,
+    W_SLIP_RATE,
     W_SURFACE,
     _advance,
     _check,
@@ -88,6 +91,18 @@ def _hermite_record(y0, f0, y1, f1, dt, theta, nd, k, out_state, out_accel, tmp,
     for i in range(nd, n):
         acc[i] = d00 * y0[i] + d10 * f0[i] + d01 * y1[i] + d11 * f1[i]
     _record(tmp, acc, nd, k, out_state, out_accel)
+
+
+@numba.njit(**_JIT_INLINE)
+def _slip_phases(t, wav, trig, first):
+    """The slip rows' cos and sin (table rows ``first`` on) at ``t`` [s], computed exactly.
+
+    The same arguments as :func:`generators._kernels._phases` gives them.
+    """
+    for r in range(first, wav.shape[0]):
+        arg = wav[r, W_SLIP_RATE] * t + wav[r, W_PHASE]
+        trig[r + 1, 0] = math.cos(arg)
+        trig[r + 1, 1] = math.sin(arg)
 
 
 @numba.njit(**_JIT)
@@ -151,6 +166,14 @@ def _rk4_impl(
         if int(wav[r, W_SURFACE]) < SURF_OUTER_DEFECT:
             defects_only = False
     zeroed = False
+    # the slip rows (last in the table) are read only in the steps that evaluate the slip
+    # angles (near a pit, or before a reach test); in the others they are not rotated, and the
+    # next step that reads them first computes them afresh (_slip_phases)
+    first_slip = wav.shape[0]
+    while first_slip > 0 and int(wav[first_slip - 1, W_SURFACE]) == SURF_SLIP:
+        first_slip -= 1
+    every_row = trig.shape[0]
+    stale = False
     _time_terms_at(t0, p, wav, trig, scratch)
     _rhs(scene, ehl, y, p, wav, k1, loads, scratch)
     if record_loads:
@@ -160,6 +183,7 @@ def _rk4_impl(
         t = t0 + step * dt
         if step % PHASE_ANCHOR == 0 or anchor:
             _phases(t, p, wav, trig)  # exact every PHASE_ANCHOR steps, rotated between
+            stale = False
         # a contact near a local defect: the step is split and the pit's rows evaluated;
         # elsewhere they add nothing and are skipped (fine_steps 1: no defects, or never split).
         # After a step with no contact in reach, the test is skipped for as many steps as no
@@ -177,6 +201,14 @@ def _rk4_impl(
         # the slip angles at the step's end only for a test at the next step
         at_end = DEFECTS_ALL if near else (DEFECTS_SLIP if step + 1 >= next_check else DEFECTS_NONE)
         anchor = subs > 1
+        rotated = every_row
+        if near or at_end != DEFECTS_NONE:
+            if stale:
+                _slip_phases(t, wav, trig, first_slip)
+                stale = False
+        elif first_slip < wav.shape[0]:
+            rotated = first_slip + 1
+            stale = True
         h = dt / subs
         half = 0.5 * h
         step_inc = inc_fine if subs > 1 else inc
@@ -184,7 +216,7 @@ def _rk4_impl(
             ts = t + sub * h
             for stage in range(4):
                 if stage == 0:
-                    _advance(trig, step_inc)
+                    _advance(trig, step_inc, rotated)
                     if zeroed and at_half == DEFECTS_NONE:
                         _clock_terms(ts + half, p, trig, scratch)
                     else:
@@ -196,7 +228,7 @@ def _rk4_impl(
                     for i in range(n):
                         tmp[i] = y[i] + half * ks[1, i]
                 elif stage == 2:
-                    _advance(trig, step_inc)
+                    _advance(trig, step_inc, rotated)
                     if zeroed and at_end == DEFECTS_NONE:
                         _clock_terms(ts + h, p, trig, scratch)
                     else:

@@ -656,9 +656,9 @@ def _phase_steps(p, wav, dt):
 
 
 @numba.njit(**_JIT_INLINE)
-def _advance(trig, inc):
-    """Rotate every (cos, sin) pair of ``trig`` by the matching pair of ``inc``."""
-    for r in range(trig.shape[0]):
+def _advance(trig, inc, rows):
+    """Rotate the first ``rows`` (cos, sin) pairs of ``trig`` by the matching pairs of ``inc``."""
+    for r in range(rows):
         c, s = trig[r, 0], trig[r, 1]
         trig[r, 0] = c * inc[r, 0] - s * inc[r, 1]
         trig[r, 1] = s * inc[r, 0] + c * inc[r, 1]
