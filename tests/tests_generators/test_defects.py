@@ -177,6 +177,14 @@ def test_zero_depth_is_healthy(b6205):
     assert np.array_equal(healthy["housing_acceleration_y"], zero["housing_acceleration_y"])
 
 
+def _pit_table(b6205, surface, slip, jitter):
+    """Kernel parameters and table of a 0.5 mm pit (met often) at 1800 rpm, 500 N, with slip."""
+    op = OperatingCondition.from_rpm(1800, 500, random_slip=slip, ball_jitter=jitter)
+    defect = LocalizedDefect(surface=surface, length=0.5e-3, depth=1e-4, latitude=0.0)
+    prep = prepare(b6205, op, defect, random_state=4)
+    return prep.p, prep.wav, b6205.ball_count
+
+
 @pytest.mark.parametrize("surface", ["outer", "inner", "ball"])
 def test_pit_rows_skipped_only_where_they_add_nothing(b6205, surface):
     """RK4 skips a pit's rows (and the slip angles at the half step) in steps where
@@ -184,10 +192,7 @@ def test_pit_rows_skipped_only_where_they_add_nothing(b6205, surface):
     must add exactly nothing. Checked at 4 instants in each of 20,000 steps of 20 us, with
     random slip and pocket jitter (the contact angles wander), for a pit wide enough to be met
     often (0.5 mm)."""
-    op = OperatingCondition.from_rpm(1800, 500, random_slip=0.02, ball_jitter=0.01)
-    defect = LocalizedDefect(surface=surface, length=0.5e-3, depth=1e-4, latitude=0.0)
-    prep = prepare(b6205, op, defect, random_state=4)
-    p, wav, z = prep.p, prep.wav, b6205.ball_count
+    p, wav, z = _pit_table(b6205, surface, 0.02, 0.01)
     dt = 2e-5
     trig = K._trig(wav)
     at_start = K._scratch(z)
@@ -223,10 +228,7 @@ def test_defect_test_skipped_only_where_it_would_say_no(b6205, surface, slip, ji
     pit rows above) must say no at every one of them. Checked at each of 20,000 steps of 20 us,
     with random slip and pocket jitter, for a 0.5 mm pit; the skips must also be long (the
     point of them)."""
-    op = OperatingCondition.from_rpm(1800, 500, random_slip=slip, ball_jitter=jitter)
-    defect = LocalizedDefect(surface=surface, length=0.5e-3, depth=1e-4, latitude=0.0)
-    prep = prepare(b6205, op, defect, random_state=4)
-    p, wav, z = prep.p, prep.wav, b6205.ball_count
+    p, wav, z = _pit_table(b6205, surface, slip, jitter)
     dt = 2e-5
     trig = K._trig(wav)
     scratch = K._scratch(z)
