@@ -9,7 +9,8 @@ literature and the rigs' published descriptions:
   modes (modal superposition of an accelerance: each mode a band-pass of unit peak gain times
   its own gain), so that impacts ring at several resonances, as on real machines;
 * :func:`sensor_response`: the accelerometer's mounted resonance (second order, flat below it);
-* :func:`anti_alias_filter`: the acquisition's causal Butterworth low-pass;
+* :func:`anti_alias_filter`: the acquisition's causal Butterworth low-pass
+  (:func:`butterworth_low_pass`);
 * :func:`digitise`: quantisation to a number of bits over a full scale, clipping beyond it;
 * :func:`machine_background`: shaft harmonics (unbalance, misalignment), electrical lines at
   the line frequency and its harmonics, another bearing's lines and coloured broadband noise
@@ -36,6 +37,7 @@ __all__ = [
     "transfer_path",
     "sensor_response",
     "anti_alias_filter",
+    "butterworth_low_pass",
     "digitise",
     "machine_background",
     "band_power",
