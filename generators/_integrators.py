@@ -105,22 +105,6 @@ def _slip_phases(t, wav, trig, first):
         trig[r + 1, 1] = math.sin(arg)
 
 
-@numba.njit(**_JIT_INLINE)
-def _stage_time_terms(t, p, wav, trig, inc, rotated, scratch, defects, zeroed, defects_only):
-    """Rotate the first ``rotated`` rows of ``trig`` by ``inc`` to ``t`` and fill the time terms.
-
-    Where the table's rows are known to be zero (``zeroed``: a table of local defects only,
-    last evaluated away from the pits) and ``defects`` asks for none of them, only the clock
-    terms (:func:`generators._kernels._clock_terms`). Returns whether the rows are zero after.
-    """
-    _advance(trig, inc, rotated)
-    if zeroed and defects == DEFECTS_NONE:
-        _clock_terms(t, p, trig, scratch)
-        return True
-    _time_terms(t, p, wav, trig, scratch, defects)
-    return defects_only and defects != DEFECTS_ALL
-
-
 @numba.njit(**_JIT)
 def _rk4_impl(
     scene,
@@ -231,37 +215,27 @@ def _rk4_impl(
         for sub in range(subs):
             ts = t + sub * h
             for stage in range(4):
+                # the two time-terms blocks below stay written out: one inline helper for both
+                # made every run 15 % slower (benchmarks/bench_pit_runs.py, stop 34)
                 if stage == 0:
-                    zeroed = _stage_time_terms(
-                        ts + half,
-                        p,
-                        wav,
-                        trig,
-                        step_inc,
-                        rotated,
-                        scratch,
-                        at_half,
-                        zeroed,
-                        defects_only,
-                    )
+                    _advance(trig, step_inc, rotated)
+                    if zeroed and at_half == DEFECTS_NONE:
+                        _clock_terms(ts + half, p, trig, scratch)
+                    else:
+                        _time_terms(ts + half, p, wav, trig, scratch, at_half)
+                        zeroed = defects_only and at_half != DEFECTS_ALL
                     for i in range(n):
                         tmp[i] = y[i] + half * ks[0, i]
                 elif stage == 1:
                     for i in range(n):
                         tmp[i] = y[i] + half * ks[1, i]
                 elif stage == 2:
-                    zeroed = _stage_time_terms(
-                        ts + h,
-                        p,
-                        wav,
-                        trig,
-                        step_inc,
-                        rotated,
-                        scratch,
-                        at_end,
-                        zeroed,
-                        defects_only,
-                    )
+                    _advance(trig, step_inc, rotated)
+                    if zeroed and at_end == DEFECTS_NONE:
+                        _clock_terms(ts + h, p, trig, scratch)
+                    else:
+                        _time_terms(ts + h, p, wav, trig, scratch, at_end)
+                        zeroed = defects_only and at_end != DEFECTS_ALL
                     for i in range(n):
                         tmp[i] = y[i] + h * ks[2, i]
                 else:
