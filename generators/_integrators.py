@@ -43,6 +43,7 @@ from generators._kernels import (
     _rhs,
     _rhs_inline,
     _scratch,
+    _slip_rate_bound,
     _time_terms,
     _time_terms_at,
     _trig,
@@ -158,6 +159,7 @@ def _rk4_impl(
     inc_fine = _phase_steps(p, wav, 0.5 * dt / fine_steps) if fine_steps > 1 else inc
     anchor = False
     next_check = 0
+    slip_rate = _slip_rate_bound(wav, z)  # the reach test's bound, once per run
     # a table of local defects (and slip) only: away from the pits its rows add nothing, and
     # once zeroed (a step's terms without the pits' rows) they need not be evaluated again
     # until a step near a pit writes them (only the clock terms change)
@@ -193,7 +195,7 @@ def _rk4_impl(
         elif step < next_check:
             near = False
         else:
-            clear = _defect_clear_steps(wav, p, t, 1.5 * dt, scratch, dt)
+            clear = _defect_clear_steps(wav, p, t, 1.5 * dt, scratch, dt, slip_rate)
             near = clear < 0
             next_check = step + 1 + clear
         subs = fine_steps if near else 1

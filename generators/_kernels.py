@@ -435,31 +435,14 @@ def _defect_near(wav, p, t, horizon, scratch):
     in which one is (``fine_steps``): the pit's path is resolved where it acts, and the step
     elsewhere is the scene's.
     """
-    return _defect_clear_steps(wav, p, t, horizon, scratch, 1.0) < 0
+    slip_rate = _slip_rate_bound(wav, int(p[P_BALL_COUNT]))
+    return _defect_clear_steps(wav, p, t, horizon, scratch, 1.0, slip_rate) < 0
 
 
 @numba.njit(**_JIT)
-def _defect_clear_steps(wav, p, t, horizon, scratch, dt):
-    """-1 if a contact is within reach of a local defect at ``t``, else steps none can reach.
-
-    The steps are those of ``dt`` [s] after ``t``. Reach (:func:`_defect_near`): a contact at
-    angle delta from a pit of half width w moving at rate r is within reach when
-    |delta| < w + |r| ``horizon`` (a ball pit only while on its track). Otherwise its distance
-    from reach, |delta| - w - r_max ``horizon``, over the fastest its angle can move, r_max:
-    the nominal rate plus the largest rate of any ball's slip rows (its own and the common
-    ones), sum |a_m w_m| (for a ball pit scaled as the spin is); an angle moves by at most
-    r_max s in s seconds. The RK4 loop skips the test (and the slip angles it reads) for that
-    many steps. A ball pit off its track counts as on it for the bound (the track turns
-    slowly; counting it only makes the answer smaller).
-    """
-    z = int(p[P_BALL_COUNT])
-    wc, ws, wb = p[P_CAGE_SPEED], p[P_SHAFT_SPEED], p[P_BALL_SPIN_SPEED]
-    theta0 = p[P_CAGE_ANGLE0] + wc * t
-    shaft_angle = p[P_SHAFT_ANGLE0] + ws * t
-    slipping = wav.shape[0] > 0 and int(wav[wav.shape[0] - 1, W_SURFACE]) == SURF_SLIP
-    # the fastest a ball's slip angle can change: the common rows' sum plus the largest of
-    # the balls' own rows' sums
-    common_rate = 0.0
+def _slip_rate_bound(wav, z):
+    """The fastest any ball's slip angle can change [rad/s]: sum |a_m w_m| of its slip rows."""
+    common_rate = 0.0  # rows of every ball (-1), then the largest of a ball's own rows
     own_rate = 0.0
     for j in range(-1, z):
         rate_sum = 0.0
@@ -472,7 +455,28 @@ def _defect_clear_steps(wav, p, t, horizon, scratch, dt):
             common_rate = rate_sum
         else:
             own_rate = max(own_rate, rate_sum)
-    slip_rate = common_rate + own_rate
+    return common_rate + own_rate
+
+
+@numba.njit(**_JIT)
+def _defect_clear_steps(wav, p, t, horizon, scratch, dt, slip_rate):
+    """-1 if a contact is within reach of a local defect at ``t``, else steps none can reach.
+
+    The steps are those of ``dt`` [s] after ``t``. Reach (:func:`_defect_near`): a contact at
+    angle delta from a pit of half width w moving at rate r is within reach when
+    |delta| < w + |r| ``horizon`` (a ball pit only while on its track). Otherwise its distance
+    from reach, |delta| - w - r_max ``horizon``, over the fastest its angle can move, r_max:
+    the nominal rate plus the largest rate of any ball's slip rows (its own and the common
+    ones), sum |a_m w_m| (for a ball pit scaled as the spin is); an angle moves by at most
+    r_max s in s seconds (``slip_rate``: :func:`_slip_rate_bound`, once per run). The RK4 loop
+    skips the test (and the slip angles it reads) for that many steps. A ball pit off its track
+    counts as on it for the bound (it turns slowly; that only makes the answer smaller).
+    """
+    z = int(p[P_BALL_COUNT])
+    wc, ws, wb = p[P_CAGE_SPEED], p[P_SHAFT_SPEED], p[P_BALL_SPIN_SPEED]
+    theta0 = p[P_CAGE_ANGLE0] + wc * t
+    shaft_angle = p[P_SHAFT_ANGLE0] + ws * t
+    slipping = wav.shape[0] > 0 and int(wav[wav.shape[0] - 1, W_SURFACE]) == SURF_SLIP
     pitch = 2.0 * math.pi / z
     clear = 1e9  # in steps
     for r in range(wav.shape[0]):
@@ -689,9 +693,8 @@ def _time_terms(t, p, wav, trig, scratch, defects):
 def _clock_terms(t, p, trig, scratch):
     """Row 8 of the time terms (:func:`_time_terms`): the clock of a stage time ``t``.
 
-    ``t``, the cage angle's cos and sin (from ``trig``) and the shaft angle: all a stage needs
-    when the table holds only local defects (and slip) and no contact is near one, its rows
-    already zeroed (``generators._integrators._rk4_impl``).
+    ``t``, the cage angle's cos and sin (``trig``) and the shaft angle: all a stage needs when
+    the table holds only local defects (and slip), zeroed, and no contact is near one.
     """
     scratch[8, 0] = t
     scratch[8, 1] = trig[0, 0]

@@ -232,13 +232,14 @@ def test_defect_test_skipped_only_where_it_would_say_no(b6205, surface, slip, ji
     dt = 2e-5
     trig = K._trig(wav)
     scratch = K._scratch(z)
+    slip_rate = K._slip_rate_bound(wav, z)
     near = np.zeros(20000, dtype=bool)
     promised = np.zeros(20000, dtype=np.int64)
     for n in range(20000):
         t = n * dt
         K._time_terms_at(t, p, wav, trig, scratch)
         near[n] = K._defect_near(wav, p, t, 1.5 * dt, scratch)
-        promised[n] = K._defect_clear_steps(wav, p, t, 1.5 * dt, scratch, dt)
+        promised[n] = K._defect_clear_steps(wav, p, t, 1.5 * dt, scratch, dt, slip_rate)
     for n in np.flatnonzero(promised > 0):
         assert not near[n + 1 : n + 1 + promised[n]].any(), (n, promised[n])
     # the steps RK4 tests: one after each skip
