@@ -8,12 +8,11 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
-from scipy import signal as sp_signal
 
 from . import _kernels as K
 from . import _lanes
 from ._validate import ParameterError, SimulationDivergedError
-from .decimation import CHANNEL_COLUMNS
+from .decimation import CHANNEL_COLUMNS, decimate_rows
 from .prepared import Plan, Prepared, diverged_error, plan_run
 
 
@@ -139,9 +138,7 @@ def simulate_lanes(
             )
             records = out[:, : plan.n_record]
             if plan.oversample > 1:
-                records = sp_signal.resample_poly(
-                    records, 1, plan.oversample, axis=1, padtype="line"
-                )
+                records = decimate_rows(records, plan.oversample)
             for b, (i, prep, _) in enumerate(block):
                 if status[b] != K.STATUS_OK:
                     results[i] = diverged_error(prep, int(status[b]), float(t_status[b]))
