@@ -7,7 +7,6 @@ import pathlib
 import subprocess
 import sys
 import tempfile
-from dataclasses import dataclass
 from typing import IO
 
 import numpy as np
@@ -17,40 +16,59 @@ REPO = pathlib.Path(__file__).resolve().parents[1]
 SHARED_DATA = REPO.parent / "shared" / "data"
 
 
-@dataclass
 class KernelWarmer:
-    """The background process that compiles every kernel specialisation (kernel_warmer.py)."""
+    """The background process that compiles every kernel specialisation (kernel_warmer.py).
 
-    proc: subprocess.Popen
-    stdout: IO[str]
-    stderr: IO[str]
+    Started when the session starts in the test process that warms (the only one, or the
+    first pytest-xdist worker: ``make test`` runs two), otherwise when a test first asks for
+    its result (by then the cache holds what it compiles: it only loads).
+    """
+
+    def __init__(self, out: IO[str], err: IO[str], start: bool) -> None:
+        self.stdout = out
+        self.stderr = err
+        self.proc: subprocess.Popen | None = None
+        if start:
+            self.start()
+
+    def start(self) -> None:
+        env = {**os.environ, "PYTHONPATH": str(REPO)}
+        self.proc = subprocess.Popen(
+            [sys.executable, str(REPO / "tests" / "kernel_warmer.py")],
+            cwd=REPO,
+            env=env,
+            stdout=self.stdout,
+            stderr=self.stderr,
+            text=True,
+        )
 
     def result(self, timeout: float = 900.0) -> tuple[int, str, str]:
         """Wait for it: (exit code, its stdout, the end of its stderr)."""
+        if self.proc is None:
+            self.start()
         code = self.proc.wait(timeout=timeout)
         self.stdout.seek(0)
         self.stderr.seek(0)
         return code, self.stdout.read(), self.stderr.read()[-4000:]
 
+    def stop(self) -> None:
+        if self.proc is not None:
+            if self.proc.poll() is None:
+                self.proc.kill()
+            self.proc.wait()
+
 
 @pytest.fixture(scope="session", autouse=True)
 def kernel_warmer():
-    """Compile the kernels on a second core while the first runs tests (numba's disk cache is
-    shared: a test that needs a specialisation the warmer has built loads it)."""
-    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    """Compile the kernels in a process of their own while the tests run (numba's disk cache is
+    shared: a test that needs a specialisation the warmer has built loads it). Under
+    pytest-xdist only the first worker starts it with the session: two warmers would compile
+    the same kernels twice on the same two cores."""
+    warms = os.environ.get("PYTEST_XDIST_WORKER", "gw0") == "gw0"
     with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
-        proc = subprocess.Popen(
-            [sys.executable, str(REPO / "tests" / "kernel_warmer.py")],
-            cwd=REPO,
-            env=env,
-            stdout=out,
-            stderr=err,
-            text=True,
-        )
-        yield KernelWarmer(proc, out, err)
-        if proc.poll() is None:
-            proc.kill()
-        proc.wait()
+        warmer = KernelWarmer(out, err, start=warms)
+        yield warmer
+        warmer.stop()
 
 
 @pytest.fixture
