@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import tempfile
 from pathlib import Path
 from typing import Any
@@ -303,6 +304,26 @@ def _time_axis(values: np.ndarray) -> float | None:
     return None
 
 
+def _drive_end_variable(names: list[str], path: Path) -> str | None:
+    """The CWRU drive-end variable ``X###_DE_time`` a file holds for its own record.
+
+    A CWRU file holds one record's channels, named after its number (``105.mat``:
+    ``X105_DE_time``), but some hold a second record's as well (a normal-baseline file with
+    the next one's channels, as distributed). One drive-end variable is the record; of
+    several, the one whose number is in the file's name (``99.mat``, ``Normal_2_099.mat``:
+    ``X099``); None when the name does not say (the caller asks for ``--variable``).
+    """
+    if len(names) == 1:
+        return names[0]
+    numbers = [int(n) for n in re.findall(r"\d+", path.stem)]
+    for number in reversed(numbers):  # the record number ends CWRU-derived names
+        for name in names:
+            digits = name[1:].split("_")[0]
+            if digits.isdigit() and int(digits) == number:
+                return name
+    return None
+
+
 def read_recording(
     path: str | os.PathLike,
     *,
@@ -311,7 +332,8 @@ def read_recording(
 ) -> tuple[np.ndarray, dict[str, Any]]:
     """Read a measured vibration recording: ``(signal, metadata)``.
 
-    Formats: MATLAB ``.mat`` (CWRU files: ``X###_DE_time`` by default, rpm from ``X###RPM``;
+    Formats: MATLAB ``.mat`` (CWRU files: ``X###_DE_time`` by default, of several the one the
+    file's name numbers, rpm from ``X###RPM``;
     MFPT files: struct ``bearing`` with ``gs``, ``sr`` and ``rate``), ``.csv`` (a column by name
     or index), ``.wav``, ``.npy``/``.npz`` and ``.parquet``.
 
@@ -345,7 +367,9 @@ def read_recording(
         if variable is None:
             de = sorted(k for k in data if k.endswith("_DE_time"))
             numeric = [k for k, v in data.items() if isinstance(v, np.ndarray) and v.size > 16]
-            variable = de[0] if de else (numeric[0] if len(numeric) == 1 else None)
+            variable = _drive_end_variable(de, path) if de else None
+            if variable is None and not de and len(numeric) == 1:
+                variable = numeric[0]
             if variable is None:
                 raise RecordingError(
                     f"{path}: choose a variable with --variable; it holds {sorted(data)}"

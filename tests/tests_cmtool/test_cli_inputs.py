@@ -304,3 +304,29 @@ def test_form_waviness_flag_simulates_the_bearings_own_form_errors(tmp_path, cap
     with pytest.raises(SystemExit):
         main([*argv, "--form-waviness", "1e-7,0", "--out", str(tmp_path / "x.parquet")])
     assert "expected INNER,OUTER,BALL" in capsys.readouterr().err
+
+
+def test_a_cwru_file_with_two_records_gives_the_one_its_name_numbers(tmp_path):
+    """A CWRU .mat may hold a second record's channels; the drive-end variable read is the one
+    whose number the file's name carries, and a name that says neither is refused (rather than
+    diagnosing the other record)."""
+    from scipy.io import savemat
+
+    from cmtool.io import RecordingError, read_recording
+
+    rng = np.random.default_rng(3)
+    own, other = rng.standard_normal(400), rng.standard_normal(400)
+    content = {"X098_DE_time": other, "X099_DE_time": own, "X099RPM": 1750.0, "X098RPM": 1772.0}
+    for name in ("99.mat", "Normal_2_099.mat", "12k_Normal_99.mat"):
+        savemat(tmp_path / name, content)
+        x, meta = read_recording(tmp_path / name)
+        np.testing.assert_array_equal(x, own)
+        assert meta["variable"] == "X099_DE_time" and meta["rpm"] == 1750.0
+    savemat(tmp_path / "baseline.mat", content)
+    with pytest.raises(RecordingError, match="choose a variable"):
+        read_recording(tmp_path / "baseline.mat")
+    x, meta = read_recording(tmp_path / "baseline.mat", variable="X098_DE_time")
+    np.testing.assert_array_equal(x, other)
+    # one drive-end record: read whatever the file is called
+    savemat(tmp_path / "renamed.mat", {"X105_DE_time": own, "X105_FE_time": other})
+    assert read_recording(tmp_path / "renamed.mat")[1]["variable"] == "X105_DE_time"
