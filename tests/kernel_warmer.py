@@ -1,10 +1,12 @@
 """Call every compiled entry point once and print each one's cache hits and misses (JSON).
 
-Run as a script (``python tests/kernel_warmer.py``). The suite starts it in the background at
-the beginning of a session (tests/conftest.py): numba compiles one specialisation per (scene,
-film) pair and integrator, about 2.5 minutes on one core from an empty cache, and a second
-core can do that while the first runs tests (each loads what is already cached instead of
-compiling it). ``tests_generators/test_kernels_cache.py`` reads its report and then checks
+Run as a script (``python tests/kernel_warmer.py``; ``PART/PARTS`` for a share of the runs,
+``--processes N`` for N such shares side by side, as ``make test`` does before pytest). The
+suite also starts it in the background at the beginning of a session (tests/conftest.py):
+numba compiles one specialisation per (scene, film) pair and integrator, about 2.5 minutes on
+one core from an empty cache, and a second core can do that while the first runs tests (each
+loads what is already cached instead of compiling it); after ``make test``'s pre-compilation
+it only loads. ``tests_generators/test_kernels_cache.py`` reads its report and then checks
 that a second process finds every specialisation in the cache. Specialisations are compiled
 in the order the suite first needs them.
 """
@@ -14,8 +16,12 @@ from __future__ import annotations
 import json
 
 
-def warm() -> dict[str, list]:
-    """Call every entry point once; return name, cache hits and misses per entry point."""
+def warm(part: int = 0, parts: int = 1) -> dict[str, list]:
+    """Call every entry point once; return name, cache hits and misses per entry point.
+
+    ``part`` of ``parts``: only every ``parts``-th run from the ``part``-th (so that several
+    processes can compile disjoint sets side by side); the report covers every entry point.
+    """
     from generators import _integrators as integrators
     from generators import _lanes as lanes
     from generators import bearing, simulate
@@ -24,21 +30,35 @@ def warm() -> dict[str, list]:
 
     b = bearing("6205")
     op = OperatingCondition.from_rpm(1800, 500)
+    runs = []
     for level in ("shaft+housing", "shaft", "full"):
         for ehl in (True, False):
             scene = Scene(level=level, ehl=ehl)
             settings = SimulationSettings(fs=12000, duration=0.002, settle_time=0.0)
-            simulate(b, op, scene=scene, settings=settings)
+            runs.append(
+                lambda scene=scene, settings=settings: simulate(
+                    b, op, scene=scene, settings=settings
+                )
+            )
             if level != "full":
-                simulate_lanes(
-                    [prepare(b, op, scene=scene, settings=settings)], "housing_acceleration_y"
+                runs.append(
+                    lambda scene=scene, settings=settings: simulate_lanes(
+                        [prepare(b, op, scene=scene, settings=settings)], "housing_acceleration_y"
+                    )
                 )
     for level in ("shaft+housing", "shaft", "full"):
         for ehl in (True, False):
             settings = SimulationSettings(
                 fs=12000, duration=0.002, settle_time=0.0, integrator="dopri5"
             )
-            simulate(b, op, scene=Scene(level=level, ehl=ehl), settings=settings)
+            scene = Scene(level=level, ehl=ehl)
+            runs.append(
+                lambda scene=scene, settings=settings: simulate(
+                    b, op, scene=scene, settings=settings
+                )
+            )
+    for run in runs[part::parts]:
+        run()
     tables = (
         ("rk4", integrators.RK4),
         ("dopri5", integrators.DOPRI5),
@@ -56,5 +76,28 @@ def warm() -> dict[str, list]:
     }
 
 
+def warm_in_processes(processes: int) -> int:
+    """Compile every specialisation in ``processes`` processes side by side (exit status).
+
+    What ``make test`` runs before pytest's workers start: from an empty cache two processes
+    compile everything in about 1.5 minutes where one takes about 2.5.
+    """
+    import subprocess
+    import sys
+
+    children = [
+        subprocess.Popen(
+            [sys.executable, __file__, f"{part}/{processes}"], stdout=subprocess.DEVNULL
+        )
+        for part in range(processes)
+    ]
+    return max(child.wait() for child in children)
+
+
 if __name__ == "__main__":
-    print(json.dumps(warm()))
+    import sys
+
+    if len(sys.argv) > 2 and sys.argv[1] == "--processes":
+        sys.exit(warm_in_processes(int(sys.argv[2])))
+    part, parts = (int(v) for v in sys.argv[1].split("/")) if len(sys.argv) > 1 else (0, 1)
+    print(json.dumps(warm(part, parts)))
