@@ -71,6 +71,7 @@ SLIP_SEARCH = features.evidence.SLIP_SEARCH
 MIN_RATE_PERIODS = 20
 #: verdict name -> characteristic frequency used as its evidence
 FAULTS = {"outer race": "bpfo", "inner race": "bpfi", "ball": "two_bsf"}
+FAULT_NAMES = {key: name for name, key in FAULTS.items()}
 
 
 #: Why a detected fault's size is not given (docs/diagnosis.md "Severity"): said in the text,
@@ -271,6 +272,12 @@ def diagnose_signal(
                     for n, r, p in weighed["lines"]
                 ],
                 "detected": bool(weighed["evidence_db"] >= threshold),
+                # lines on a stronger detected fault's series (features.explain_shared_lines):
+                # counted as absent in this fault's weighing
+                "explained": [
+                    {"line": line, "by": FAULT_NAMES[other], "harmonic": k}
+                    for line, other, k in weighed.get("explained", [])
+                ],
                 "confidence": round(
                     _logistic(margin, CONFIDENCE_SCALE_DB, CONFIDENCE_OFFSET_DB), 4
                 ),
@@ -314,7 +321,8 @@ def diagnose_signal(
             "each kinematic fault rate (slip)",
             "evidence": "each fault's fundamental, 2x, 3x and first sidebands (inner race: "
             "shaft rate; ball: cage rate) weighed by their false-alarm probabilities "
-            "(Fisher), on the threshold's dB scale",
+            "(Fisher), on the threshold's dB scale; a line on a stronger detected fault's "
+            "harmonics or their sidebands counts for that fault only",
         },
     )
     diagnosis.velocity_bands = {k: float(v) for k, v in features.velocity_band_rms(x, fs).items()}
@@ -560,6 +568,13 @@ def model_verdict(model, x, fs, freqs: BearingFrequencies, extra: dict) -> dict:
     return out
 
 
+def explained_lines(candidate: dict) -> str:
+    """The candidate's lines that another fault accounts for, as text ("2x: outer race 3x")."""
+    return ", ".join(
+        f"{e['line']}: {e['by']} {e['harmonic']}x" for e in candidate.get("explained", [])
+    )
+
+
 def write_report(
     diagnosis: Diagnosis, out: str | Path, *, title: str, x: np.ndarray, fs: float
 ) -> Path:
@@ -634,21 +649,24 @@ def write_report(
         "## Evidence (envelope spectrum, dB above the local noise floor)",
         "",
         "| fault | frequency [Hz] | 1x | 2x | 3x | sidebands | weighed [dB] | detected "
-        "| confidence |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "| confidence | lines of another fault |",
+        "|---|---|---|---|---|---|---|---|---|---|",
     ]
     for c in diagnosis.candidates:
         s = c["envelope_snr_db"]
         lines.append(
             f"| {c['fault']} | {c['frequency_hz']} | {s[0]} | {s[1]} | {s[2]} | "
             f"{c['sideband_snr_db'] if c['sideband_snr_db'] is not None else '-'} | "
-            f"{c['evidence_db']} | {'yes' if c['detected'] else 'no'} | {c['confidence']} |"
+            f"{c['evidence_db']} | {'yes' if c['detected'] else 'no'} | {c['confidence']} | "
+            f"{explained_lines(c) or '-'} |"
         )
     lines += [
         "",
         f"Detection threshold: {diagnosis.threshold_db:.1f} dB on the weighed evidence of each "
         "fault's lines (fundamental, 2x, 3x, first sidebands; false-alarm probability about "
-        "1e-4 per fault for Gaussian noise, counting every band searched).",
+        "1e-4 per fault for Gaussian noise, counting every band searched). A line that lies on "
+        "a stronger detected fault's harmonics or their sidebands (a 6205's 2 x BPFI and 3 x "
+        "BPFO are 0.7 % apart) counts for that fault only: the last column names them.",
         "",
         "## Assumptions",
         "",

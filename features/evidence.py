@@ -29,7 +29,9 @@ freedom under noise), and the fault's probability is twice the smaller of the fu
 and the family's (Bonferroni over the two tests: one clear fundamental keeps its weight, a
 family of moderate lines adds up). ``evidence_db`` is that probability on the dB scale of the
 detection threshold (:func:`features.separation.ratio_for_false_alarm`), so that a fault is
-detected when ``evidence_db`` reaches it, at the same false-alarm probability per fault.
+detected when ``evidence_db`` reaches it, at the same false-alarm probability per fault. A
+line that lies on a stronger detected fault's harmonics or their sidebands counts for that
+fault only (:func:`explain_shared_lines`); the row's line ratios are as found.
 """
 
 from __future__ import annotations
@@ -60,6 +62,7 @@ __all__ = [
     "SLIP_SEARCH",
     "Evidence",
     "combine_lines",
+    "explain_shared_lines",
     "fault_evidence",
     "slip_line",
 ]
@@ -143,7 +146,12 @@ class Evidence:
     combined : dict of str to dict
         Per fault, the weighed line family (module docstring): ``evidence_db`` [dB, the
         threshold's scale], ``false_alarm`` (its probability under noise), ``family_p``
-        (Fisher's combination alone) and ``lines`` (name, ratio [dB], probability).
+        (Fisher's combination alone), ``lines`` (name, ratio [dB], probability) and
+        ``explained`` (the lines another fault's harmonics account for, which count as
+        absent: :func:`explain_shared_lines`).
+    families : dict of str to list
+        Per fault, each line weighed: (name, (ratio [dB], found [Hz], bins searched, floor
+        bins)), before any is explained.
     """
 
     features: dict[str, float]
@@ -154,6 +162,7 @@ class Evidence:
     envelope_frequencies: np.ndarray
     envelope_amplitude: np.ndarray
     combined: dict[str, dict] = field(default_factory=dict)
+    families: dict[str, list] = field(default_factory=dict)
 
 
 def combine_lines(probabilities: list[float], fundamental: float) -> tuple[float, float]:
@@ -247,11 +256,102 @@ def fault_evidence(x: np.ndarray, fs: float, fault_frequencies: Mapping[str, flo
     )
     best = max(out[f"evidence_{fault}_h1_snr"] for fault in EVIDENCE_FAULTS)
     out["evidence_margin_db"] = best - threshold
-    combined = {
-        fault: _weigh(family, len(selection.bands), searched, floor)
-        for fault, family in found_all.items()
-    }
-    return Evidence(out, selection, threshold, lines, random_part, ef, ea, combined)
+    spacings = {fault: ctx.get(_SIDEBANDS.get(fault, ""), 0.0) for fault in EVIDENCE_FAULTS}
+    combined = explain_shared_lines(
+        found_all, len(selection.bands), searched, floor, float(ef[1] - ef[0]), spacings
+    )
+    return Evidence(out, selection, threshold, lines, random_part, ef, ea, combined, found_all)
+
+
+#: A fault's line lies on another fault's harmonic k when it is within this many envelope bins
+#: of k times that fault's found fundamental, plus k times ``SHARED_LINE_SLIP`` of it: random
+#: slip (1-2 % in real bearings, Ho and Randall 2000; 0.5-2 % in the rig recipes) smears the
+#: k-th harmonic over about k times the slip, and its peak or its slip sidebands can stand
+#: anywhere in that width.
+SHARED_LINE_BINS = 1.0
+SHARED_LINE_SLIP = 0.015
+#: Harmonics of a stronger fault that can account for another fault's line.
+SHARED_LINE_ORDERS = 10
+
+
+def explain_shared_lines(
+    families: Mapping[str, list],
+    n_bands: int,
+    searched: int,
+    floor: int,
+    bin_width: float,
+    spacings: Mapping[str, float] | None = None,
+) -> dict[str, dict]:
+    """Each fault's line family weighed, the lines another fault accounts for left out.
+
+    A bearing's fault rates are not commensurate, but their harmonics can fall within a line's
+    width of each other (a 6205: 3 x BPFO and 2 x BPFI are 0.7 % apart, 4 x BPFO and 3 x (2 x
+    BSF) 1.4 %), and each fault's lines are searched within the slip: one fault's harmonic
+    then also counts as another fault's. An analyst gives a shared line to the fault whose
+    series it continues. Here the faults are taken in order of their weighed evidence (ties:
+    the fundamental); a fault that is detected (false-alarm probability at most
+    ``FALSE_ALARM``) accounts for every line of a fault ranked below it that lies on its own
+    harmonic series or on its harmonics' first and second sidebands (within
+    ``SHARED_LINE_BINS`` envelope bins plus ``SHARED_LINE_SLIP`` per order of k f + m s, f its
+    found fundamental, k up to ``SHARED_LINE_ORDERS``, s its sideband spacing: an inner-race
+    fault's lines stand at k BPFI -/+ m f_shaft, the pit turning through the load zone);
+    such lines count as absent (0 dB over the floor) in the lower fault's weighing, which is
+    then repeated. The strongest fault's weighing is never changed, so neither is the
+    ranking's head.
+
+    Parameters
+    ----------
+    families : mapping of str to list
+        Per fault (``EVIDENCE_FAULTS`` order), (name, (ratio [dB], found [Hz], bins searched,
+        floor bins)) of each line, the fundamental (``"1x"``) first.
+    n_bands, searched, floor : int
+        Bands the fundamental was looked for in, bins searched per line, floor bins.
+    bin_width : float
+        The envelope spectrum's bin width [Hz].
+    spacings : mapping of str to float, optional
+        Per fault, the spacing of its sidebands [Hz] (0 or absent: none).
+
+    Returns
+    -------
+    dict of str to dict
+        As :attr:`Evidence.combined`, each with ``explained``: a list of (line, fault, k).
+    """
+    raw = {fault: _weigh(family, n_bands, searched, floor) for fault, family in families.items()}
+    order = sorted(raw, key=lambda f: (raw[f]["evidence_db"], families[f][0][1][0]), reverse=True)
+    combined: dict[str, dict] = {}
+    spacings = spacings or {}
+    # detected faults: (name, found fundamental, sideband spacing)
+    explainers: list[tuple[str, float, float]] = []
+    for fault in order:
+        family = list(families[fault])
+        explained = []
+        for i, (name, line) in enumerate(family):
+            source = _on_series(line[1], explainers, bin_width)
+            if source is not None:
+                explained.append((name, *source))
+                family[i] = (name, (0.0, *line[1:]))
+        weighed = _weigh(family, n_bands, searched, floor) if explained else raw[fault]
+        combined[fault] = {**weighed, "explained": explained}
+        if weighed["detected"]:
+            explainers.append((fault, families[fault][0][1][1], spacings.get(fault, 0.0)))
+    return {fault: combined[fault] for fault in families}
+
+
+def _on_series(
+    found: float, explainers: list[tuple[str, float, float]], bin_width: float
+) -> tuple[str, int] | None:
+    """(fault, k) of the first explainer whose line k f + m s (|m| <= 2) ``found`` lies on."""
+    for other, fundamental, spacing in explainers:
+        if fundamental <= 0:
+            continue
+        for m in (0, -1, 1, -2, 2) if spacing > 0 else (0,):
+            k = round((found - m * spacing) / fundamental)
+            if not 1 <= k <= SHARED_LINE_ORDERS:
+                continue
+            tolerance = SHARED_LINE_BINS * bin_width + SHARED_LINE_SLIP * k * fundamental
+            if abs(found - k * fundamental - m * spacing) <= tolerance:
+                return other, k
+    return None
 
 
 def _weigh(family, n_bands: int, searched: int, floor: int) -> dict:

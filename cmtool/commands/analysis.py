@@ -20,7 +20,7 @@ logger = logging.getLogger("cmtool")
 
 def cmd_diagnose(args: argparse.Namespace) -> int:
     """Diagnose a recording: verdict, evidence, optional report and JSON."""
-    from ..diagnose import diagnose_signal, write_report
+    from ..diagnose import diagnose_signal, explained_lines, write_report
     from ..io import read_recording
     from ..waviness import comparison_text
 
@@ -94,7 +94,9 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
                 f"  {c['fault']:<11s} {c['frequency_hz']:9.3f} Hz  envelope SNR "
                 f"{c['envelope_snr_db'][0]:6.1f} / {c['envelope_snr_db'][1]:6.1f} / "
                 f"{c['envelope_snr_db'][2]:6.1f} dB (1x/2x/3x), weighed "
-                f"{c['evidence_db']:5.1f} dB" + ("  DETECTED" if c["detected"] else "")
+                f"{c['evidence_db']:5.1f} dB"
+                + ("  DETECTED" if c["detected"] else "")
+                + (f"  ({shared})" if (shared := explained_lines(c)) else "")
             )
         print(f"  basis: {diagnosis.basis}")
         change = (diagnosis.baseline or {}).get("velocity_bands_change_db", {})

@@ -10,6 +10,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+import features
 from cmtool.classifier import (
     ModelFormatError,
     ModelVersionError,
@@ -18,7 +19,12 @@ from cmtool.classifier import (
     save_model,
 )
 from cmtool.cli import main
-from cmtool.diagnose import DETECTION_DB, SEVERITY_NOT_ESTIMATED, diagnose_signal
+from cmtool.diagnose import (
+    DETECTION_DB,
+    SEVERITY_NOT_ESTIMATED,
+    diagnose_signal,
+    write_report,
+)
 from cmtool.io import read_recording
 
 REPO = Path(__file__).resolve().parents[2]
@@ -359,6 +365,46 @@ def test_simulated_healthy_bearings_are_healthy_and_slipping_pits_are_found(smal
         x = x + np.random.default_rng(2).normal(0.0, 0.3 * np.std(x), x.size)
         d = diagnose_signal(x, run.fs, 1797.0, g)
         assert d.verdict == verdict, (surface, d.candidates)
+
+
+def test_an_inner_race_pits_lines_are_not_read_as_a_ball_fault(tmp_path):
+    """A 0.3 mm inner-race pit with 1 % random slip (6205, 1797 rpm, 400 N, 12 kHz, 2 s): the
+    ball's 3x and lower sideband searched within the slip find the pit's own lines (3 BPFI - 2
+    f_s, BPFI - f_s); counted for the ball they make it a detected second fault. The report
+    gives them to the inner race and says so."""
+    from features.evidence import explain_shared_lines
+    from generators import (
+        LocalizedDefect,
+        OperatingCondition,
+        SimulationSettings,
+        bearing,
+        simulate,
+    )
+
+    g = bearing("6205")
+    op = OperatingCondition.from_rpm(1797, 400.0, random_slip=0.01)
+    pit = LocalizedDefect(surface="inner", length=0.3e-3, depth=0.1e-3)
+    settings = SimulationSettings(fs=12000.0, duration=2.0, channels=("housing_acceleration_y",))
+    x = simulate(g, op, pit, settings=settings, random_state=1)["housing_acceleration_y"]
+    d = diagnose_signal(x, 12000.0, 1797.0, g)
+    assert d.verdict == "inner race"
+    ball = next(c for c in d.candidates if c["fault"] == "ball")
+    assert not ball["detected"], ball
+    assert {(e["line"], e["by"]) for e in ball["explained"]} == {
+        ("3x", "inner race"),
+        ("1x-", "inner race"),
+    }
+    # weighed with those lines, the ball would have been a detected fault
+    ctx = {k: d.frequencies[k] for k in ("shaft", "ftf", "bpfo", "bpfi", "two_bsf")}
+    evidence = features.fault_evidence(x, 12000.0, ctx)
+    family = evidence.families["two_bsf"]
+    floor = min(fam[0][1][3] for fam in evidence.families.values())
+    df = float(evidence.envelope_frequencies[1])
+    bands = len(evidence.selection.bands)
+    alone = explain_shared_lines({"two_bsf": family}, bands, family[0][1][2], floor, df)
+    assert alone["two_bsf"]["evidence_db"] >= d.threshold_db > ball["evidence_db"]
+    report = write_report(d, tmp_path, title="inner race pit", x=x, fs=12000.0)
+    assert "3x: inner race 3x" in report.read_text()
 
 
 @pytest.mark.validation
