@@ -19,23 +19,17 @@ import numpy as np
 
 
 def main(model_path: str, dataset: str) -> None:
+    from _diagnosed import diagnosed
+
     from cmtool.classifier import expected_calibration_error, load_model
     from cmtool.datasets import read_dataset
-    from cmtool.diagnose import CANONICAL, diagnose_signal
+    from cmtool.diagnose import CANONICAL
 
     model = load_model(model_path)
     frame = read_dataset(dataset)
     truth, sources = [], {"pooled": [], "rule": [], "model": []}
-    for _, row in frame.iterrows():
-        d = diagnose_signal(
-            np.asarray(row["signal"]),
-            row["fs_hz"],
-            row["rpm"],
-            row["bearing"],
-            model=model,
-            waviness=False,
-        )
-        truth.append(CANONICAL[row["label"]])
+    for label, d in diagnosed(model, frame):
+        truth.append(label)
         probabilities = d.model_verdict["probabilities"]
         label = CANONICAL.get(d.model_verdict["label"], d.model_verdict["label"])
         sources["pooled"].append((d.verdict, d.confidence))

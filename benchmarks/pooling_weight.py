@@ -33,31 +33,18 @@ def pooled(rule: dict, model: dict, w: float) -> dict:
 
 
 def main(model_path: str, dataset: str) -> None:
+    from _diagnosed import diagnosed
+
     from cmtool.classifier import load_model
     from cmtool.datasets import read_dataset
-    from cmtool.diagnose import CANONICAL, _as_verdicts, diagnose_signal, rule_probabilities
+    from cmtool.diagnose import _as_verdicts, rule_probabilities
 
     model = load_model(model_path)
     frame = read_dataset(dataset)
-    if "fault_snr_db" in frame.columns:
-        frame = frame[~(frame["fault_snr_db"] < -10.0)]
-    rows = []
-    for _, row in frame.iterrows():
-        d = diagnose_signal(
-            np.asarray(row["signal"]),
-            row["fs_hz"],
-            row["rpm"],
-            row["bearing"],
-            model=model,
-            waviness=False,
-        )
-        rows.append(
-            (
-                CANONICAL[row["label"]],
-                rule_probabilities(d.candidates),
-                _as_verdicts(d.model_verdict["probabilities"]),
-            )
-        )
+    rows = [
+        (label, rule_probabilities(d.candidates), _as_verdicts(d.model_verdict["probabilities"]))
+        for label, d in diagnosed(model, frame, visible_only=True)
+    ]
     truth = np.array([t for t, _, _ in rows])
     classes = sorted(set(truth))
     print(f"{dataset}: {len(rows)} signals, model {model_path}")

@@ -17,26 +17,17 @@ import numpy as np
 
 
 def main(model_path: str, datasets: list[str]) -> None:
+    from _diagnosed import diagnosed
+
     from cmtool.classifier import expected_calibration_error, load_model
     from cmtool.datasets import read_dataset
-    from cmtool.diagnose import CANONICAL, diagnose_signal, rule_probabilities
+    from cmtool.diagnose import rule_probabilities
 
     model = load_model(model_path)
     for dataset in datasets:
         frame = read_dataset(dataset)
-        if "fault_snr_db" in frame.columns:
-            frame = frame[~(frame["fault_snr_db"] < -10.0)]
         truth, rule, pooled, others, p_true = [], [], [], [], []
-        for _, row in frame.iterrows():
-            d = diagnose_signal(
-                np.asarray(row["signal"]),
-                row["fs_hz"],
-                row["rpm"],
-                row["bearing"],
-                model=model,
-                waviness=False,
-            )
-            label = CANONICAL[row["label"]]
+        for label, d in diagnosed(model, frame, visible_only=True):
             truth.append(label)
             rule.append((d.rule_verdict["label"], d.rule_verdict["confidence"]))
             pooled.append((d.verdict, d.confidence))
