@@ -37,12 +37,16 @@ def main(model_path: str, dataset: str) -> None:
 
     from cmtool.classifier import load_model
     from cmtool.datasets import read_dataset
-    from cmtool.diagnose import _as_verdicts, rule_probabilities
+    from cmtool.diagnose import rule_probabilities, verdict_probabilities
 
     model = load_model(model_path)
     frame = read_dataset(dataset)
     rows = [
-        (label, rule_probabilities(d.candidates), _as_verdicts(d.model_verdict["probabilities"]))
+        (
+            label,
+            rule_probabilities(d.candidates),
+            verdict_probabilities(d.model_verdict["probabilities"]),
+        )
         for label, d in diagnosed(model, frame, visible_only=True)
     ]
     truth = np.array([t for t, _, _ in rows])

@@ -45,6 +45,9 @@ __all__ = [
     "DETECTION_DB",
     "FAULTS",
     "pool_probabilities",
+    "rule_probabilities",
+    "verdict_probabilities",
+    "explained_lines",
     "calibrated_confidence",
 ]
 
@@ -451,7 +454,7 @@ def rule_probabilities(candidates: list[dict]) -> dict[str, float]:
     return {k: v / total for k, v in scores.items()}
 
 
-def _as_verdicts(model_probabilities: dict) -> dict[str, float]:
+def verdict_probabilities(model_probabilities: dict) -> dict[str, float]:
     """A model's class probabilities summed per verdict (``CANONICAL``)."""
     out: dict[str, float] = {}
     for label, value in model_probabilities.items():
@@ -468,7 +471,7 @@ def pool_probabilities(rule_p: dict[str, float], model_probabilities: dict) -> d
     that either gives almost no chance stays unlikely. Model labels are read as verdicts
     (``CANONICAL``); the result sums to 1.
     """
-    model_p = _as_verdicts(model_probabilities)
+    model_p = verdict_probabilities(model_probabilities)
     floor = 1e-6
     pooled = {
         k: math.sqrt(max(rule_p.get(k, 0.0), floor) * max(model_p.get(k, 0.0), floor))
@@ -502,7 +505,7 @@ def _combine(diagnosis: Diagnosis) -> None:
     probabilities = diagnosis.model_verdict.get("probabilities")
     if not probabilities:
         return
-    model_p = _as_verdicts(probabilities)
+    model_p = verdict_probabilities(probabilities)
     pooled = pool_probabilities(rule_probabilities(diagnosis.candidates), probabilities)
     verdict = max(pooled, key=pooled.get)
     rule_label = diagnosis.rule_verdict["label"]
