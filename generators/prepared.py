@@ -37,7 +37,13 @@ from .params import (
 )
 from .start import static_state
 from .static import static_load_distribution
-from .steps import default_oversample, default_step, defect_substeps, rk4_schedule
+from .steps import (
+    DEFAULT_OVERSAMPLE,
+    default_oversample,
+    default_step,
+    defect_substeps,
+    rk4_schedule,
+)
 
 SCENE_CODES = {"shaft": K.SCENE_SHAFT, "shaft+housing": K.SCENE_SHAFT_HOUSING, "full": K.SCENE_FULL}
 
@@ -306,22 +312,22 @@ def plan_run(prep: Prepared) -> Plan:
     if settings.integrator == "rk4" and settings.step is None and settings.error_bound:
         from .accuracy import error_bound_step  # the pilots need the kernels' entry points
 
-        # recorded and decimated as its pilots were (a long step does not lower the record
-        # rate here: what the pilots measured is what the run returns)
-        oversample = oversample or default_oversample(None, settings.fs)
+        # recorded and decimated as its pilots were: what they measured is what it returns
+        oversample = oversample or DEFAULT_OVERSAMPLE
         step, error = error_bound_step(prep, settings.error_bound, oversample)
     elif settings.integrator == "rk4":
         step = settings.step or default_step(
             prep.scene_name, prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0
         )
         refine = True  # never step over a pit, whatever the step
-    oversample = oversample or default_oversample(step, settings.fs)
+        oversample = oversample or default_oversample(settings.fs)
+    oversample = oversample or DEFAULT_OVERSAMPLE
     record_dt = 1.0 / (settings.fs * oversample)
     n_out = int(round(settings.duration * settings.fs))
     n_record = n_out * oversample
     if step is None:
         return Plan(oversample, record_dt, n_out, n_record, math.nan, 0, settings.settle_time)
-    dt, n_steps, t_first = rk4_schedule(step, record_dt, settings.settle_time, n_record)
+    dt, n_steps, t_first = rk4_schedule(step, record_dt, settings.settle_time, n_record, oversample)
     fine = defect_substeps(dt, prep.p, prep.wav) if refine else 1
     return Plan(oversample, record_dt, n_out, n_record, dt, n_steps, t_first, error, fine)
 

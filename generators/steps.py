@@ -22,8 +22,11 @@ DEFAULT_STEP_MASSLESS = 2e-5
 #: the contacts beyond the static linearisation).
 STABILITY_SAFETY = 0.8
 
-#: Default oversampling of the integration record over the output rate (anti-alias margin).
+#: Records per output sample at most (and for DOPRI5 and the error-bound pilots).
 DEFAULT_OVERSAMPLE = 4
+
+#: Least record rate of an RK4 run [Hz] (:func:`default_oversample`).
+MIN_RECORD_RATE = 96e3
 
 
 def jacobian(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray) -> np.ndarray:
@@ -194,34 +197,52 @@ def defect_step(p: np.ndarray, wav: np.ndarray) -> float:
     return step
 
 
-def default_oversample(step: float | None, fs: float) -> int:
-    """Record rate / output rate: ``DEFAULT_OVERSAMPLE``, less when the RK4 step is long.
+def default_oversample(fs: float) -> int:
+    """Records per output sample of an RK4 run at ``fs`` [Hz], whatever its step.
 
-    The record feeds the zero-phase FIR decimation; a record faster than the integration step
-    only samples the step's cubic interpolant, whose content above 1 / (2 dt) is not resolved
-    anyway, so it is capped at about one record per step (at least 1).
+    The record point-samples the run, so what the run holds above half the record rate
+    aliases before the anti-alias FIR can remove it; a pit's impacts ring to tens of kHz. The
+    record is therefore at least ``MIN_RECORD_RATE`` and at least twice the output rate (at
+    the output rate itself nothing filters at all), up to ``DEFAULT_OVERSAMPLE`` times it:
+    4 at 6.4-25.6 kHz, 2 from 48 kHz. A 0.3 mm pit at 25.6 kHz recorded at fs, 2 fs and 4 fs
+    differs from a record at 8 fs by 5.4, 2.0 and 1.2 % RMS, at 48 kHz at fs and 2 fs by 3.1
+    and 1.4 %; a clean healthy bearing run at 4e-5 s and recorded at fs reads as an
+    outer-race fault (docs/performance.md, "Records at 96 kHz or more, on the step grid").
+    Until stop 36 a step longer than a quarter of the output interval lowered the record rate
+    to about one record per step, down to the output rate.
     """
-    if step is None:
-        return DEFAULT_OVERSAMPLE
-    return int(min(DEFAULT_OVERSAMPLE, max(1, round(1.0 / (fs * step)))))
+    return int(min(DEFAULT_OVERSAMPLE, max(2, math.ceil(MIN_RECORD_RATE / fs - 1e-9))))
+
+
+#: Shortest fraction of the requested RK4 step that :func:`rk4_schedule` shortens it to, so
+#: that the records fall on a fixed pattern of the step grid (at most 25 % more steps).
+ALIGN_SHORTEST = 0.8
 
 
 def rk4_schedule(
-    step: float, record_dt: float, settle_time: float, n_record: int
+    step: float, record_dt: float, settle_time: float, n_record: int, oversample: int = 1
 ) -> tuple[float, int, float]:
     """RK4 step, number of steps and first record time for a requested step [s].
 
-    A step shorter than the record interval is shortened to divide it exactly when that costs
-    at most 20 % more steps (records then fall on step starts, no interpolation); otherwise the
-    step is kept and the records are interpolated (cubic Hermite dense output).
+    The records (``oversample`` per output sample, decimated by the anti-alias FIR after the
+    run) fall on a fixed pattern of the step grid when shortening the step to it costs at
+    most ``1 / ALIGN_SHORTEST`` times the steps: a whole number of steps per record, or one
+    step per k records, k <= ``oversample`` (the step rate a whole multiple of the output
+    rate). The records between step starts sample the step's cubic Hermite interpolant, whose
+    images lie at multiples of the step rate: above fs / 2, where the FIR removes them, when
+    the step rate is such a multiple; at any other rate they fall into the band, shifted by
+    the difference of the two rates (docs/performance.md, "Records at 96 kHz or more, on the
+    step grid"). Otherwise the step is kept. The first record is at ``settle_time`` whatever
+    the step (until stop 36 it moved to the next step start, up to a step late, which put a
+    time shift between runs at different steps).
     """
-    divisor = record_dt / max(1, int(math.ceil(record_dt / step - 1e-9)))
-    if step <= record_dt * (1 + 1e-9) and divisor >= 0.8 * step:
-        dt = divisor
-        t_first = math.ceil(settle_time / dt - 1e-9) * dt
+    if step <= record_dt * (1 + 1e-9):
+        aligned = record_dt / int(math.ceil(record_dt / step - 1e-9))
     else:
-        dt = step
-        t_first = settle_time
+        per_step = int(math.floor(step / record_dt + 1e-9))
+        aligned = per_step * record_dt if per_step <= oversample else 0.0
+    dt = aligned if aligned >= ALIGN_SHORTEST * step else step
+    t_first = settle_time
     t_last = t_first + (n_record - 1) * record_dt
     n_steps = int(math.floor(t_last / dt + 1e-9)) + 1
     return dt, n_steps, t_first

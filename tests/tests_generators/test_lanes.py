@@ -168,7 +168,7 @@ def test_output_rows_are_padded_off_the_4k_stride(n_record):
 
 def test_a_workspace_is_reused_and_changes_nothing():
     # records at the output rate (no decimation): the results are views of the buffers
-    settings = _settings(fs=25600.0, step=1e-4)
+    settings = _settings(fs=25600.0, step=1e-4, oversample=1)
     preps = _preps("shaft", False, "outer", 40, settings=settings)  # blocks of 32 and 8 lanes
     fresh = simulate_lanes(preps, CHANNEL)
     workspace: list = []
