@@ -559,7 +559,9 @@ def plot_roc(curves: dict, path: Path, *, title: str = "") -> Path:
         ax.set_title(fault)
         ax.grid(alpha=0.3, which="both")
     axes[0].set_ylabel("detection probability")
-    axes[-1].legend(fontsize=8, loc="lower right")
+    with_curves = [ax for ax in axes if ax.get_legend_handles_labels()[0]]
+    if with_curves:  # none for a dataset of healthy signals only
+        with_curves[-1].legend(fontsize=8, loc="lower right")
     if title:
         fig.suptitle(title)
     fig.tight_layout()
