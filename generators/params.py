@@ -566,14 +566,17 @@ class SimulationSettings:
         Fixed-step classical Runge-Kutta or adaptive Dormand-Prince 5(4).
     step : float or None
         RK4 step [s]; ``None`` uses the scene default (chosen from the measured speed/accuracy
-        trade). Rounded down so that an integer number of steps spans one output sample.
+        trade). Shortened by at most 20 % where that puts the records on a fixed pattern of
+        the step grid (:func:`generators.steps.rk4_schedule`); the step used is in the result's
+        ``integrator_stats``.
     rtol : float
         Relative tolerance of dopri5 [-].
     atol_displacement : float
         Absolute tolerance of dopri5 on displacements [m] (velocities use it times 1e3 1/s).
     oversample : int or None
-        Integration-rate samples per output sample for dopri5's dense output (anti-alias
-        decimation follows); ``None`` picks one that resolves the fastest mode.
+        Record samples per output sample (the record is decimated by a zero-phase anti-alias
+        FIR); ``None``: RK4 records at 2-4 x fs and at least 96 kHz
+        (:func:`generators.steps.default_oversample`), DOPRI5 and error-bound runs at 4 x fs.
     record_contact_loads : bool
         Also return the per-ball contact loads at the output samples.
     max_displacement : float or None
