@@ -227,14 +227,15 @@ def rk4_schedule(
     The records (``oversample`` per output sample, decimated by the anti-alias FIR after the
     run) fall on a fixed pattern of the step grid when shortening the step to it costs at
     most ``1 / ALIGN_SHORTEST`` times the steps: a whole number of steps per record, or one
-    step per k records, k <= ``oversample`` (the step rate a whole multiple of the output
-    rate). The records between step starts sample the step's cubic Hermite interpolant, whose
-    images lie at multiples of the step rate: above fs / 2, where the FIR removes them, when
-    the step rate is such a multiple; at any other rate they fall into the band, shifted by
-    the difference of the two rates (docs/performance.md, "Records at 96 kHz or more, on the
-    step grid"). Otherwise the step is kept. The first record is at ``settle_time`` whatever
-    the step (until stop 36 it moved to the next step start, up to a step late, which put a
-    time shift between runs at different steps).
+    step per k records, k <= ``oversample`` (the step rate a whole fraction of the record
+    rate r and at least fs). The records between step starts sample the step's cubic Hermite
+    interpolant, whose images lie at multiples of the step rate; on such a pattern they all
+    fall between fs / 2 and r - fs / 2, where the FIR removes them; at any other step rate they
+    fall into the band, shifted by the difference of the step and record rates
+    (docs/performance.md, "Records at 96 kHz or more, on the step grid"). Otherwise the step
+    is kept. The first record is at ``settle_time`` whatever the step (until stop 36 it moved
+    to the next step start, up to a step late, which put a time shift between runs at
+    different steps).
     """
     if step <= record_dt * (1 + 1e-9):
         aligned = record_dt / int(math.ceil(record_dt / step - 1e-9))
