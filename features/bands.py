@@ -6,6 +6,7 @@ bearing physics (``cmtool`` computes the frequencies with ``generators.kinematic
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 
 import numpy as np
@@ -72,12 +73,21 @@ def line_snr(
     half_width = check_positive("half_width", half_width, unit="Hz")
     df = f[1] - f[0]
     hw = max(half_width, df)
-    near = np.abs(f - center)
+    reach = max(FLOOR_WINDOW * center, 10 * df)
+    # only the bins within reach of the line can be selected: on the uniform grid they lie in
+    # one slice (two bins' margin for rounding), and the tests below run on it alone (the
+    # same bins as over the whole spectrum, in the same order: the same results, a tenth of
+    # the work for a spectrum of 12,800 bins)
+    extent = max(reach, hw)
+    lo = min(f.size, max(0, int(math.floor((center - extent - f[0]) / df)) - 2))
+    hi = min(f.size, max(lo, int(math.ceil((center + extent - f[0]) / df)) + 3))
+    near = np.abs(f[lo:hi] - center)
+    s = s[lo:hi]
     line = near <= hw
     if not line.any() or center + hw > f[-1]:
         return 0.0, 0.0, 0.0
     peak = float(s[line].max())
-    window = (near <= max(FLOOR_WINDOW * center, 10 * df)) & ~(near <= guard * hw)
+    window = (near <= reach) & ~(near <= guard * hw)
     floor = float(np.median(s[window])) if window.any() else 0.0
     tiny = 1e-300
     snr = float(20.0 * np.log10(max(peak, tiny) / max(floor, tiny))) if peak > 0 else 0.0

@@ -71,3 +71,36 @@ def test_line_snr_floor_guard_and_edge():
     assert line_snr(f, a, 499.5, half_width=1.0) == (0.0, 0.0, 0.0)
     with pytest.raises(FeatureError, match="half_width"):
         line_snr(f, a, 100.0, half_width=0.0)
+
+
+def _line_snr_whole_spectrum(f, s, center, half_width, guard):
+    """line_snr's definition over every bin (before stop 36 it ran so)."""
+    df = f[1] - f[0]
+    hw = max(half_width, df)
+    near = np.abs(f - center)
+    line = near <= hw
+    if not line.any() or center + hw > f[-1]:
+        return 0.0, 0.0, 0.0
+    peak = float(s[line].max())
+    window = (near <= max(0.10 * center, 10 * df)) & ~(near <= guard * hw)
+    floor = float(np.median(s[window])) if window.any() else 0.0
+    snr = float(20.0 * np.log10(max(peak, 1e-300) / max(floor, 1e-300))) if peak > 0 else 0.0
+    return snr, peak, floor
+
+
+def test_line_snr_on_its_slice_equals_the_whole_spectrum_bit_for_bit():
+    rng = np.random.default_rng(36)
+    for fs, n in ((25600.0, 25600), (12000.0, 12000), (97656.0, 50000), (1000.0, 700)):
+        f = np.fft.rfftfreq(n, 1 / fs)
+        for trial in range(150):
+            s = np.abs(rng.standard_normal(f.size))
+            center = (
+                float(f[rng.integers(0, f.size)])  # on a bin
+                if trial % 3 == 0
+                else float(rng.uniform(-5.0, 0.55 * fs))  # anywhere, past both ends too
+            )
+            half_width = float(rng.choice([0.1, 0.7, 1.5 * (f[1] - f[0]), 4.0]))
+            for guard in (1.0, 2.0, 5.0):
+                assert F.line_snr(f, s, center, half_width=half_width, guard=guard) == (
+                    _line_snr_whole_spectrum(f, s, center, half_width, guard)
+                )
