@@ -511,6 +511,18 @@ def _print_run(run, settings, geometry, operating, film: bool) -> None:
             f"RK4 step {stats['step_s']:.3g} s for the error bound {stats['error_bound']:g} "
             f"(estimated error of the lines and bands {stats['line_error_estimate']:.2g})"
         )
+    oversample = run.parameters.get("oversample")
+    if oversample:  # what the record was (docs/performance.md, "Records at 96 kHz or more")
+        step = stats.get("step_s")
+        integrator = (
+            f"RK4 step {step * 1e6:.4g} us"
+            if settings.integrator == "rk4" and step
+            else settings.integrator
+        )
+        print(
+            f"{integrator}, recorded at {oversample * settings.fs / 1e3:g} kHz "
+            f"({oversample} x fs) and anti-alias decimated to {settings.fs / 1e3:g} kHz"
+        )
     f = run.frequencies
     print(
         f"FTF {f.ftf:.3f} Hz  BPFO {f.bpfo:.3f} Hz  BPFI {f.bpfi:.3f} Hz  "

@@ -98,7 +98,11 @@ def test_simulate_writes_parquet_with_metadata_and_plot(tmp_path, capsys):
     assert meta["frequencies_hz"]["bpfo"] == pytest.approx(107.5434, rel=1e-4)
     assert meta["parameters"]["defects"][0]["order"] == 9
     assert plot.stat().st_size > 10_000
-    assert "BPFO 107.543" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "BPFO 107.543" in printed
+    # what the record was: the step on the record grid, 4 x fs, decimated
+    assert meta["parameters"]["oversample"] == 4
+    assert "RK4 step 19.53 us, recorded at 102.4 kHz (4 x fs)" in printed
 
 
 def test_simulate_csv_has_json_sidecar(tmp_path):
