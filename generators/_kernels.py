@@ -86,8 +86,9 @@ from generators import kernel_cache
     P_SIZE,
 ) = range(47)
 # Film tables (EHL scenes): from P_SIZE on, three tables (inner, outer, series contact) of
-# P_TABLE_NODES nodes each, every node [d, dd/ds]: the elastic approach d solving
-# d = delta + h(K d^1.5) on a grid uniform in s = sqrt(delta + h_max) (delta >= -h_max).
+# P_TABLE_NODES nodes each, every node [Q, dQ/ds, C, dC/ds]: the static force Q = K d^1.5 and
+# the damping coefficient C, d solving d = delta + h(K d^1.5), on a grid uniform in
+# s = sqrt(delta + h_max) (delta >= -h_max; packing._film_tables).
 TABLE_INNER, TABLE_OUTER, TABLE_SERIES = 0, 1, 2
 # P_FILM_*: h_c = P_FILM_* * (Q + floor)^FILM_EXPONENT [m] (Hamrock-Dowson, docs/model.md 4.2).
 # P_SQUEEZE_*: squeeze-film damping c = P_SQUEEZE_* * (Q + floor)^-FILM_EXPONENT [N s/m]
@@ -243,58 +244,57 @@ def _hertz_ehl(delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h
 def _hertz_ehl_table(
     delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max, p, table
 ):
-    """:func:`_hertz_ehl` with the film equation read from the precomputed table ``table``.
+    """:func:`_hertz_ehl` with the film equation's solution read from the table ``table``.
 
-    The nodes are uniform in s = sqrt(delta + h_max), dense near contact onset where d(delta)
-    bends most; cubic Hermite interpolation of d(s) (values and exact slopes: C1, O(step^4));
-    outside the table the Newton solution of :func:`_hertz_ehl` is used. Same damping and
-    clipping as :func:`_hertz_ehl`.
+    The nodes are uniform in s = sqrt(delta + h_max), dense near contact onset where the
+    force bends most, and hold the static force Q and the damping coefficient C with their
+    slopes in s (``packing._film_tables``); cubic Hermite interpolation (C1, O(step^4)) gives
+    Q + C delta', clipped at zero. Outside the table the Newton solution of :func:`_hertz_ehl`
+    is used.
     """
     x = delta + h_max
     if x <= 0.0:
         return 0.0
     nodes = int(p[P_TABLE_NODES])
-    step = p[P_TABLE_STEP_INNER + table]
     x = math.sqrt(x) * p[P_TABLE_INV_STEP_INNER + table]
     i = int(x)
     if i >= nodes - 1:
         return _hertz_ehl(
             delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max
         )
-    base = P_SIZE + 2 * (table * nodes + i)
-    d = _film_hermite(x - i, step, p[base], p[base + 1], p[base + 2], p[base + 3])
-    return _film_force(d, delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_max)
+    base = P_SIZE + 4 * (table * nodes + i)
+    q = _film_force(
+        x - i,
+        p[P_TABLE_STEP_INNER + table],
+        delta_rate,
+        p[base],
+        p[base + 1],
+        p[base + 2],
+        p[base + 3],
+        p[base + 4],
+        p[base + 5],
+        p[base + 6],
+        p[base + 7],
+    )
+    return q if q > 0.0 else 0.0
 
 
 @numba.njit(**_JIT_INLINE)
-def _film_hermite(u, step, d0, slope0, d1, slope1):
-    """Cubic Hermite interpolation of the film table between two nodes (u in [0, 1))."""
+def _film_force(u, step, delta_rate, q0, q0_s, c0, c0_s, q1, q1_s, c1, c1_s):
+    """The film contact's force Q + C delta' [N] between two table nodes (u in [0, 1)).
+
+    Cubic Hermite interpolation of the static force Q and the damping coefficient C from
+    their values and slopes at the two nodes (``step`` the node spacing in s); not clipped.
+    """
     u2 = u * u
     u3 = u2 * u
-    return (
-        (2.0 * u3 - 3.0 * u2 + 1.0) * d0
-        + (u3 - 2.0 * u2 + u) * step * slope0
-        + (-2.0 * u3 + 3.0 * u2) * d1
-        + (u3 - u2) * step * slope1
-    )
-
-
-@numba.njit(**_JIT_INLINE)
-def _film_force(d, delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_max):
-    """The contact force [N] from the elastic approach d [m] read from a film table.
-
-    Hertz, the dry and the squeeze-film damping, clipped at zero (as :func:`_hertz_ehl`).
-    """
-    if d <= 0.0:
-        return 0.0
-    h = d - delta
-    if h <= 0.0:
-        h = h_max
-    root = math.sqrt(d)
-    q = k_hertz * d * root
-    c = damping_time * 1.5 * k_hertz * root + q * squeeze * film / ((q + floor) * h)
-    q = q + c * delta_rate
-    return q if q > 0.0 else 0.0
+    w00 = 2.0 * u3 - 3.0 * u2 + 1.0
+    w10 = (u3 - 2.0 * u2 + u) * step
+    w01 = -2.0 * u3 + 3.0 * u2
+    w11 = (u3 - u2) * step
+    q = w00 * q0 + w10 * q0_s + w01 * q1 + w11 * q1_s
+    c = w00 * c0 + w10 * c0_s + w01 * c1 + w11 * c1_s
+    return q + c * delta_rate
 
 
 # --------------------------------------------------------------------------------- waviness

@@ -99,7 +99,6 @@ from generators._kernels import (
     W_STEP_SIN,
     W_SURFACE,
     _film_force,
-    _film_hermite,
     _hertz_ehl,
 )
 
@@ -336,26 +335,43 @@ def _series_film(delta, delta_rate, c, b, tab, nodes):
     """The series contact's film law of lane b, the table read from ``tab[b]``.
 
     The same arithmetic as :func:`generators._kernels._hertz_ehl_table` (the same bytes), but
-    the lane's table is one contiguous row: an evaluation's four values share a cache line,
-    where in ``p`` (rows of parameters, lanes across) they lie four rows apart. The lanes'
-    EHL kernel spends most of its time here (docs/performance.md, "The film in the lanes").
+    the lane's table is one contiguous row (an evaluation's eight values share a cache line,
+    where in ``p``, rows of parameters with lanes across, they lie rows apart), and without
+    its early return: an unloaded contact (delta + h_max <= 0) reads the table at s = 0, whose
+    force and damping are zero, so every lane runs the same instructions.
     """
-    h_max = c[C_MAX, b]
-    x = delta + h_max
+    x = delta + c[C_MAX, b]
     if x <= 0.0:
         return 0.0
-    k_hertz, tau, film = c[C_K, b], c[C_TAU, b], c[C_FILM, b]
-    squeeze, floor = c[C_SQUEEZE, b], c[C_FLOOR, b]
-    step = c[C_TABLE_STEP, b]
     x = math.sqrt(x) * c[C_TABLE_INV_STEP, b]
     i = int(x)
     if i >= nodes - 1:
-        return _hertz_ehl(delta, delta_rate, k_hertz, tau, film, squeeze, floor, c[C_REF, b], h_max)
-    base = 2 * i
-    d = _film_hermite(
-        x - i, step, tab[b, base], tab[b, base + 1], tab[b, base + 2], tab[b, base + 3]
+        return _hertz_ehl(
+            delta,
+            delta_rate,
+            c[C_K, b],
+            c[C_TAU, b],
+            c[C_FILM, b],
+            c[C_SQUEEZE, b],
+            c[C_FLOOR, b],
+            c[C_REF, b],
+            c[C_MAX, b],
+        )
+    base = 4 * i
+    q = _film_force(
+        x - i,
+        c[C_TABLE_STEP, b],
+        delta_rate,
+        tab[b, base],
+        tab[b, base + 1],
+        tab[b, base + 2],
+        tab[b, base + 3],
+        tab[b, base + 4],
+        tab[b, base + 5],
+        tab[b, base + 6],
+        tab[b, base + 7],
     )
-    return _film_force(d, delta, delta_rate, k_hertz, tau, film, squeeze, floor, h_max)
+    return q if q > 0.0 else 0.0
 
 
 @numba.njit(**_JIT_INLINE)
@@ -414,7 +430,7 @@ def _rhs(scene, ehl, y, c, tab, nodes, tt, z, pitch, f, dydt, nl):
     """Right-hand side of every lane: ``dydt`` from the states ``y`` (both (8, lanes)).
 
     ``tt`` the time terms (:func:`_time_terms`), ``pitch`` (2, z) cos/sin of j times the ball
-    pitch, ``f`` a (6, lanes) work array, ``tab`` (lanes, 2 ``nodes``) each lane's series film
+    pitch, ``f`` a (6, lanes) work array, ``tab`` (lanes, 4 ``nodes``) each lane's series film
     table (EHL scenes, :func:`_series_film`). The balls are
     massless, so the housing carries the opposite of the shaft's contact force and each
     contact sees the shaft-to-housing displacement u: approach d = u . e_j + waviness - gap/2,
@@ -615,10 +631,10 @@ def _rk4_impl(
     nodes = 0
     if ehl:
         nodes = int(p[P_TABLE_NODES, 0])
-        tab = np.empty((nl, 2 * nodes))
-        first = P_SIZE + 2 * TABLE_SERIES * nodes
+        tab = np.empty((nl, 4 * nodes))
+        first = P_SIZE + 4 * TABLE_SERIES * nodes
         for b in range(nl):
-            for k in range(2 * nodes):
+            for k in range(4 * nodes):
                 tab[b, k] = p[first + k, b]
     else:
         tab = np.empty((1, 1))

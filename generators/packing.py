@@ -300,14 +300,20 @@ def pack_parameters(
 
 
 #: Nodes per film table (see ``_kernels``): 2048 nodes up to a 100-fold overload keep the
-#: interpolation error below 1e-9 relative in the load (checked in tests_generators).
+#: interpolation error of the force within 2e-8 of it (1e-9 at 500 N; checked in
+#: tests_generators/test_contact.py).
 FILM_TABLE_NODES = 2048
+#: Values per node: the static force Q, dQ/ds, the damping coefficient C and dC/ds.
+FILM_TABLE_WIDTH = 4
 
 
 def with_film_tables(p: np.ndarray) -> np.ndarray:
-    """Append the film tables d(delta) of the three contacts to ``p`` (EHL scenes).
+    """Append the film tables of the three contacts to ``p`` (EHL scenes).
 
-    The tables depend on nine of ``p``'s values only; a faulty case and its healthy twin (and
+    Each node holds the contact's static force Q [N] and damping coefficient C [N s/m] (with
+    their derivatives in s = sqrt(delta + h_max)), so that the kernels read the force
+    Q + C delta' without solving the film equation (``_kernels._hertz_ehl_table``). The
+    tables depend on thirteen of ``p``'s values only; a faulty case and its healthy twin (and
     an untouched ball pit's two runs) share them, so the last few are kept
     (:func:`_film_tables`).
     """
@@ -321,6 +327,10 @@ def with_film_tables(p: np.ndarray) -> np.ndarray:
         K.P_FILM_OUTER,
         K.P_FILM_INNER_MAX,
         K.P_FILM_OUTER_MAX,
+        K.P_CONTACT_DAMPING_TIME,
+        K.P_SQUEEZE_INNER,
+        K.P_SQUEEZE_OUTER,
+        K.P_SQUEEZE_SERIES,
     )
     steps, tables = _film_tables(tuple(float(p[k]) for k in keys))
     out = p.copy()
@@ -333,21 +343,40 @@ def with_film_tables(p: np.ndarray) -> np.ndarray:
 
 @functools.lru_cache(maxsize=8)
 def _film_tables(values: tuple[float, ...]) -> tuple[tuple[float, ...], np.ndarray]:
-    """The node spacings and the flattened tables of :func:`with_film_tables` (read-only)."""
-    floor, reference, k_inner, k_outer, k_series, film_inner, film_outer, max_inner, max_outer = (
-        values
-    )
+    """The node spacings and the flattened tables of :func:`with_film_tables` (read-only).
+
+    Per contact, on nodes uniform in s = sqrt(delta + h_max): the elastic approach d solving
+    d = delta + h(K d^1.5) by Newton to full convergence, then Q = K d^1.5 and
+    C = 1.5 tau K d^0.5 + Q / (Q + floor) squeeze film / h (the dry and the squeeze-film
+    damping of ``_kernels._hertz_ehl``), with dQ/ds and dC/ds from dd/ds. Both vanish at
+    s = 0 (no contact), so a table read at s = 0 gives no force.
+    """
+    (
+        floor,
+        reference,
+        k_inner,
+        k_outer,
+        k_series,
+        film_inner,
+        film_outer,
+        max_inner,
+        max_outer,
+        tau,
+        squeeze_inner,
+        squeeze_outer,
+        squeeze_series,
+    ) = values
     e = K.FILM_EXPONENT
     q_hi = 100.0 * (reference + 100.0)
     specs = (
-        (k_inner, film_inner, max_inner),
-        (k_outer, film_outer, max_outer),
-        (k_series, film_inner + film_outer, max_inner + max_outer),
+        (k_inner, film_inner, max_inner, squeeze_inner),
+        (k_outer, film_outer, max_outer, squeeze_outer),
+        (k_series, film_inner + film_outer, max_inner + max_outer, squeeze_series),
     )
     n = FILM_TABLE_NODES
-    tables = np.zeros((3, n, 2))
+    tables = np.zeros((3, n, FILM_TABLE_WIDTH))
     steps = []
-    for c, (kc, film, h_max) in enumerate(specs):
+    for c, (kc, film, h_max, squeeze) in enumerate(specs):
         delta_hi = (q_hi / kc) ** (2.0 / 3.0)
         step = math.sqrt(delta_hi + h_max) / (n - 1)  # uniform in s = sqrt(delta + h_max)
         s_nodes = step * np.arange(n)
@@ -365,11 +394,26 @@ def _film_tables(values: tuple[float, ...]) -> tuple[tuple[float, ...], np.ndarr
             d = d_new
         d = np.maximum(d, 0.0)
         pos = d > 0
-        q = kc * d**1.5
+        safe_d = np.where(pos, d, 1.0)
+        root = np.sqrt(d)
+        q = kc * d * root
         h = film * (q + floor) ** e
-        slope = np.where(pos, -1.5 * e * h / np.where(pos, d, 1.0) * q / (q + floor), 0.0)
-        tables[c, :, 0] = d
-        tables[c, :, 1] = 2.0 * s_nodes / (1.0 + slope)  # dd/ds = dd/d delta * 2 s
+        slope = np.where(pos, -1.5 * e * h / safe_d * q / (q + floor), 0.0)
+        d_s = 2.0 * s_nodes / (1.0 + slope)  # dd/ds = dd/d delta * 2 s
+        q_s = 1.5 * kc * root * d_s
+        # d sqrt(d)/ds = d_s / (2 sqrt d) -> 1 at s = 0, where d = s^2 to first order
+        root_s = np.where(pos, d_s / (2.0 * np.where(pos, root, 1.0)), 1.0)
+        h_s = e * h * q_s / (q + floor)
+        weight = q / (q + floor)
+        weight_s = floor * q_s / (q + floor) ** 2
+        damping = 1.5 * tau * kc * root + weight * squeeze * film / h
+        damping_s = 1.5 * tau * kc * root_s + squeeze * film * (
+            weight_s / h - weight * h_s / h**2
+        )
+        tables[c, :, 0] = q
+        tables[c, :, 1] = q_s
+        tables[c, :, 2] = damping
+        tables[c, :, 3] = damping_s
         steps.append(step)
     flat = tables.ravel()
     flat.flags.writeable = False
