@@ -164,9 +164,13 @@ def _rk4_impl(
     # once zeroed (a step's terms without the pits' rows) they need not be evaluated again
     # until a step near a pit writes them (only the clock terms change)
     defects_only = wav.shape[0] > 0
+    local_defects = False  # a pit anywhere: the reach test decides where its rows are read
     for r in range(wav.shape[0]):
-        if int(wav[r, W_SURFACE]) < SURF_OUTER_DEFECT:
+        surface = int(wav[r, W_SURFACE])
+        if surface < SURF_OUTER_DEFECT:
             defects_only = False
+        elif surface != SURF_SLIP:
+            local_defects = True
     zeroed = False
     # the slip rows (last in the table) are read only in the steps that evaluate the slip
     # angles (near a pit, or before a reach test); in the others they are not rotated, and the
@@ -186,11 +190,12 @@ def _rk4_impl(
         if step % PHASE_ANCHOR == 0 or anchor:
             _phases(t, p, wav, trig)  # exact every PHASE_ANCHOR steps, rotated between
             stale = False
-        # a contact near a local defect: the step is split and the pit's rows evaluated;
-        # elsewhere they add nothing and are skipped (fine_steps 1: no defects, or never split).
-        # After a step with no contact in reach, the test is skipped for as many steps as no
-        # contact can come within reach (the same answers: _defect_clear_steps)
-        if fine_steps <= 1:
+        # a contact near a local defect: the step is split (into fine_steps, 1 for a pit
+        # whose passage the step already resolves) and the pit's rows evaluated; elsewhere
+        # they add nothing and are skipped. After a step with no contact in reach, the test is
+        # skipped for as many steps as no contact can come within reach (the same answers:
+        # _defect_clear_steps)
+        if not local_defects:
             near = True
         elif step < next_check:
             near = False

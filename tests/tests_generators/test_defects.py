@@ -273,17 +273,23 @@ def test_a_pit_only_table_skips_its_zero_rows_to_the_same_bytes(b6205, surface):
 
 
 @pytest.mark.parametrize("surface", ["outer", "inner", "ball"])
-def test_rk4_shortcuts_near_pits_agree_with_dopri5(b6205, surface):
+@pytest.mark.parametrize(("length", "split"), [(0.2e-3, True), (0.6e-3, False)])
+def test_rk4_shortcuts_near_pits_agree_with_dopri5(b6205, surface, length, split):
     """RK4 skips the reach test between pit passages, evaluates only the clock terms there and
     leaves the slip rows unrotated until a step reads them (computing them afresh then);
     DOPRI5 evaluates every term at every stage. For a 0.2 mm pit (RK4 splits the steps near
-    it) with 10 % slip and 0.05 rad pocket jitter, the pit's signature (faulty minus healthy)
-    of the two must agree to 8 % RMS: measured 1.8-3.3 % (RK4's own error near the pit); with
-    the slip rows read stale (the fresh computation left out) 27-64 %."""
+    it) and a 0.6 mm one (whose passage the default step resolves: not split, and until stop 37
+    every term evaluated at every step) with 10 % slip and 0.05 rad pocket jitter, the pit's
+    signature (faulty minus healthy) of the two must agree to 8 % RMS: measured 1.8-3.3 % for
+    0.2 mm (RK4's own error near the pit), 0.15-0.34 % for 0.6 mm; with the slip rows read
+    stale (the fresh computation left out) 27-64 %."""
+    from generators.prepared import plan_run
+
     op = OperatingCondition.from_rpm(1797, 400, random_slip=0.1, ball_jitter=0.05)
-    defect = LocalizedDefect(surface=surface, length=0.2e-3, depth=1e-4, latitude=0.0)
+    defect = LocalizedDefect(surface=surface, length=length, depth=1e-4, latitude=0.0)
     channel = ("housing_acceleration_y",)
     base = SimulationSettings(duration=0.1, settle_time=0.02, fs=12000.0, channels=channel)
+    assert (plan_run(prepare(b6205, op, defect, settings=base)).fine_steps > 1) == split
     healthy = simulate(b6205, op, settings=base)[channel[0]]
     signatures = [
         simulate(b6205, op, defect, settings=settings, random_state=3)[channel[0]] - healthy
