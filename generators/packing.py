@@ -407,9 +407,7 @@ def _film_tables(values: tuple[float, ...]) -> tuple[tuple[float, ...], np.ndarr
         weight = q / (q + floor)
         weight_s = floor * q_s / (q + floor) ** 2
         damping = 1.5 * tau * kc * root + weight * squeeze * film / h
-        damping_s = 1.5 * tau * kc * root_s + squeeze * film * (
-            weight_s / h - weight * h_s / h**2
-        )
+        damping_s = 1.5 * tau * kc * root_s + squeeze * film * (weight_s / h - weight * h_s / h**2)
         tables[c, :, 0] = q
         tables[c, :, 1] = q_s
         tables[c, :, 2] = damping
