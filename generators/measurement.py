@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import signal as sp_signal
 
-from ._filters import sos_steady_state
+from ._filters import add_line, sos_steady_state
 from ._validate import ParameterError, check_int, check_real
 
 __all__ = [
@@ -381,8 +381,7 @@ def machine_background(
             w = 2 * math.pi * frequency
             a = w * starts + phase
             b = w * offsets
-            line = np.cos(a)[:, None] * np.cos(b) - np.sin(a)[:, None] * np.sin(b)
-            y += amplitude * line.ravel()[:n]
+            add_line(y, np.cos(a), np.sin(a), np.cos(b), np.sin(b), amplitude)
     if background.broadband_rms > 0.0:
         noise = transfer_path(rng.standard_normal(n), fs, modes)
         y += noise * (background.broadband_rms / max(float(np.std(noise)), 1e-300))

@@ -322,6 +322,22 @@ def _scipy_causal(sos, x, fs):
     return sp_signal.sosfilt(sos, padded, axis=-1, zi=zi)[0][..., pad:]
 
 
+def test_machine_background_lines_are_cosines_to_rounding():
+    """The background's lines come from angle addition over blocks (generators._filters.
+    add_line), not a cosine a sample: each must be a cos(2 pi f t + phase) to rounding, for
+    record lengths that do and do not fill the last block. 1e-11 of its amplitude: the
+    reference's own argument reaches 2 pi f t ~ 8e3 rad over 1 s, whose rounding alone is
+    1e-12 rad (observed 1.5e-12)."""
+    for n, fs in ((12000, 12000.0), (48013, 48000.0)):
+        for frequency, amplitude in ((29.95, 1.0), (1234.5, 0.3)):
+            spec = MachineBackground(other_lines=((frequency, amplitude),))
+            y = machine_background(n, fs, 30.0, spec, (), np.random.default_rng(9))
+            phase = np.random.default_rng(9).uniform(0.0, 2 * math.pi)
+            t = np.arange(n) / fs
+            expected = amplitude * np.cos(2 * math.pi * frequency * t + phase)
+            assert np.max(np.abs(y - expected)) <= 1e-11 * amplitude
+
+
 def test_the_chain_filters_run_as_scipys_sosfilt_from_steady_state():
     """The numba cascade (generators._filters) gives scipy's sosfilt with sosfilt_zi times the
     lead-in's first sample, to the last bit, for one record, a stack, several modes summed
