@@ -444,7 +444,12 @@ def generate_cases(
     channel = f"{sensor['body']}_{sensor['quantity']}_{sensor['direction']}"
     shared: dict = {}
     jobs = [_setup(recipe, case, channel, shared) for case in cases]
-    preps = [prep for job in jobs for prep in (job.run, job.healthy) if prep is not None]
+    # each run once: an untouched pit's run is its healthy twin (the same object)
+    preps = list(
+        {
+            id(prep): prep for job in jobs for prep in (job.run, job.healthy) if prep is not None
+        }.values()
+    )
     lanes = [prep for prep in preps if lanes_supported(prep)]
     simulated: dict[int, np.ndarray | Exception] = {}
     results = simulate_lanes(lanes, channel, workspace=workspace)
