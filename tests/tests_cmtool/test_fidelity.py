@@ -33,6 +33,20 @@ def test_table_contract(table):
     assert len(table) == 2 * 2 * 3 + 2 * 2  # the grid, and each level's error-bound step
 
 
+def test_the_table_says_which_step_each_run_took(table):
+    """``step_used_s``: RK4 runs the requested step shortened onto the record grid by at most
+    20 % (2e-5 s at 12 kHz stays, records between steps; 1e-4 s is cut to whole records), the
+    bound's rows the step they list, DOPRI5 its mean accepted step, NaN where a run diverged."""
+    ok = table[table.stable]
+    rk4 = ok[(ok.integrator == "rk4") & ~ok.chosen_for_bound]
+    ratio = rk4.step_used_s / rk4.step_or_tolerance
+    assert ((ratio > 0.8 - 1e-12) & (ratio <= 1.0 + 1e-12)).all()
+    assert (ok[ok.chosen_for_bound].step_used_s == ok[ok.chosen_for_bound].step_or_tolerance).all()
+    dopri5 = ok[ok.integrator == "dopri5"]
+    assert (dopri5.step_used_s > 0).all() and (dopri5.step_used_s < 1e-4).all()
+    assert table[~table.stable].step_used_s.isna().all()
+
+
 def test_each_level_at_the_step_its_error_bound_chooses(table):
     chosen = table[table.chosen_for_bound]
     assert len(chosen) == 4 and chosen.stable.all() and (chosen.integrator == "rk4").all()
