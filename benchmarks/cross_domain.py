@@ -24,6 +24,7 @@ Run (after generating the datasets; feature tables are cached in CACHE):
 """
 
 import argparse
+import hashlib
 import time
 from itertools import permutations
 from pathlib import Path
@@ -42,6 +43,17 @@ MIN_FAULT_SNR_DB = -10.0
 CACHE = Path(".cache/cross_domain")
 
 
+def _digest(frame) -> str:
+    """A digest of a dataset's signals and labels: the cache key of its feature tables (until
+    stop 37 the key was the folder's name and row count, so a regenerated dataset of the same
+    size read the features of the one before)."""
+    digest = hashlib.sha1()
+    for label, signal in zip(frame["label"], frame["signal"], strict=True):
+        digest.update(str(label).encode())
+        digest.update(np.ascontiguousarray(signal).tobytes())
+    return digest.hexdigest()[:16]
+
+
 def main(paths: list[str], class_weight: str | None, all_classifiers: bool) -> None:
     frames = {Path(p).name: read_dataset(p) for p in paths}
     sets = (classifier.DEFAULT_FEATURE_SET,) if all_classifiers else FEATURE_SETS
@@ -56,7 +68,7 @@ def main(paths: list[str], class_weight: str | None, all_classifiers: bool) -> N
                 parts = [tables[part, name] for part in feature_set.split("+")]
                 tables[feature_set, name] = np.hstack(parts)
                 continue
-            cached = CACHE / f"{name}-{feature_set}-{len(frame)}.npy"
+            cached = CACHE / f"{name}-{feature_set}-{_digest(frame)}.npy"
             if cached.is_file():
                 tables[feature_set, name] = np.load(cached)
                 continue
