@@ -335,10 +335,11 @@ def _series_film(delta, delta_rate, c, b, tab, nodes):
     """The series contact's film law of lane b, the table read from ``tab[b]``.
 
     The same arithmetic as :func:`generators._kernels._hertz_ehl_table` (the same bytes), but
-    the lane's table is one contiguous row (an evaluation's eight values share a cache line,
-    where in ``p``, rows of parameters with lanes across, they lie rows apart), and without
-    its early return: an unloaded contact (delta + h_max <= 0) reads the table at s = 0, whose
-    force and damping are zero, so every lane runs the same instructions.
+    the lane's table is one contiguous row (an evaluation's eight values lie side by side,
+    where in ``p``, rows of parameters with lanes across, they lie rows apart). The early
+    return for an unloaded contact stays: without it (the table read at s = 0 gives exactly
+    zero) the loop runs the same instructions in every lane but is slower (docs/performance.md,
+    stop 37).
     """
     x = delta + c[C_MAX, b]
     if x <= 0.0:

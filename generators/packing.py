@@ -313,8 +313,8 @@ def with_film_tables(p: np.ndarray) -> np.ndarray:
     Each node holds the contact's static force Q [N] and damping coefficient C [N s/m] (with
     their derivatives in s = sqrt(delta + h_max)), so that the kernels read the force
     Q + C delta' without solving the film equation (``_kernels._hertz_ehl_table``). The
-    tables depend on thirteen of ``p``'s values only; a faulty case and its healthy twin (and
-    an untouched ball pit's two runs) share them, so the last few are kept
+    tables depend on thirteen of ``p``'s values only; a faulty case and its healthy twin share
+    them, so the last few are kept
     (:func:`_film_tables`).
     """
     keys = (
