@@ -745,12 +745,15 @@ def _rhs_inline(scene, ehl, y, p, wav, dydt, loads, scratch):
     fys = 0.0
     fxh = 0.0
     fyh = 0.0
+    ux, uy, vx, vy = xs, ys, vxs, vys  # massless balls: the shaft-to-housing displacement
+    if scene == SCENE_SHAFT_HOUSING:
+        ux, uy, vx, vy = xs - xh, ys - yh, vxs - vxh, vys - vyh
     cj, sj = c0, s0
     for j in range(z):
         if j > 0:  # rotate by the ball pitch instead of calling cos/sin per ball
             cj, sj = cj * cd - sj * sd, sj * cd + cj * sd
-        us = xs * cj + ys * sj
-        dus = vxs * cj + vys * sj + wc * (-xs * sj + ys * cj)
+        us = ux * cj + uy * sj
+        dus = vx * cj + vy * sj + wc * (-ux * sj + uy * cj)
         if scene == SCENE_FULL:
             uh = xh * cj + yh * sj
             duh = vxh * cj + vyh * sj + wc * (-xh * sj + yh * cj)
@@ -802,9 +805,6 @@ def _rhs_inline(scene, ehl, y, p, wav, dydt, loads, scratch):
         else:
             d = us - gap
             dd = dus
-            if scene == SCENE_SHAFT_HOUSING:
-                d -= xh * cj + yh * sj
-                dd -= vxh * cj + vyh * sj + wc * (-xh * sj + yh * cj)
             if has_waviness:
                 d += scratch[0, j] + scratch[2, j] + scratch[4, j] + scratch[6, j]
                 dd += scratch[1, j] + scratch[3, j] + scratch[5, j] + scratch[7, j]
