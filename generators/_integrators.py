@@ -21,6 +21,8 @@ from generators._kernels import (
     DEFECTS_NONE,
     DEFECTS_SLIP,
     FILM_NAMES,
+    N_OUT_ACCEL,
+    N_OUT_STATE,
     P_BALL_COUNT,
     P_MAX_DISPLACEMENT,
     PHASE_ANCHOR,
@@ -77,21 +79,25 @@ def _hermite_weights(theta, dt, derivative):
 
 
 @numba.njit(**_JIT_INLINE)
-def _hermite_record(y0, f0, y1, f1, dt, theta, nd, k, out_state, out_accel, tmp, acc):
+def _hermite_record(y0, f0, y1, f1, dt, theta, nd, k, out_state, out_accel, wanted):
     """Record the cubic Hermite interpolant between two RK4 steps at fraction ``theta``.
 
     Positions and velocities are O(dt^4) accurate (values and derivatives at both ends);
     accelerations are the derivative of the velocity interpolant, O(dt^3). At theta = 0 the
-    record is exactly the step-start state and its right-hand side.
+    record is exactly the step-start state and its right-hand side. ``wanted``
+    (``N_OUT_STATE + N_OUT_ACCEL`` flags, the columns of :func:`generators._kernels._record`):
+    only those columns are written (a call that decimates one channel interpolates one).
     """
     h00, h10, h01, h11 = _hermite_weights(theta, dt, False)
+    for c in range(N_OUT_STATE):
+        if wanted[c]:
+            i = c if c < 4 else nd + c - 4
+            out_state[k, c] = h00 * y0[i] + h10 * f0[i] + h01 * y1[i] + h11 * f1[i]
     d00, d10, d01, d11 = _hermite_weights(theta, dt, True)
-    n = y0.shape[0]
-    for i in range(n):
-        tmp[i] = h00 * y0[i] + h10 * f0[i] + h01 * y1[i] + h11 * f1[i]
-    for i in range(nd, n):
-        acc[i] = d00 * y0[i] + d10 * f0[i] + d01 * y1[i] + d11 * f1[i]
-    _record(tmp, acc, nd, k, out_state, out_accel)
+    for c in range(N_OUT_ACCEL):
+        if wanted[N_OUT_STATE + c]:
+            i = nd + c
+            out_accel[k, c] = d00 * y0[i] + d10 * f0[i] + d01 * y1[i] + d11 * f1[i]
 
 
 @numba.njit(**_JIT_INLINE)
@@ -124,13 +130,15 @@ def _rk4_impl(
     out_loads,
     record_loads,
     fine_steps,
+    wanted,
 ):
     """Classical RK4 with a fixed step and cubic Hermite dense output.
 
     Records at ``t_first + k * record_dt`` (k < n_record), interpolating inside the step that
     contains each record time, so the step may be longer or shorter than the record interval.
     A step in which a contact meets a local defect (:func:`_defect_near`) is taken as
-    ``fine_steps`` shorter ones (1: never).
+    ``fine_steps`` shorter ones (1: never). ``wanted``: the record columns written
+    (:func:`_hermite_record`).
     The right-hand side at the end of a step is the first stage of the next (computed once).
     Returns (status, time, state): the state at that time (a later call continues from it).
     """
@@ -152,7 +160,6 @@ def _rk4_impl(
     k4 = ks[3]
     y1 = np.empty(n)
     tmp = np.empty(n)
-    acc = np.zeros(n)
     loads = np.zeros((2, z))
     loads_start = np.zeros((2, z))
     scratch = _scratch(z)
@@ -266,9 +273,7 @@ def _rk4_impl(
                     break
                 if theta < 0.0:
                     theta = 0.0
-                _hermite_record(
-                    y, k1, y1, f1, h, theta, nd, next_rec, out_state, out_accel, tmp, acc
-                )
+                _hermite_record(y, k1, y1, f1, h, theta, nd, next_rec, out_state, out_accel, wanted)
                 if record_loads:
                     for j in range(z):  # loads at the nearer end of the step
                         src = loads_start if theta < 0.5 else loads
@@ -529,6 +534,7 @@ def _rk4_entry(scene: int, ehl: int):
         out_loads,
         record_loads,
         fine_steps,
+        wanted,
     ):
         return _rk4_impl(
             scene,
@@ -547,6 +553,7 @@ def _rk4_entry(scene: int, ehl: int):
             out_loads,
             record_loads,
             fine_steps,
+            wanted,
         )
 
     return _specialised(entry, "rk4", scene, ehl)

@@ -9,6 +9,7 @@ import numpy as np
 from scipy import signal as sp_signal
 
 from . import _filters
+from ._kernels import N_OUT_ACCEL, N_OUT_STATE
 
 #: Output channel -> (record array: 0 state, 1 acceleration; column).
 CHANNEL_COLUMNS = {
@@ -25,6 +26,15 @@ CHANNEL_COLUMNS = {
     "shaft_acceleration_x": (1, 0),
     "shaft_acceleration_y": (1, 1),
 }
+
+
+def record_columns(channels: Sequence[str]) -> np.ndarray:
+    """Flags of the record's columns (states, then accelerations) that ``channels`` read."""
+    wanted = np.zeros(N_OUT_STATE + N_OUT_ACCEL, dtype=np.int64)
+    for name in channels:
+        which, column = CHANNEL_COLUMNS[name]
+        wanted[N_OUT_STATE * which + column] = 1
+    return wanted
 
 
 def decimate(

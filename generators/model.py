@@ -26,7 +26,7 @@ import numpy as np
 from . import _integrators
 from . import _kernels as K
 from .batches import lanes_supported, simulate_lanes
-from .decimation import decimate
+from .decimation import decimate, record_columns
 from .kinematics import BearingFrequencies
 from .packing import Defect, slip_line_factor, slip_rows
 from .params import (
@@ -249,6 +249,7 @@ def _run_rk4(prep: Prepared, plan: Plan, record: _Record) -> tuple[int, float, d
         record.loads,
         record.with_loads,
         plan.fine_steps,
+        record_columns(prep.settings.channels or CHANNELS),
     )
     stats = {"step_s": plan.dt, "steps": plan.n_steps}
     if plan.fine_steps > 1:

@@ -27,7 +27,7 @@ import numpy as np
 from . import _integrators
 from . import _kernels as K
 from ._validate import ParameterError
-from .decimation import decimate
+from .decimation import decimate, record_columns
 from .kinematics import BearingFrequencies
 from .params import CHANNELS, BearingGeometry, OperatingCondition, Rig, Scene, SimulationSettings
 from .prepared import Prepared, diverged_error, params_record, plan_run, prepare
@@ -207,6 +207,7 @@ class SignalStream:
             out_loads,
             record_loads,
             self.plan_run.fine_steps,
+            record_columns(self.channels),
         )
         if status != K.STATUS_OK:
             raise diverged_error(prep, int(status), float(t_end))

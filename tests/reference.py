@@ -315,6 +315,7 @@ def rk4_records(prep, record_dt, n_record, substeps, *, y0=None, ehl=None):
         ld,
         False,
         1,  # uniform steps
+        np.ones(K.N_OUT_STATE + K.N_OUT_ACCEL, dtype=np.int64),  # every record column
     )
     assert status == K.STATUS_OK, status
     return st, ac
