@@ -50,6 +50,12 @@ K_HERTZ, DAMPING_TIME, GAP, MASS, LOAD = 8e9, 1e-5, 1e-6, 1.0, 500.0
 CAGE = 2 * math.pi * 12.0
 
 
+@numba.njit(**_JIT, inline="always")
+def _rk4_increment(k, dt):
+    """RK4's step from its four stage slopes ``k`` over ``dt``."""
+    return dt / 6 * (k[0] + 2 * k[1] + 2 * k[2] + k[3])
+
+
 @numba.njit(**_JIT)
 def scalar(n_steps, dt, z, k, tau, gap, m, load, wc):  # noqa: D103
     x, y, vx, vy = 0.0, 1e-5, 0.0, 0.0
@@ -76,10 +82,8 @@ def scalar(n_steps, dt, z, k, tau, gap, m, load, wc):  # noqa: D103
                         fy -= q * sj
             kx[st], ky[st] = vxs, vys
             kvx[st], kvy[st] = fx / m, (fy + load) / m
-        x += dt / 6 * (kx[0] + 2 * kx[1] + 2 * kx[2] + kx[3])
-        y += dt / 6 * (ky[0] + 2 * ky[1] + 2 * ky[2] + ky[3])
-        vx += dt / 6 * (kvx[0] + 2 * kvx[1] + 2 * kvx[2] + kvx[3])
-        vy += dt / 6 * (kvy[0] + 2 * kvy[1] + 2 * kvy[2] + kvy[3])
+        x, y = x + _rk4_increment(kx, dt), y + _rk4_increment(ky, dt)
+        vx, vy = vx + _rk4_increment(kvx, dt), vy + _rk4_increment(kvy, dt)
         c0, s0 = c0 * ci - s0 * si, s0 * ci + c0 * si
     return x + y
 
@@ -111,10 +115,8 @@ def balls_vectorised(n_steps, dt, z, k, tau, gap, m, load, wc):  # noqa: D103
                 fy -= q[j] * sn[j]
             kx[st], ky[st] = vxs, vys
             kvx[st], kvy[st] = fx / m, (fy + load) / m
-        x += dt / 6 * (kx[0] + 2 * kx[1] + 2 * kx[2] + kx[3])
-        y += dt / 6 * (ky[0] + 2 * ky[1] + 2 * ky[2] + ky[3])
-        vx += dt / 6 * (kvx[0] + 2 * kvx[1] + 2 * kvx[2] + kvx[3])
-        vy += dt / 6 * (kvy[0] + 2 * kvy[1] + 2 * kvy[2] + kvy[3])
+        x, y = x + _rk4_increment(kx, dt), y + _rk4_increment(ky, dt)
+        vx, vy = vx + _rk4_increment(kvx, dt), vy + _rk4_increment(kvy, dt)
         for j in range(z):
             cs[j], sn[j] = cs[j] * ci - sn[j] * si, sn[j] * ci + cs[j] * si
     return x + y
