@@ -33,6 +33,7 @@ from .separation import (
 from .spectra import (
     ISO_15242_BANDS,
     amplitude_spectrum,
+    band_rms,
     integrate_signal,
     integrate_spectrum,
     power_spectral_density,
@@ -76,6 +77,7 @@ __all__ = [
     "TIME_STATISTICS",
     "amplitude_spectrum",
     "band_amplitude",
+    "band_rms",
     "band_metrics",
     "compute_spectra",
     "envelope",

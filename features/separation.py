@@ -285,6 +285,14 @@ def separate_discrete(
     >>> bool(np.std(rest - noise) < 0.3 * np.std(noise))
     True
     """
+    spec, lines = _line_editing(x, fs, fundamentals, line_db, window_hz)
+    return np.fft.irfft(np.where(lines, 0.0, spec), np.size(x))
+
+
+def _line_editing(
+    x: np.ndarray, fs: float, fundamentals: Sequence[float], line_db: float, window_hz: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`separate_discrete`'s spectrum after steps 1-2 and its mask of edited bins."""
     x = check_signal(x, min_length=64)
     fs = check_fs(fs)
     check_positive("line_db", line_db, unit="dB")
@@ -305,7 +313,7 @@ def separate_discrete(
         lines[1:] |= lines[:-1].copy()
         lines[:-1] |= lines[1:].copy()
     lines[0] = True  # the mean
-    return np.fft.irfft(np.where(lines, 0.0, spec), n)
+    return spec, lines
 
 
 def candidate_bands(

@@ -12,7 +12,13 @@ from scipy import signal as sp_signal
 from . import _windows
 from ._validate import FeatureError, check_fs, check_positive, check_signal
 
-__all__ = ["amplitude_spectrum", "power_spectral_density", "integrate_spectrum", "integrate_signal"]
+__all__ = [
+    "amplitude_spectrum",
+    "band_rms",
+    "power_spectral_density",
+    "integrate_spectrum",
+    "integrate_signal",
+]
 
 
 def amplitude_spectrum(
@@ -233,10 +239,7 @@ def velocity_band_rms(
     f = np.fft.rfftfreq(n, 1.0 / fs)
     velocity = np.zeros_like(spec)
     velocity[1:] = spec[1:] / (2j * np.pi * f[1:])
-    power = 2.0 * np.abs(velocity) ** 2 / n**2  # one-sided, per bin
-    power[0] /= 2.0
-    if n % 2 == 0:
-        power[-1] /= 2.0
+    power = _power_per_bin(velocity, n)
     out = {}
     for name, (low, high) in bands.items():
         if low >= fs / 2:
@@ -245,3 +248,56 @@ def velocity_band_rms(
         sel = (f >= low) & (f < min(high, fs / 2))
         out[name] = float(np.sqrt(np.sum(power[sel])))
     return out
+
+
+def _power_per_bin(spec: np.ndarray, n: int) -> np.ndarray:
+    """One-sided power per bin of an ``rfft`` of ``n`` samples (Parseval: sums to the MS)."""
+    power = 2.0 * np.abs(spec) ** 2 / n**2
+    power[0] /= 2.0
+    if n % 2 == 0:
+        power[-1] /= 2.0
+    return power
+
+
+def band_rms(x: np.ndarray, fs: float, band: tuple[float, float]) -> float:
+    """RMS of a signal in a frequency band (Parseval over the record's DFT bins).
+
+    Parameters
+    ----------
+    x : array_like, 1-D
+        Signal [U].
+    fs : float
+        Sample rate [Hz].
+    band : (float, float)
+        Band edges [Hz], 0 <= low < high <= fs/2; bins with low <= f < high count (the
+        Nyquist bin too when high = fs/2).
+
+    Returns
+    -------
+    float
+        RMS in the band [U].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> fs = 1000.0; t = np.arange(1000) / fs
+    >>> x = 2 * np.cos(2 * np.pi * 100 * t) + np.cos(2 * np.pi * 300 * t)
+    >>> round(band_rms(x, fs, (50, 150)), 4)  # 2 / sqrt(2)
+    1.4142
+    """
+    x = check_signal(x, min_length=2)
+    fs = check_fs(fs)
+    try:
+        low, high = (float(b) for b in band)
+    except (TypeError, ValueError):
+        raise FeatureError(f"band = {band!r} is not a (low, high) pair in Hz") from None
+    if not (0.0 <= low < high <= fs / 2):
+        raise FeatureError(
+            f"band = ({low:g}, {high:g}) Hz is outside the allowed range: 0 <= low < high <= "
+            f"fs/2 = {fs / 2:g} Hz"
+        )
+    n = x.size
+    f = np.fft.rfftfreq(n, 1.0 / fs)
+    power = _power_per_bin(np.fft.rfft(x), n)
+    inside = (f >= low) & ((f < high) | (high >= fs / 2))
+    return float(np.sqrt(np.sum(power[inside])))

@@ -53,6 +53,22 @@ def test_psd_integrates_to_variance():
     assert np.trapezoid(p, f) == pytest.approx(1.0, rel=0.05)
 
 
+def test_band_rms_is_parseval_over_the_bands_bins():
+    rng = np.random.default_rng(3)
+    fs, n = 1000.0, 4000
+    t = np.arange(n) / fs
+    x = 3.0 * np.cos(2 * np.pi * 120.0 * t) + rng.standard_normal(n)
+    assert F.band_rms(x, fs, (0.0, fs / 2)) == pytest.approx(np.sqrt(np.mean(x**2)), rel=1e-12)
+    low = F.band_rms(x, fs, (0.0, 250.0))
+    high = F.band_rms(x, fs, (250.0, 500.0))
+    assert low**2 + high**2 == pytest.approx(np.mean(x**2), rel=1e-12)  # bands tile
+    # the tone (RMS 3 / sqrt 2) and the noise's share of a 10 Hz band
+    tone = F.band_rms(x, fs, (115.0, 125.0))
+    assert tone == pytest.approx(np.sqrt(4.5 + 10.0 / 500.0), rel=0.05)
+    with pytest.raises(F.FeatureError, match=r"band = \(300, 600\) Hz"):
+        F.band_rms(x, fs, (300.0, 600.0))
+
+
 def test_velocity_from_acceleration():
     fs, n = 10000.0, 10000
     t = np.arange(n) / fs
