@@ -15,6 +15,12 @@ structure below its first resonances: measured on simulations through rigs of 0.
 housings (docs/diagnosis.md), the healthy pattern moved by less than 1 dB, the load by up to 25
 dB for the 3 BPFI - 2 f_s line between 0.4 and 4 times the one assumed, hence the range.
 
+A candidate line within two bins (the Hann window's main lobe) or 0.3 % of a harmonic of the
+mains (50 or 60 Hz) is not read when the spectrum peaks nearer the mains harmonic than the
+line: a machine's electrical components put lines there (the MFPT bearing's BPFI at a 25 Hz
+shaft, 118.88 Hz, is 1.1 bins from 120 Hz in a 1 s record, and the mains line was read as
+inner-race waviness of order 8).
+
 Thresholds, fixed before any recording was read: a line must stand ``WAVINESS_SNR_DB`` over its
 local floor (the rule detector's one-band threshold) and ``MODEL_EXCESS_DB`` over the model's
 healthy prediction (a factor of about three for what the model leaves out: the structure,
@@ -34,6 +40,7 @@ from generators import BearingGeometry
 from generators.kinematics import BearingFrequencies
 
 __all__ = [
+    "MAINS_HZ",
     "MODEL_EXCESS_DB",
     "WAVINESS_SNR_DB",
     "DEFAULT_LOAD_N",
@@ -43,6 +50,7 @@ __all__ = [
     "candidate_lines",
     "comparison_text",
     "healthy_model_spectrum",
+    "mains_harmonic_near",
     "race_waviness",
 ]
 
@@ -57,6 +65,8 @@ DEFAULT_LOAD_N = 500.0
 #: each line is judged against the largest ratio any of them predicts.
 ASSUMED_LOAD_FACTORS = (0.25, 0.5, 1.0, 2.0, 4.0)
 GIVEN_LOAD_FACTORS = (0.7, 1.0, 1.4)
+#: Mains frequencies whose harmonics a machine's electrical components put into a record [Hz].
+MAINS_HZ = (50.0, 60.0)
 #: Ball-pass harmonics whose lines are the reference.
 _REFERENCE_HARMONICS = (1, 2, 3)
 
@@ -100,6 +110,27 @@ def _line(f: np.ndarray, a: np.ndarray, line: float) -> tuple[float, float]:
     df = f[1] - f[0]
     snr, peak, _ = features.line_snr(f, a, line, half_width=max(1.5 * df, 0.003 * line), guard=3.0)
     return snr, peak
+
+
+def _peak_frequency(f: np.ndarray, a: np.ndarray, line: float) -> float:
+    """Where the largest bin within a line's search width peaks, interpolated [Hz].
+
+    A parabola through the log amplitudes of the largest bin and its two neighbours (exact
+    for a Gaussian main lobe, within a few hundredths of a bin for a Hann window's).
+    """
+    df = f[1] - f[0]
+    half_width = max(1.5 * df, 0.003 * line)
+    lo = max(1, int(math.floor((line - half_width - f[0]) / df)))
+    hi = min(f.size - 1, int(math.ceil((line + half_width - f[0]) / df)) + 1)
+    if hi - lo < 1:
+        return line
+    k = lo + int(np.argmax(a[lo:hi]))
+    if k <= 0 or k >= f.size - 1:
+        return float(f[k])
+    left, mid, right = (math.log(max(v, 1e-300)) for v in a[k - 1 : k + 2])
+    curvature = left - 2.0 * mid + right
+    shift = 0.5 * (left - right) / curvature if curvature < 0 else 0.0
+    return float(f[k] + shift * df)
 
 
 def _ratio_db(f: np.ndarray, a: np.ndarray, line: WavinessLine, freqs: BearingFrequencies) -> float:
@@ -183,9 +214,15 @@ def race_waviness(
         ``healthy_model_has_line`` of the strongest flagged line.
     """
     flagged = []
+    resolution = float(f[1] - f[0])
     for line in candidate_lines(freqs, geometry.ball_count):
         if line.frequency >= f[-1] or line.frequency <= 0:
             continue
+        mains = mains_harmonic_near(line.frequency, resolution)
+        if mains is not None:
+            peak = _peak_frequency(f, a, line.frequency)
+            if abs(peak - mains) < abs(peak - line.frequency):
+                continue  # the peak is the mains harmonic's
         snr, _ = _line(f, a, line.frequency)
         if snr < WAVINESS_SNR_DB:
             continue
@@ -222,6 +259,37 @@ def race_waviness(
             "baseline before acting"
         ),
     }
+
+
+def mains_harmonic_near(line_hz: float, resolution_hz: float) -> float | None:
+    """The harmonic of 50 or 60 Hz that a spectrum cannot tell from a line, if any [Hz].
+
+    Parameters
+    ----------
+    line_hz : float
+        The line [Hz].
+    resolution_hz : float
+        The spectrum's bin spacing [Hz] (1 / record length).
+
+    Returns
+    -------
+    float or None
+        The mains harmonic within two bins (a Hann window's main lobe) or 0.3 % of the line
+        (the line search's width), or None.
+
+    Examples
+    --------
+    >>> mains_harmonic_near(118.876, 1.0)  # MFPT BPFI at 25 Hz, a 1 s record: 120 Hz is near
+    120.0
+    >>> mains_harmonic_near(118.876, 0.2) is None  # a 5 s record tells them apart
+    True
+    """
+    width = max(2.0 * resolution_hz, 0.003 * line_hz)
+    for mains in MAINS_HZ:
+        k = max(round(line_hz / mains), 1)
+        if abs(line_hz - k * mains) <= width:
+            return float(k * mains)
+    return None
 
 
 def comparison_text(waviness: dict) -> str:

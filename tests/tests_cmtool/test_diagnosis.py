@@ -586,6 +586,35 @@ def test_race_waviness_without_a_baseline_is_judged_against_the_models_healthy_l
     assert outer.waviness["over_model_db"] > MODEL_EXCESS_DB
 
 
+def test_a_mains_harmonic_is_not_read_as_race_waviness():
+    """The MFPT bearing's BPFI at a 25 Hz shaft, 118.88 Hz, lies 1.1 bins from the 120 Hz mains
+    harmonic in a 1 s record: a healthy bearing with a strong 120 Hz line gets no waviness
+    hint (it did: inner race, order 8); inner-race waviness of order 9 (BPFI + f_s, 143.9 Hz)
+    with the same mains line is still reported; in a 4 s record 120 Hz is told from BPFI."""
+    from cmtool.waviness import mains_harmonic_near
+    from generators import OperatingCondition, SimulationSettings, Waviness, bearing, simulate
+
+    g = bearing("mfpt")
+    fs = 25600.0
+    settings = SimulationSettings(fs=fs, duration=1.0, channels=("housing_acceleration_y",))
+    op = OperatingCondition.from_rpm(1500, 1000.0)
+    noise = np.random.default_rng(7)
+
+    def diagnose(waviness):
+        x = simulate(g, op, waviness, settings=settings)["housing_acceleration_y"]
+        t = np.arange(x.size) / fs
+        mains = 2.0 * np.std(x) * np.sin(2 * np.pi * 120.0 * t)
+        return diagnose_signal(x + mains + noise.normal(0.0, 0.1 * np.std(x), x.size), fs, 1500, g)
+
+    healthy = diagnose(None)
+    assert healthy.verdict == "healthy" and healthy.waviness is None
+    wavy = diagnose(Waviness(surface="inner", order=9, amplitude=1e-6))
+    assert wavy.waviness["surface"] == "inner" and wavy.waviness["order"] == 9
+    bpfi = 118.876
+    assert mains_harmonic_near(bpfi, 1.0) == 120.0
+    assert mains_harmonic_near(bpfi, 0.25) is None
+
+
 def test_the_pooled_verdicts_confidence_is_calibrated_at_training(bundle, small):
     """``cmtool train`` fits P(the pooled verdict is right) on its out-of-fold predictions and
     the rule evidence of every signal, the faint faults left out of training included."""
