@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from cmtool.diagnose import _race_waviness, diagnose_signal
+from cmtool.waviness import mains_harmonic_near
 from features.separation import LINE_DB, LINE_WINDOW_HZ, _line_editing
 from generators import bearing, characteristic_frequencies
 
@@ -39,18 +40,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from separation_variants import cases  # noqa: E402
 
 VERDICT = {"healthy": "healthy", "inner": "inner race", "outer": "outer race", "ball": "ball"}
-MAINS_HZ = (50.0, 60.0)
 EXPLAINS_FAULT_DB = 0.0
-
-
-def mains_harmonic_near(line_hz: float, resolution_hz: float) -> float | None:
-    """The harmonic of 50 or 60 Hz within two bins or 0.3 % of a line, if any [Hz]."""
-    width = max(2.0 * resolution_hz, 0.003 * line_hz)
-    for mains in MAINS_HZ:
-        k = max(round(line_hz / mains), 1)
-        if abs(line_hz - k * mains) <= width:
-            return float(k * mains)
-    return None
 
 
 def band_lines_over_random_db(x, fs, band, fundamentals) -> float:

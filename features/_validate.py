@@ -50,3 +50,17 @@ def check_positive(name: str, value: object, *, unit: str = "") -> float:
             f"{name} = {value!r} {unit} is outside the allowed range (0, inf) {unit}"
         )
     return v
+
+
+def check_band(band: object, fs: float) -> tuple[float, float]:
+    """Return a (low, high) band [Hz] with 0 <= low < high <= fs/2."""
+    try:
+        low, high = (float(b) for b in band)  # type: ignore[union-attr]
+    except (TypeError, ValueError):
+        raise FeatureError(f"band = {band!r} is not a (low, high) pair in Hz") from None
+    if not (0.0 <= low < high <= fs / 2):
+        raise FeatureError(
+            f"band = ({low:g}, {high:g}) Hz is outside the allowed range: 0 <= low < high <= "
+            f"fs/2 = {fs / 2:g} Hz"
+        )
+    return low, high

@@ -23,7 +23,7 @@ import numpy as np
 from scipy import fft as sp_fft
 
 from . import _windows
-from ._validate import FeatureError, check_fs, check_signal
+from ._validate import FeatureError, check_band, check_fs, check_signal
 from .separation import select_band, separate_discrete
 from .spectra import amplitude_spectrum
 
@@ -91,19 +91,6 @@ def _band_weights(freqs: np.ndarray, low: float, high: float) -> np.ndarray:
     return w
 
 
-def _check_band(band, fs: float) -> tuple[float, float]:
-    try:
-        low, high = (float(b) for b in band)
-    except (TypeError, ValueError):
-        raise FeatureError(f"band = {band!r} is not a (low, high) pair in Hz") from None
-    if not (0.0 <= low < high <= fs / 2):
-        raise FeatureError(
-            f"band = ({low:g}, {high:g}) Hz is outside the allowed range: 0 <= low < high <= "
-            f"fs/2 = {fs / 2:g} Hz"
-        )
-    return low, high
-
-
 def envelope(
     x: np.ndarray,
     fs: float,
@@ -138,7 +125,7 @@ def envelope(
         raise FeatureError(f"x has shape {x.shape}; envelope takes a 1-D signal")
     if method not in ("hilbert", "squared"):
         raise FeatureError(f"method = {method!r} is not one of 'hilbert', 'squared'")
-    low, high = (0.0, fs / 2) if band is None else _check_band(band, fs)
+    low, high = (0.0, fs / 2) if band is None else check_band(band, fs)
     if prewhitening:
         x = prewhiten(x)
     n = x.size

@@ -10,7 +10,7 @@ import numpy as np
 from scipy import signal as sp_signal
 
 from . import _windows
-from ._validate import FeatureError, check_fs, check_positive, check_signal
+from ._validate import FeatureError, check_band, check_fs, check_positive, check_signal
 
 __all__ = [
     "amplitude_spectrum",
@@ -287,15 +287,7 @@ def band_rms(x: np.ndarray, fs: float, band: tuple[float, float]) -> float:
     """
     x = check_signal(x, min_length=2)
     fs = check_fs(fs)
-    try:
-        low, high = (float(b) for b in band)
-    except (TypeError, ValueError):
-        raise FeatureError(f"band = {band!r} is not a (low, high) pair in Hz") from None
-    if not (0.0 <= low < high <= fs / 2):
-        raise FeatureError(
-            f"band = ({low:g}, {high:g}) Hz is outside the allowed range: 0 <= low < high <= "
-            f"fs/2 = {fs / 2:g} Hz"
-        )
+    low, high = check_band(band, fs)
     n = x.size
     f = np.fft.rfftfreq(n, 1.0 / fs)
     power = _power_per_bin(np.fft.rfft(x), n)
