@@ -38,7 +38,9 @@ from .params import (
 from .start import static_state
 from .static import static_load_distribution
 from .steps import (
+    DEFAULT_ALIGN_LONGEST,
     DEFAULT_OVERSAMPLE,
+    DEFAULT_STEP_MASSLESS,
     default_oversample,
     default_step,
     defect_substeps,
@@ -308,6 +310,7 @@ def plan_run(prep: Prepared) -> Plan:
     step = None
     error = math.nan
     refine = False
+    longest = 1.0
     oversample = settings.oversample
     if settings.integrator == "rk4" and settings.step is None and settings.error_bound:
         from .accuracy import error_bound_step  # the pilots need the kernels' entry points
@@ -319,6 +322,10 @@ def plan_run(prep: Prepared) -> Plan:
         step = settings.step or default_step(
             prep.scene_name, prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0
         )
+        # the accuracy default (not a requested step, not a stability limit) may grow a little
+        # to put the records on the step grid where shortening cannot (12 and 48 kHz)
+        if settings.step is None and step == DEFAULT_STEP_MASSLESS:
+            longest = DEFAULT_ALIGN_LONGEST
         refine = True  # never step over a pit, whatever the step
         oversample = oversample or default_oversample(settings.fs)
     oversample = oversample or DEFAULT_OVERSAMPLE
@@ -327,7 +334,9 @@ def plan_run(prep: Prepared) -> Plan:
     n_record = n_out * oversample
     if step is None:
         return Plan(oversample, record_dt, n_out, n_record, math.nan, 0, settings.settle_time)
-    dt, n_steps, t_first = rk4_schedule(step, record_dt, settings.settle_time, n_record, oversample)
+    dt, n_steps, t_first = rk4_schedule(
+        step, record_dt, settings.settle_time, n_record, oversample, longest
+    )
     fine = defect_substeps(dt, prep.p, prep.wav) if refine else 1
     return Plan(oversample, record_dt, n_out, n_record, dt, n_steps, t_first, error, fine)
 

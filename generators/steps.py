@@ -217,10 +217,20 @@ def default_oversample(fs: float) -> int:
 #: Shortest fraction of the requested RK4 step that :func:`rk4_schedule` shortens it to, so
 #: that the records fall on a fixed pattern of the step grid (at most 25 % more steps).
 ALIGN_SHORTEST = 0.8
+#: Longest multiple of the *default* step that :func:`rk4_schedule` lengthens it to where no
+#: shortening reaches the pattern (12 and 48 kHz: 2e-5 -> 1/48,000 s, +4.2 %): RK4's own error
+#: grows by (1.05)^4 = 1.2 at most, while the records' off-grid images, 7-14 times larger,
+#: go (docs/performance.md, "The default step on the record grid at 12 and 48 kHz").
+DEFAULT_ALIGN_LONGEST = 1.05
 
 
 def rk4_schedule(
-    step: float, record_dt: float, settle_time: float, n_record: int, oversample: int = 1
+    step: float,
+    record_dt: float,
+    settle_time: float,
+    n_record: int,
+    oversample: int = 1,
+    longest: float = 1.0,
 ) -> tuple[float, int, float]:
     """RK4 step, number of steps and first record time for a requested step [s].
 
@@ -235,7 +245,9 @@ def rk4_schedule(
     (docs/performance.md, "Records at 96 kHz or more, on the step grid"). Otherwise the step
     is kept. The first record is at ``settle_time`` whatever the step (until stop 36 it moved
     to the next step start, up to a step late, which put a time shift between runs at
-    different steps).
+    different steps). Where no shortening reaches the pattern, ``longest`` > 1 lets the step
+    grow to it by that factor at most (the default step only: ``DEFAULT_ALIGN_LONGEST``; a
+    requested step is never lengthened).
     """
     if step <= record_dt * (1 + 1e-9):
         aligned = record_dt / int(math.ceil(record_dt / step - 1e-9))
@@ -243,6 +255,14 @@ def rk4_schedule(
         per_step = int(math.floor(step / record_dt + 1e-9))
         aligned = per_step * record_dt if per_step <= oversample else 0.0
     dt = aligned if aligned >= ALIGN_SHORTEST * step else step
+    if dt == step and longest > 1.0:
+        if step <= record_dt * (1 + 1e-9):
+            grown = record_dt / int(math.floor(record_dt / step + 1e-9))
+        else:
+            per_step = int(math.ceil(step / record_dt - 1e-9))
+            grown = per_step * record_dt if per_step <= oversample else math.inf
+        if step < grown <= longest * step:
+            dt = grown
     t_first = settle_time
     t_last = t_first + (n_record - 1) * record_dt
     n_steps = int(math.floor(t_last / dt + 1e-9)) + 1
