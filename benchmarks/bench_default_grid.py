@@ -16,9 +16,9 @@ Run: .venv/bin/python benchmarks/bench_default_grid.py
 
 from __future__ import annotations
 
+import sys
 import time
-
-import numpy as np
+from pathlib import Path
 
 from generators import (
     LocalizedDefect,
@@ -28,20 +28,10 @@ from generators import (
     simulate,
 )
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_step_band import _band_errors  # noqa: E402  (the same three bands)
+
 CHANNEL = "housing_acceleration_y"
-BANDS = ((0.0, 1000.0), (1000.0, 3000.0), (3000.0, None))
-
-
-def _errors(x: np.ndarray, reference: np.ndarray, fs: float) -> list[float]:
-    window = np.hanning(x.size)
-    diff = np.fft.rfft((x - reference) * window)
-    ref = np.fft.rfft(reference * window)
-    f = np.fft.rfftfreq(x.size, 1.0 / fs)
-    out = []
-    for low, high in BANDS:
-        band = (f >= low) & (f < (0.45 * fs if high is None else high))
-        out.append(float(np.linalg.norm(diff[band]) / np.linalg.norm(ref[band])))
-    return out
 
 
 def main() -> None:
@@ -64,7 +54,7 @@ def main() -> None:
             for step in (2e-5, 1.0 / 48000.0):
                 x, _ = run(step)
                 seconds = min(run(step)[1] for _ in range(3))
-                errors = " | ".join(f"{e:.2e}" for e in _errors(x, reference, fs))
+                errors = " | ".join(f"{e:.2e}" for e in _band_errors(x, reference, fs))
                 print(f"{fs:.0f} | {case} | {step * 1e6:.2f} | {errors} | {seconds * 1e3:.1f}")
 
 
