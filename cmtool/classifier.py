@@ -269,6 +269,21 @@ def _extrapolation(X, y, frame, estimator) -> dict[str, float]:
     return out
 
 
+def class_kinds(frame: pd.DataFrame) -> dict[str, str]:
+    """What each label of a dataset is: ``none``, ``waviness``, ``localized`` or ``mixed``.
+
+    From the ``defect_kind`` column (empty without one): ``diagnose`` reads a class learnt
+    from waviness as no local fault (:func:`cmtool.diagnose.model_label_verdict`).
+    """
+    if "defect_kind" not in frame.columns:
+        return {}
+    out = {}
+    for label, kinds in frame.groupby("label")["defect_kind"]:
+        values = sorted({str(k) for k in kinds})
+        out[str(label)] = values[0] if len(values) == 1 else "mixed"
+    return out
+
+
 def pooled_calibration(
     frame: pd.DataFrame,
     X,
@@ -295,7 +310,14 @@ def pooled_calibration(
         ``slope``, ``intercept``, ``signals``, and the expected calibration error (10 bins)
         before and after on these signals (``ece_pooled``, ``ece_calibrated``; in-sample).
     """
-    from .diagnose import CANONICAL, diagnose_signal, pool_probabilities, rule_probabilities
+    from .diagnose import (
+        diagnose_signal,
+        model_label_verdict,
+        pool_probabilities,
+        rule_probabilities,
+    )
+
+    kinds = class_kinds(frame)
 
     classes = np.array(sorted(set(y)))
     proba = np.zeros((len(y), classes.size))
@@ -315,11 +337,11 @@ def pooled_calibration(
     for i, row in enumerate(frame.itertuples(index=False)):
         d = diagnose_signal(np.asarray(row.signal), row.fs_hz, row.rpm, row.bearing, waviness=False)
         pooled = pool_probabilities(
-            rule_probabilities(d.candidates), dict(zip(classes, proba[i], strict=True))
+            rule_probabilities(d.candidates), dict(zip(classes, proba[i], strict=True)), kinds
         )
         verdict = max(pooled, key=pooled.get)
         top.append(pooled[verdict])
-        right.append(verdict == CANONICAL.get(str(row.label)))
+        right.append(verdict == model_label_verdict(str(row.label), kinds))
     top, right = np.clip(np.array(top), 1e-9, 1 - 1e-9), np.array(right)
     if right.all() or not right.any():
         return None
@@ -461,6 +483,7 @@ def train(
         if "duration_s" in frame.columns
         else None,
         "pooled_calibration": calibration,
+        "class_kinds": class_kinds(frame),
         "cv_labels": y.tolist(),
         "cv_predictions": cv_predictions[best].tolist(),
         "versions": {

@@ -47,6 +47,7 @@ __all__ = [
     "pool_probabilities",
     "rule_probabilities",
     "verdict_probabilities",
+    "model_label_verdict",
     "explained_lines",
     "calibrated_confidence",
 ]
@@ -454,24 +455,40 @@ def rule_probabilities(candidates: list[dict]) -> dict[str, float]:
     return {k: v / total for k, v in scores.items()}
 
 
-def verdict_probabilities(model_probabilities: dict) -> dict[str, float]:
-    """A model's class probabilities summed per verdict (``CANONICAL``)."""
+def model_label_verdict(label: str, class_kinds: dict | None = None) -> str | None:
+    """The verdict a model's class label stands for (``CANONICAL``), or None.
+
+    A class the model learnt from waviness (``class_kinds[label] == "waviness"``, recorded by
+    ``cmtool train`` from the dataset's ``defect_kind``) is no local fault: it stands for
+    ``healthy`` in the rule's verdicts (docs/diagnosis.md, "A model trained on waviness").
+    """
+    if class_kinds and class_kinds.get(str(label)) == "waviness":
+        return "healthy"
+    return CANONICAL.get(str(label))
+
+
+def verdict_probabilities(
+    model_probabilities: dict, class_kinds: dict | None = None
+) -> dict[str, float]:
+    """A model's class probabilities summed per verdict (:func:`model_label_verdict`)."""
     out: dict[str, float] = {}
     for label, value in model_probabilities.items():
-        name = CANONICAL.get(str(label))
+        name = model_label_verdict(str(label), class_kinds)
         if name is not None:
             out[name] = out.get(name, 0.0) + float(value)
     return out
 
 
-def pool_probabilities(rule_p: dict[str, float], model_probabilities: dict) -> dict[str, float]:
+def pool_probabilities(
+    rule_p: dict[str, float], model_probabilities: dict, class_kinds: dict | None = None
+) -> dict[str, float]:
     """Log-linear pooling of the rule's and a model's probabilities over the verdicts.
 
     p(class) proportional to sqrt(p_rule p_model): each source counts as much, and a class
     that either gives almost no chance stays unlikely. Model labels are read as verdicts
     (``CANONICAL``); the result sums to 1.
     """
-    model_p = verdict_probabilities(model_probabilities)
+    model_p = verdict_probabilities(model_probabilities, class_kinds)
     floor = 1e-6
     pooled = {
         k: math.sqrt(max(rule_p.get(k, 0.0), floor) * max(model_p.get(k, 0.0), floor))
@@ -505,8 +522,9 @@ def _combine(diagnosis: Diagnosis) -> None:
     probabilities = diagnosis.model_verdict.get("probabilities")
     if not probabilities:
         return
-    model_p = verdict_probabilities(probabilities)
-    pooled = pool_probabilities(rule_probabilities(diagnosis.candidates), probabilities)
+    kinds = diagnosis.model_verdict.get("class_kinds")
+    model_p = verdict_probabilities(probabilities, kinds)
+    pooled = pool_probabilities(rule_probabilities(diagnosis.candidates), probabilities, kinds)
     verdict = max(pooled, key=pooled.get)
     rule_label = diagnosis.rule_verdict["label"]
     model_label = max(model_p, key=model_p.get) if model_p else rule_label
@@ -518,6 +536,12 @@ def _combine(diagnosis: Diagnosis) -> None:
             f"({diagnosis.rule_verdict['confidence']:.2f}) and the model {model_label} "
             f"({model_p[model_label]:.2f}): they disagree; the verdict follows their pooled "
             "probabilities"
+        )
+    label = str(diagnosis.model_verdict.get("label"))
+    if kinds and kinds.get(label) == "waviness":
+        basis += (
+            f"; the model reads {label} waviness "
+            f"({float(probabilities.get(label, 0.0)):.2f}), no local fault"
         )
     calibration = diagnosis.model_verdict.get("pooled_calibration")
     if calibration:
@@ -563,6 +587,8 @@ def model_verdict(model, x, fs, freqs: BearingFrequencies, extra: dict) -> dict:
     out: dict = {"segments": len(segments)}
     if isinstance(model, dict) and model.get("pooled_calibration"):
         out["pooled_calibration"] = model["pooled_calibration"]
+    if isinstance(model, dict) and model.get("class_kinds"):
+        out["class_kinds"] = dict(model["class_kinds"])
     if hasattr(pipeline, "predict_proba"):
         proba = pipeline.predict_proba(frame).mean(axis=0)
         classes = [str(c) for c in pipeline.classes_]

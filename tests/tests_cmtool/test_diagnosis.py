@@ -472,6 +472,47 @@ def test_rule_and_model_give_one_verdict_that_says_what_it_rests_on(bundle, smal
     assert "disagree" in disagree.basis and "outer race (0.90)" in disagree.basis
 
 
+def test_a_model_trained_on_waviness_reads_it_as_no_local_fault(bundle):
+    """``datasets/small``'s classes are race and ball waviness: ``cmtool train`` records that
+    (``class_kinds``), and ``diagnose`` pools the model's waviness classes as healthy, not as
+    a local fault of that surface. The demo's fresh inner-race waviness (N_w = 9, 2100 rpm,
+    550 N) was "inner race" by rule and model together; it is healthy, the model's reading
+    stated. A bundle without the kinds (older files) reads labels by name, as before."""
+    from cmtool.diagnose import model_label_verdict, verdict_probabilities
+    from generators import (
+        OperatingCondition,
+        Scene,
+        SimulationSettings,
+        Waviness,
+        bearing,
+        simulate,
+    )
+
+    kinds = bundle["class_kinds"]
+    assert kinds == {"healthy": "none", **{k: "waviness" for k in ("inner", "outer", "ball")}}
+    assert model_label_verdict("inner", kinds) == "healthy"
+    assert model_label_verdict("inner") == "inner race"
+    assert verdict_probabilities({"inner": 0.7, "healthy": 0.3}, kinds) == {"healthy": 1.0}
+    g = bearing("6205")
+    fresh = simulate(
+        g,
+        OperatingCondition.from_rpm(2100, 550.0),
+        [Waviness(surface="inner", order=9, amplitude=1e-6)],
+        scene=Scene(level="shaft+housing", ehl=True),
+        settings=SimulationSettings(fs=6400.0, duration=1.0, settle_time=0.1),
+        random_state=1,
+    )
+    x = fresh["housing_acceleration_y"]
+    x = x + np.random.default_rng(1).normal(0, 10 ** (-10 / 20) * x.std(), x.size)
+    d = diagnose_signal(x, fresh.fs, 2100.0, g, model=bundle)
+    assert d.model_verdict["label"] == "inner"
+    assert d.verdict == "healthy", d.basis
+    assert "the model reads inner waviness" in d.basis
+    old = {k: v for k, v in bundle.items() if k != "class_kinds"}
+    before = diagnose_signal(x, fresh.fs, 2100.0, g, model=old)
+    assert before.verdict == "inner race"  # what the demo said until stop 39
+
+
 @pytest.mark.xfail(
     strict=True,
     raises=AssertionError,
@@ -615,13 +656,28 @@ def test_a_mains_harmonic_is_not_read_as_race_waviness():
     assert mains_harmonic_near(bpfi, 0.25) is None
 
 
-def test_the_pooled_verdicts_confidence_is_calibrated_at_training(bundle, small):
+@pytest.fixture(scope="module")
+def bundle_by_label_names(small_dataset):
+    """``cmtool train`` on a quarter of ``datasets/small`` without its ``defect_kind``
+    column: the labels read by name (inner -> inner race), as every bundle did before stop
+    39."""
+    from cmtool.classifier import train
+
+    part = small_dataset.drop(columns="defect_kind").groupby("label").head(24)
+    return train(part.reset_index(drop=True), n_splits=3)
+
+
+def test_the_pooled_verdicts_confidence_is_calibrated_at_training(bundle, bundle_by_label_names):
     """``cmtool train`` fits P(the pooled verdict is right) on its out-of-fold predictions and
-    the rule evidence of every signal, the faint faults left out of training included."""
+    the rule evidence of every signal, the faint faults left out of training included. (On
+    ``datasets/small`` as it is, whose classes are waviness, every pooled verdict is healthy
+    and right: nothing to fit, and the bundle says so with None.)"""
     from cmtool.diagnose import calibrated_confidence
 
-    calibration = bundle["pooled_calibration"]
-    assert calibration["signals"] == len(small)
+    assert bundle["pooled_calibration"] is None
+    calibration = bundle_by_label_names["pooled_calibration"]
+    assert bundle_by_label_names["class_kinds"] == {}
+    assert calibration["signals"] == 4 * 24
     assert calibration["slope"] > 0  # a more probable pooled verdict is more often right
     # the logistic fit does not make the in-sample calibration worse (10-bin ECE)
     assert calibration["ece_calibrated"] <= calibration["ece_pooled"] + 0.02
