@@ -427,8 +427,8 @@ def train(
         The model bundle: ``pipeline`` (FeatureExtractor + scaler + best classifier, fitted on
         all data), ``classes``, ``feature_names``, ``scores`` (grouped-CV balanced accuracy,
         the mean of the per-class recalls, of every candidate), ``best`` (the one kept),
-        ``extrapolation``, ``recipe``, ``versions``, and ``pooled_calibration``
-        (:func:`pooled_calibration`).
+        ``extrapolation``, ``recipe``, ``versions``, ``pooled_calibration``
+        (:func:`pooled_calibration`) and ``class_kinds`` (:func:`class_kinds`).
     """
     kept = visible_faults(frame, min_fault_snr_db)
     left_out = int((~kept).sum())

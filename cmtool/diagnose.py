@@ -486,7 +486,8 @@ def pool_probabilities(
 
     p(class) proportional to sqrt(p_rule p_model): each source counts as much, and a class
     that either gives almost no chance stays unlikely. Model labels are read as verdicts
-    (``CANONICAL``); the result sums to 1.
+    (:func:`model_label_verdict`: by name, a class learnt from waviness as healthy when
+    ``class_kinds`` says so); the result sums to 1.
     """
     model_p = verdict_probabilities(model_probabilities, class_kinds)
     floor = 1e-6
