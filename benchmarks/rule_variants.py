@@ -28,6 +28,13 @@ Modes:
     BSF and 3 x BSF added to it (a ball pit strikes the two races in turn, and the two impacts
     differ). Prints the share of right verdicts per class.
 
+``ball-cage DATASET [DATASET ...]``
+    As ``ball-odd``, with the cage-rate lines of the envelope (a ball pit strikes only while
+    its ball crosses the load zone, once per cage revolution, so its impacts come in bursts at
+    the cage rate): ``family``, FTF and 2 x FTF weighed into the ball's Fisher family;
+    ``comb``, FTF, 2 and 3 x FTF as a third test of their own, the ball's probability three
+    times the least of the fundamental's, the family's and the comb's (Bonferroni).
+
 Run: .venv/bin/python benchmarks/rule_variants.py MODE [DATASET ...]
 """
 
@@ -185,8 +192,9 @@ def fitted_lines() -> None:
     evidence.separate_discrete = shipped
 
 
-def ball_odd(paths: list[str]) -> None:
-    for variant in ("shipped", "with BSF and 3 x BSF"):
+def ball_odd(paths: list[str], variants=None) -> None:
+    variants = variants or {"shipped": _SHIPPED_EVIDENCE, "with BSF and 3 x BSF": None}
+    for variant, function in variants.items():
         for path in paths:
             frame = read_dataset(path)
             frame = frame[(frame["label"] == "healthy") | (frame["fault_snr_db"] >= -10)]
@@ -196,8 +204,7 @@ def ball_odd(paths: list[str]) -> None:
                 d = diagnose_signal(x, r.fs_hz, r.rpm, r.bearing, waviness=False)
                 return d.rule_verdict["label"]
 
-            shipped = variant == "shipped"
-            features.fault_evidence = _SHIPPED_EVIDENCE if shipped else _with_odd_ball_lines
+            features.fault_evidence = function or _with_odd_ball_lines
             start = time.perf_counter()
             with ThreadPoolExecutor(2) as pool:
                 verdicts = np.array(list(pool.map(one, frame.itertuples())))
@@ -229,6 +236,34 @@ def _with_odd_ball_lines(x, fs, fault_frequencies):
     return result
 
 
+def _with_cage_lines(x, fs, fault_frequencies, comb_as_test: bool):
+    """The shipped evidence, with the envelope's cage-rate lines weighed for the ball."""
+    from scipy.stats import chi2
+
+    result = _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
+    ef, ea = result.envelope_frequencies, result.envelope_amplitude
+    ftf = float(fault_frequencies["ftf"])
+    family = list(result.families["two_bsf"])
+    firsts = [family[0][1]] + [result.families[k][0][1] for k in ("bpfo", "bpfi")]
+    searched, floor = max(1, *(r[2] for r in firsts)), min(r[3] for r in firsts)
+    bands = len(result.selection.bands)
+    cage = [(f"cage {k}x", evidence.slip_line(ef, ea, k * ftf)) for k in (1, 2, 3)]
+    if not comb_as_test:
+        weighed = evidence._weigh(family + cage[:2], bands, searched, floor)
+    else:
+        weighed = evidence._weigh(family, bands, searched, floor)
+        ratio, _, bins, floor_bins = family[0][1]
+        fundamental = bands * separation.line_false_alarm(ratio, bins, floor_bins)
+        p = [separation.line_false_alarm(r[0], r[2], r[3]) for _, r in cage]
+        comb = float(chi2.sf(-2.0 * float(np.log(np.clip(p, 1e-300, 1.0)).sum()), 2 * len(p)))
+        least = min(fundamental, weighed["family_p"], comb)
+        weighed["evidence_db"] = separation.ratio_for_false_alarm(3 * least, bands, searched, floor)
+        weighed["false_alarm"] = min(1.0, 3 * least)
+        weighed["detected"] = weighed["false_alarm"] <= separation.FALSE_ALARM
+    result.combined["two_bsf"] = weighed
+    return result
+
+
 if __name__ == "__main__":
     mode = sys.argv[1] if len(sys.argv) > 1 else ""
     if mode == "record-length":
@@ -239,5 +274,14 @@ if __name__ == "__main__":
         entry_jitter()
     elif mode == "ball-odd" and len(sys.argv) > 2:
         ball_odd(sys.argv[2:])
+    elif mode == "ball-cage" and len(sys.argv) > 2:
+        ball_odd(
+            sys.argv[2:],
+            {
+                "shipped": _SHIPPED_EVIDENCE,
+                "family": lambda x, fs, f: _with_cage_lines(x, fs, f, False),
+                "comb": lambda x, fs, f: _with_cage_lines(x, fs, f, True),
+            },
+        )
     else:
         sys.exit(__doc__)
