@@ -38,11 +38,9 @@ from .params import (
 from .start import static_state
 from .static import static_load_distribution
 from .steps import (
-    DEFAULT_ALIGN_LONGEST,
     DEFAULT_OVERSAMPLE,
-    DEFAULT_STEP_MASSLESS,
     default_oversample,
-    default_step,
+    default_step_and_growth,
     defect_substeps,
     rk4_schedule,
 )
@@ -319,13 +317,14 @@ def plan_run(prep: Prepared) -> Plan:
         oversample = oversample or DEFAULT_OVERSAMPLE
         step, error = error_bound_step(prep, settings.error_bound, oversample)
     elif settings.integrator == "rk4":
-        step = settings.step or default_step(
-            prep.scene_name, prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0
-        )
-        # the accuracy default (not a requested step, not a stability limit) may grow a little
-        # to put the records on the step grid where shortening cannot (12 and 48 kHz)
-        if settings.step is None and step == DEFAULT_STEP_MASSLESS:
-            longest = DEFAULT_ALIGN_LONGEST
+        step = settings.step
+        if step is None:
+            # the accuracy default (not a requested step, not a stability limit) may grow a
+            # little, within the stability step, to put the records on the step grid where
+            # shortening cannot (12 and 48 kHz)
+            step, longest = default_step_and_growth(
+                prep.scene_name, prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0
+            )
         refine = True  # never step over a pit, whatever the step
         oversample = oversample or default_oversample(settings.fs)
     oversample = oversample or DEFAULT_OVERSAMPLE

@@ -69,13 +69,30 @@ def default_step(
     the ball radial mode in the ``full`` scene (lightly damped, or well damped with the squeeze
     film), otherwise the shaft-on-bearing or a stiff pedestal's housing mode.
     """
+    return default_step_and_growth(level, code, ehl, p, wav, y0)[0]
+
+
+def default_step_and_growth(
+    level: str, code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray
+) -> tuple[float, float]:
+    """:func:`default_step`, and how far :func:`rk4_schedule` may lengthen it (``longest``).
+
+    Where the accuracy step binds, it may grow onto the record grid by
+    ``DEFAULT_ALIGN_LONGEST`` at most and never beyond the stability step
+    (:func:`stability_step`: ``STABILITY_SAFETY`` of RK4's limit); where the stability step
+    binds, not at all (1).
+    """
     lam = np.linalg.eigvals(jacobian(code, ehl, p, wav, y0))
     largest = float(np.max(np.abs(lam))) if lam.size else 0.0
     # RK4's region reaches at least its narrowest radius along every ray: when even that
-    # allows the accuracy step, the rays need not be traced (the result is the same)
-    if largest == 0.0 or STABILITY_SAFETY * _narrowest_radius() / largest >= DEFAULT_STEP_MASSLESS:
-        return DEFAULT_STEP_MASSLESS
-    return min(DEFAULT_STEP_MASSLESS, _stability_limit(lam))
+    # allows the accuracy step (and its growth), the rays need not be traced
+    bound = STABILITY_SAFETY * _narrowest_radius() / largest if largest > 0.0 else math.inf
+    if bound >= DEFAULT_ALIGN_LONGEST * DEFAULT_STEP_MASSLESS:
+        return DEFAULT_STEP_MASSLESS, DEFAULT_ALIGN_LONGEST
+    limit = _stability_limit(lam)
+    if limit <= DEFAULT_STEP_MASSLESS:
+        return limit, 1.0
+    return DEFAULT_STEP_MASSLESS, min(DEFAULT_ALIGN_LONGEST, limit / DEFAULT_STEP_MASSLESS)
 
 
 def defect_substeps(step: float, p: np.ndarray, wav: np.ndarray) -> int:

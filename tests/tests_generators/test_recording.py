@@ -25,8 +25,11 @@ from generators.accuracy import _lines, band_error, line_error, on_record_grid
 from generators.prepared import prepare
 from generators.steps import (
     DEFAULT_ALIGN_LONGEST,
+    DEFAULT_STEP_MASSLESS,
     MIN_RECORD_RATE,
+    STABILITY_SAFETY,
     default_oversample,
+    default_step_and_growth,
     rk4_schedule,
 )
 
@@ -79,6 +82,32 @@ def test_the_default_step_grows_onto_the_record_pattern_only_a_little(fs, oversa
     assert dt == pytest.approx(expected, rel=1e-12)
     # without the allowance (a requested step) it is never lengthened
     assert rk4_schedule(2e-5, record_dt, 0.1, 1000, oversample)[0] <= 2e-5
+
+
+@pytest.mark.parametrize(
+    ("limit", "expected_step", "expected_dt"),
+    [
+        (3e-5, DEFAULT_STEP_MASSLESS, 1 / 48000),  # room to grow onto the 48 kHz records
+        (2.04e-5, DEFAULT_STEP_MASSLESS, DEFAULT_STEP_MASSLESS),  # the grid is past the limit
+        (1.5e-5, 1.5e-5, 1.5e-5),  # the stability step binds: kept, never grown
+    ],
+)
+def test_the_default_step_grows_onto_the_grid_only_within_the_stability_step(
+    monkeypatch, limit, expected_step, expected_dt
+):
+    """The accuracy default may grow onto the record grid by 5 % at most, and never beyond the
+    stability step (STABILITY_SAFETY of RK4's limit): a scene whose one eigenvalue, on the
+    negative real axis, puts that step at ``limit``."""
+    import generators.steps as steps
+
+    radius = float(steps.rk4_stability_radius(np.array([np.pi]))[0])
+    eigenvalue = -STABILITY_SAFETY * radius / limit
+    monkeypatch.setattr(steps, "jacobian", lambda *args: np.array([[eigenvalue]]))
+    step, longest = default_step_and_growth("shaft", 0, False, None, None, None)
+    assert step == pytest.approx(expected_step)
+    assert longest == pytest.approx(min(DEFAULT_ALIGN_LONGEST, max(1.0, limit / step)))
+    dt = rk4_schedule(step, 1 / 48000, 0.1, 1000, 4, longest)[0]
+    assert dt == pytest.approx(expected_dt) and dt <= limit * (1 + 1e-12)
 
 
 def test_the_default_step_at_12_khz_is_on_the_record_grid_and_closer_to_the_truth():
