@@ -50,7 +50,7 @@ __all__ = [
     "DatasetError",
 ]
 
-DATASET_SCHEMA_VERSION = 3
+DATASET_SCHEMA_VERSION = 4
 
 #: Arrow type per storage kind of a metadata column (``generators.cases.CaseRecord``).
 _ARROW = {
@@ -175,6 +175,15 @@ def _remove_stale_temporaries(out: Path) -> None:
                 tmp.unlink(missing_ok=True)
 
 
+def _written_schema_version(out: Path) -> int | None:
+    """The dataset schema version of the first data file in ``out`` (None: no file yet)."""
+    first = next(iter(sorted((out / "data").glob("[!.]*.parquet"))), None)
+    if first is None:
+        return None
+    meta = pq.read_schema(first).metadata or {}
+    return int(meta.get(b"schema_version", b"0"))
+
+
 def _recipe_hash(recipe: dict) -> str:
     return hashlib.sha256(json.dumps(to_jsonable(recipe), sort_keys=True).encode()).hexdigest()
 
@@ -226,6 +235,13 @@ def generate_dataset(
                 raise DatasetError(
                     f"out = {str(out)!r} was made from a different recipe; cannot resume"
                 )
+        written_by = _written_schema_version(out)
+        if written_by not in (None, DATASET_SCHEMA_VERSION):
+            raise DatasetError(
+                f"out = {str(out)!r} holds files of dataset schema version {written_by} and "
+                f"this cmtool writes version {DATASET_SCHEMA_VERSION} (other columns); cannot "
+                "resume: generate into a new folder"
+            )
     out.mkdir(parents=True, exist_ok=True)
     if resume:
         _remove_stale_temporaries(out)

@@ -35,6 +35,7 @@ class CaseRecord:
     rpm: float
     shaft_frequency_hz: float
     radial_load_n: float
+    load_angle_rad: float
     radial_internal_clearance_m: float
     surface: str
     waviness_order: int
@@ -127,6 +128,7 @@ class Case:
     inner_form_waviness_m: float = 0.0
     outer_form_waviness_m: float = 0.0
     ball_form_waviness_m: float = 0.0
+    load_angle_rad: float = -math.pi / 2
 
 
 def _draw(spec: dict, rng: np.random.Generator, cycle: int, *, integer: bool = False):
@@ -233,6 +235,11 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                 form[1] = _draw(op["race_form_waviness_m"], rng, k)
             if "ball_form_waviness_m" in op:
                 form[2] = _draw(op["ball_form_waviness_m"], rng, k)
+            load_angle = -math.pi / 2  # downward, along the sensor's axis y; drawn last too
+            if "load_angle_deg" in op:
+                load_angle = math.radians(_draw(op["load_angle_deg"], rng, k))
+                if kind == "localized" and cond["surface"] == "outer":
+                    position += load_angle + math.pi / 2  # the recipe's angle is from the load
             yield Case(
                 index=index,
                 label=cond["label"],
@@ -261,5 +268,6 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                 inner_form_waviness_m=form[0],
                 outer_form_waviness_m=form[1],
                 ball_form_waviness_m=form[2],
+                load_angle_rad=load_angle,
             )
             index += 1

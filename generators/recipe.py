@@ -120,6 +120,15 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
         "m",
         doc="operating radial clearance (negative: preload)",
     ),
+    Key(
+        "operating.load_angle_deg",
+        "values",
+        -360.0,
+        360.0,
+        "deg",
+        doc="direction of the radial load from the x axis (default -90: downward, along the "
+        "sensor's y); outer-race pit positions are measured from it",
+    ),
     Key("operating.random_slip", "values", 0.0, 0.1, "", doc="cage speed fluctuation, std"),
     Key("operating.ball_jitter_rad", "values", 0.0, 0.1, "rad", doc="cage pocket play, std"),
     Key(
@@ -168,7 +177,7 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
         "choice",
         default="y",
         choices=DIRECTIONS,
-        doc="radial direction (y: along the load)",
+        doc="radial direction (y: vertical, along the default load)",
     ),
     Key(
         "sensor.body",

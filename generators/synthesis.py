@@ -90,6 +90,7 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         case.radial_load_n,
         random_slip=case.random_slip,
         ball_jitter=case.ball_jitter_rad,
+        load_angle=case.load_angle_rad,
     )
     # the bearing's own form errors come first: a case and its healthy twin draw the same
     # phases for them (generators.form)
@@ -159,6 +160,7 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         "rpm": case.rpm,
         "shaft_frequency_hz": operating.shaft_frequency,
         "radial_load_n": case.radial_load_n,
+        "load_angle_rad": case.load_angle_rad,
         "radial_internal_clearance_m": geometry.radial_internal_clearance,
         "surface": case.surface or "none",
         "waviness_order": case.waviness_order,

@@ -194,6 +194,17 @@ def test_refuses_to_overwrite_and_resume_checks_recipe(tiny, tmp_path):
     other.write_text(TINY.replace("seed = 11", "seed = 12"))
     with pytest.raises(DatasetError, match="different recipe"):
         generate_dataset(other, out, resume=True)
+    # files of an older schema (other columns) are not topped up with this one's
+    import pyarrow.parquet as pq
+
+    from cmtool.datasets import DATASET_SCHEMA_VERSION
+
+    first = sorted((out / "data").glob("*.parquet"))[0]
+    table = pq.read_table(first)
+    old = {**table.schema.metadata, b"schema_version": str(DATASET_SCHEMA_VERSION - 1).encode()}
+    pq.write_table(table.replace_schema_metadata(old), first)
+    with pytest.raises(DatasetError, match=f"schema version {DATASET_SCHEMA_VERSION - 1}"):
+        generate_dataset(tiny, out, resume=True)
 
 
 def test_resume_removes_what_a_killed_write_left(tiny, tmp_path):
