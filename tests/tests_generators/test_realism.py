@@ -414,6 +414,9 @@ defect = "localized"
 length_m = 0.3e-3
 depth_m = 0.1e-3
 count = 2
+[[conditions]]
+label = "healthy"
+count = 2
 """
 
 
@@ -422,7 +425,8 @@ def test_a_recipe_draws_the_loads_direction_and_the_outer_pit_follows_its_load_z
     not publish where it points; docs/realism.md 5). An outer-race pit's recipe position is
     read from the load, so the default pit stays at the load zone's centre (0 rad for a load
     along x), and its impacts, along the load, reach the vertical sensor through the
-    bearing's cross-coupling only: 18 times weaker than under a vertical load (a quarter here)."""
+    bearing's cross-coupling only: 18 times weaker than under a vertical load (a quarter here),
+    while the healthy bearing vibrates more in its lightly loaded direction (10 times; 2 here)."""
     import tomllib
 
     from generators.cases import expand_cases
@@ -431,8 +435,9 @@ def test_a_recipe_draws_the_loads_direction_and_the_outer_pit_follows_its_load_z
 
     recipe = validate_recipe(tomllib.loads(LOAD_DIRECTION))
     cases = expand_cases(recipe)
-    assert [c.load_angle_rad for c in cases] == [0.0, -math.pi / 2]
-    assert [c.defect_position_rad for c in cases] == [0.0, -math.pi / 2]
-    horizontal, vertical = generate_cases(recipe, cases)
+    assert [c.load_angle_rad for c in cases] == [0.0, -math.pi / 2] * 2
+    assert [c.defect_position_rad for c in cases[:2]] == [0.0, -math.pi / 2]
+    horizontal, vertical, healthy_horizontal, healthy_vertical = generate_cases(recipe, cases)
     assert (horizontal["load_angle_rad"], horizontal["defect_position_rad"]) == (0.0, 0.0)
     assert np.std(horizontal["signal"]) < 0.25 * np.std(vertical["signal"])
+    assert np.std(healthy_horizontal["signal"]) > 2 * np.std(healthy_vertical["signal"])
