@@ -99,12 +99,29 @@ FACTORS = {
     "waviness_amplitude_m": ("waviness amplitude", "um", 1e6),
     "fs_hz": ("sample rate", "kHz", 1e-3),
     "bearing": ("bearing", "", None),
+    "load_from_sensor_deg": ("load's angle from the sensor axis", "deg", 1.0),
 }
 #: Width of the SNR bins [dB], from SNR_BIN_ORIGIN_DB up (the benchmark recipe's sweep is
 #: -20 to +10 dB: ten bins); fault SNRs below the origin (pits the balls barely touch, whose
 #: signature the chain cannot raise to the drawn SNR) are pooled in one bin below it.
 SNR_BIN_DB = 3.0
 SNR_BIN_ORIGIN_DB = -20.0
+
+
+def load_from_sensor_deg(load_angle_rad: float, direction: str) -> float:
+    """Angle between the radial load's line and the sensor's axis [deg], 0 to 90.
+
+    ``load_angle_rad`` from the x axis (the dataset's ``load_angle_rad``), ``direction`` the
+    sensor's axis (``x`` or ``y``). 0: the sensor looks along the load (the recipes' default);
+    90: across it.
+
+    Examples
+    --------
+    >>> round(load_from_sensor_deg(-math.pi / 2, "y"), 6), round(load_from_sensor_deg(0.0, "y"), 6)
+    (0.0, 90.0)
+    """
+    along = math.sin(load_angle_rad) if direction == "y" else math.cos(load_angle_rad)
+    return math.degrees(math.acos(min(1.0, abs(along))))
 
 
 def _score_column(fault: str) -> str:
@@ -231,6 +248,10 @@ def _records(path: Path, bearing_default: str, allow_incomplete: bool = False):
     frame = read_dataset(path, allow_incomplete=allow_incomplete)
     for _, row in frame.iterrows():
         meta = {c: row[c] for c in FACTORS if c in row and pd.notna(row[c])}
+        if pd.notna(row.get("load_angle_rad", math.nan)) and row.get("direction") in ("x", "y"):
+            meta["load_from_sensor_deg"] = load_from_sensor_deg(
+                float(row["load_angle_rad"]), row["direction"]
+            )
         yield (
             row["id"],
             np.asarray(row["signal"], dtype=float),

@@ -223,3 +223,25 @@ def test_a_dataset_of_healthy_signals_only_gives_false_alarm_figures_and_no_cras
     labels = pd.read_csv(out / "labels.csv", index_col=0)
     assert labels.loc["envelope", "false_alarm_rate"] == 0.0
     assert (out / "report.md").is_file() and (out / "roc.png").is_file()
+
+
+def test_a_dataset_that_turns_the_load_gives_detection_by_its_angle_from_the_sensor(tmp_path):
+    """A recipe that draws the load's direction (operating.load_angle_deg) gets its detection
+    counted by the angle between the load and the sensor's axis (0-90 deg)."""
+    import math
+
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from cmtool.bench import _records
+
+    data = tmp_path / "turned" / "data"
+    data.mkdir(parents=True)
+    source = sorted((SMALL / "data").glob("*.parquet"))[-1]
+    table = pq.read_table(source)
+    angles = [0.0 if i % 2 else -math.pi / 2 for i in range(table.num_rows)]
+    column = table.schema.get_field_index("load_angle_rad")
+    table = table.set_column(column, "load_angle_rad", pa.array(angles))
+    pq.write_table(table, data / source.name)
+    seen = [meta["load_from_sensor_deg"] for *_, meta in _records(data.parent, "6205", True)]
+    assert seen == pytest.approx([90.0 if i % 2 else 0.0 for i in range(table.num_rows)])
