@@ -36,6 +36,9 @@ class CaseRecord:
     shaft_frequency_hz: float
     radial_load_n: float
     load_angle_rad: float
+    shaft_mass_kg: float
+    housing_mass_kg: float
+    pedestal_stiffness_n_m: float
     radial_internal_clearance_m: float
     surface: str
     waviness_order: int
@@ -129,6 +132,9 @@ class Case:
     outer_form_waviness_m: float = 0.0
     ball_form_waviness_m: float = 0.0
     load_angle_rad: float = -math.pi / 2
+    shaft_mass_kg: float = math.nan  # NaN: the default Rig's
+    housing_mass_kg: float = math.nan
+    pedestal_stiffness_n_m: float = math.nan
 
 
 def _draw(spec: dict, rng: np.random.Generator, cycle: int, *, integer: bool = False):
@@ -240,6 +246,10 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                 load_angle = math.radians(_draw(op["load_angle_deg"], rng, k))
                 if kind == "localized" and cond["surface"] == "outer":
                     position += load_angle + math.pi / 2  # the recipe's angle is from the load
+            structure = [  # the rig's masses and support: drawn last as well
+                _draw(r["model"][key], rng, k) if key in r["model"] else math.nan
+                for key in ("shaft_mass_kg", "housing_mass_kg", "pedestal_stiffness_n_m")
+            ]
             yield Case(
                 index=index,
                 label=cond["label"],
@@ -269,5 +279,8 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                 outer_form_waviness_m=form[1],
                 ball_form_waviness_m=form[2],
                 load_angle_rad=load_angle,
+                shaft_mass_kg=structure[0],
+                housing_mass_kg=structure[1],
+                pedestal_stiffness_n_m=structure[2],
             )
             index += 1

@@ -161,6 +161,9 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         "shaft_frequency_hz": operating.shaft_frequency,
         "radial_load_n": case.radial_load_n,
         "load_angle_rad": case.load_angle_rad,
+        "shaft_mass_kg": case.shaft_mass_kg,
+        "housing_mass_kg": case.housing_mass_kg,
+        "pedestal_stiffness_n_m": case.pedestal_stiffness_n_m,
         "radial_internal_clearance_m": geometry.radial_internal_clearance,
         "surface": case.surface or "none",
         "waviness_order": case.waviness_order,
@@ -205,6 +208,17 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
     if scene is None:
         scene = shared["scene"] = Scene(level=model["scene"], ehl=model["ehl"])
     rig = default_instance(Rig)
+    structure = {
+        name: value
+        for name, value in (
+            ("shaft_mass", case.shaft_mass_kg),
+            ("housing_mass", case.housing_mass_kg),
+            ("pedestal_stiffness", case.pedestal_stiffness_n_m),
+        )
+        if not math.isnan(value)
+    }
+    if structure:  # the recipe draws the rig's structure (validated here, named on error)
+        rig = dataclasses.replace(rig, **structure)
 
     def healthy() -> Prepared:
         # the same case without its defects (prepare() without re-checking these objects)

@@ -441,3 +441,60 @@ def test_a_recipe_draws_the_loads_direction_and_the_outer_pit_follows_its_load_z
     assert (horizontal["load_angle_rad"], horizontal["defect_position_rad"]) == (0.0, 0.0)
     assert np.std(horizontal["signal"]) < 0.25 * np.std(vertical["signal"])
     assert np.std(healthy_horizontal["signal"]) > 2 * np.std(healthy_vertical["signal"])
+
+
+RIG_STRUCTURE = """
+name = "rig-structure"
+seed = 4
+[operating]
+rpm = 1797
+load_n = 400
+[model]
+shaft_mass_kg = [1, 4]
+housing_mass_kg = [2, 16]
+pedestal_stiffness_n_m = [5e7, 5e7]
+[sensor]
+fs_hz = 12000
+duration_s = 0.5
+settle_s = 0.1
+[[conditions]]
+label = "healthy"
+count = 2
+"""
+
+
+def test_a_recipe_draws_the_rigs_structure_and_the_housing_mode_follows_it():
+    """``[model] shaft_mass_kg``, ``housing_mass_kg`` and ``pedestal_stiffness_n_m`` (not
+    published by the rigs: docs/realism.md 5) give each case its own Rig: the housing's mode
+    on its pedestal, near sqrt(k / m_h) / 2 pi (800 Hz at 2 kg and 5e7 N/m), falls by about
+    sqrt(8) at 16 kg (with a 4 kg shaft), and the signal with it."""
+    import tomllib
+
+    from generators import _kernels as K
+    from generators.cases import expand_cases
+    from generators.recipe import validate_recipe
+    from generators.synthesis import _setup, generate_cases
+
+    recipe = validate_recipe(tomllib.loads(RIG_STRUCTURE))
+    cases = expand_cases(recipe)
+    masses = [(c.shaft_mass_kg, c.housing_mass_kg, c.pedestal_stiffness_n_m) for c in cases]
+    assert masses == [(1.0, 2.0, 5e7), (4.0, 16.0, 5e7)]
+    p = [_setup(recipe, c, "housing_acceleration_y", {}).run.p for c in cases]
+    assert [(q[K.P_SHAFT_MASS], q[K.P_HOUSING_MASS]) for q in p] == [(1.0, 2.0), (4.0, 16.0)]
+    light, heavy = generate_cases(recipe, cases)
+    assert light["housing_mass_kg"] == 2.0 and heavy["housing_mass_kg"] == 16.0
+    assert not np.allclose(light["signal"], heavy["signal"])
+    from generators import OperatingCondition, Rig, Scene, bearing, natural_frequencies
+
+    lowest = []
+    for row in (light, heavy):
+        rig = Rig(
+            shaft_mass=row["shaft_mass_kg"],
+            housing_mass=row["housing_mass_kg"],
+            pedestal_stiffness=row["pedestal_stiffness_n_m"],
+        )
+        op = OperatingCondition.from_rpm(1797, 400.0)
+        scene = Scene(level="shaft+housing")
+        modes = natural_frequencies(bearing("6205"), op, scene=scene, rig=rig)
+        lowest.append(float(np.min(modes)))
+    assert lowest[1] < 0.6 * lowest[0], lowest
