@@ -39,6 +39,7 @@ class CaseRecord:
     shaft_mass_kg: float
     housing_mass_kg: float
     pedestal_stiffness_n_m: float
+    film_damping_factor: float
     radial_internal_clearance_m: float
     surface: str
     waviness_order: int
@@ -135,6 +136,7 @@ class Case:
     shaft_mass_kg: float = math.nan  # NaN: the default Rig's
     housing_mass_kg: float = math.nan
     pedestal_stiffness_n_m: float = math.nan
+    film_damping_factor: float = math.nan
 
 
 def _draw(spec: dict, rng: np.random.Generator, cycle: int, *, integer: bool = False):
@@ -248,7 +250,12 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                     position += load_angle + math.pi / 2  # the recipe's angle is from the load
             structure = [  # the rig's masses and support: drawn last as well
                 _draw(r["model"][key], rng, k) if key in r["model"] else math.nan
-                for key in ("shaft_mass_kg", "housing_mass_kg", "pedestal_stiffness_n_m")
+                for key in (
+                    "shaft_mass_kg",
+                    "housing_mass_kg",
+                    "pedestal_stiffness_n_m",
+                    "film_damping_factor",
+                )
             ]
             yield Case(
                 index=index,
@@ -282,5 +289,6 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                 shaft_mass_kg=structure[0],
                 housing_mass_kg=structure[1],
                 pedestal_stiffness_n_m=structure[2],
+                film_damping_factor=structure[3],
             )
             index += 1

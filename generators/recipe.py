@@ -190,6 +190,14 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
         doc="housing support stiffness, drawn per case (default Rig's 5e7 N/m)",
     ),
     Key(
+        "model.film_damping_factor",
+        "values",
+        0.0,
+        10.0,
+        "",
+        doc="squeeze-film damping over docs/model.md 4.4's estimate, drawn per case (default 1)",
+    ),
+    Key(
         "sensor.quantity",
         "choice",
         default="acceleration",

@@ -164,6 +164,7 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         "shaft_mass_kg": case.shaft_mass_kg,
         "housing_mass_kg": case.housing_mass_kg,
         "pedestal_stiffness_n_m": case.pedestal_stiffness_n_m,
+        "film_damping_factor": case.film_damping_factor,
         "radial_internal_clearance_m": geometry.radial_internal_clearance,
         "surface": case.surface or "none",
         "waviness_order": case.waviness_order,
@@ -214,6 +215,7 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
             ("shaft_mass", case.shaft_mass_kg),
             ("housing_mass", case.housing_mass_kg),
             ("pedestal_stiffness", case.pedestal_stiffness_n_m),
+            ("film_damping_factor", case.film_damping_factor),
         )
         if not math.isnan(value)
     }

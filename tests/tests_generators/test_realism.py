@@ -453,6 +453,7 @@ load_n = 400
 shaft_mass_kg = [1, 4]
 housing_mass_kg = [2, 16]
 pedestal_stiffness_n_m = [5e7, 5e7]
+film_damping_factor = [1, 0.1]
 [sensor]
 fs_hz = 12000
 duration_s = 0.5
@@ -464,7 +465,8 @@ count = 2
 
 
 def test_a_recipe_draws_the_rigs_structure_and_the_housing_mode_follows_it():
-    """``[model] shaft_mass_kg``, ``housing_mass_kg`` and ``pedestal_stiffness_n_m`` (not
+    """``[model] shaft_mass_kg``, ``housing_mass_kg``, ``pedestal_stiffness_n_m`` and
+    ``film_damping_factor`` (not
     published by the rigs: docs/realism.md 5) give each case its own Rig: the housing's mode
     on its pedestal, near sqrt(k / m_h) / 2 pi (800 Hz at 2 kg and 5e7 N/m), falls by about
     sqrt(8) at 16 kg (with a 4 kg shaft), and the signal with it."""
@@ -481,6 +483,9 @@ def test_a_recipe_draws_the_rigs_structure_and_the_housing_mode_follows_it():
     assert masses == [(1.0, 2.0, 5e7), (4.0, 16.0, 5e7)]
     p = [_setup(recipe, c, "housing_acceleration_y", {}).run.p for c in cases]
     assert [(q[K.P_SHAFT_MASS], q[K.P_HOUSING_MASS]) for q in p] == [(1.0, 2.0), (4.0, 16.0)]
+    # and the squeeze film's damping, a tenth of docs/model.md 4.4's estimate in the second
+    assert [c.film_damping_factor for c in cases] == [1.0, 0.1]
+    assert p[1][K.P_SQUEEZE_INNER] == pytest.approx(0.1 * p[0][K.P_SQUEEZE_INNER], rel=1e-12)
     light, heavy = generate_cases(recipe, cases)
     assert light["housing_mass_kg"] == 2.0 and heavy["housing_mass_kg"] == 16.0
     assert not np.allclose(light["signal"], heavy["signal"])
