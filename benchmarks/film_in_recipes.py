@@ -34,22 +34,24 @@ from pathlib import Path
 
 import numpy as np
 from sklearn.ensemble import RandomForestClassifier
-from sklearn.metrics import balanced_accuracy_score, recall_score, roc_auc_score
+from sklearn.metrics import roc_auc_score
 from sklearn.model_selection import GroupKFold
-from sklearn.pipeline import make_pipeline
-from sklearn.preprocessing import StandardScaler
 
-from cmtool import classifier
 from cmtool.datasets import read_dataset
 from cmtool.realism import CONTEXT_UNITS
 from features import FeatureExtractor, feature_units
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from cross_domain import CACHE, MIN_FAULT_SNR_DB, _digest  # noqa: E402
+from cross_domain import (  # noqa: E402
+    CACHE,
+    LABELS,
+    MIN_FAULT_SNR_DB,
+    _digest,
+    extra_trees_score,
+)
 
 NAMES = ("cwru-rig-ehl", "cwru-rig-dry", "mfpt-rig-ehl", "mfpt-rig-dry", "cwru777-ehl")
 NAMES += ("cwru777-dry",)
-LABELS = ["ball", "healthy", "inner", "outer"]
 
 
 def _table(name, frame, feature_set):
@@ -104,21 +106,16 @@ def main(folder: Path) -> None:
     ]
     pairs += [(t, s) for s in ("cwru777-ehl", "cwru777-dry") for t in NAMES[2:4]]
     for train, test in pairs:
-        accuracies = []
-        for seed in range(3):
-            model = make_pipeline(
-                StandardScaler(),
-                classifier.candidate_classifiers(seed, classifier.CLASS_WEIGHT)["extra_trees"],
-            )
-            model.fit(both[train][keep[train]], frames[train]["label"].to_numpy()[keep[train]])
-            predicted = model.predict(both[test][keep[test]])
-            truth = frames[test]["label"].to_numpy()[keep[test]]
-            accuracies.append(balanced_accuracy_score(truth, predicted))
-            recall = recall_score(truth, predicted, labels=LABELS, average=None)
+        score, recall, accuracies = extra_trees_score(
+            both[train][keep[train]],
+            frames[train]["label"].to_numpy()[keep[train]],
+            both[test][keep[test]],
+            frames[test]["label"].to_numpy()[keep[test]],
+        )
         print(
-            f"  {train:13s} -> {test:13s} {np.mean(accuracies):.3f} (seeds "
+            f"  {train:13s} -> {test:13s} {score:.3f} (seeds "
             + " ".join(f"{a:.3f}" for a in accuracies)
-            + "; recall, last seed: "
+            + "; recall: "
             + ", ".join(f"{k} {r:.2f}" for k, r in zip(LABELS, recall, strict=True))
             + ")"
         )

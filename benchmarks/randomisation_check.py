@@ -23,18 +23,20 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from sklearn.metrics import balanced_accuracy_score, recall_score
-from sklearn.pipeline import make_pipeline
-from sklearn.preprocessing import StandardScaler
 
 from cmtool import classifier
 from cmtool.datasets import read_dataset
 from features import FeatureExtractor
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from cross_domain import CACHE, MIN_FAULT_SNR_DB, _digest  # noqa: E402
+from cross_domain import (  # noqa: E402
+    CACHE,
+    LABELS,
+    MIN_FAULT_SNR_DB,
+    _digest,
+    extra_trees_score,
+)
 
-LABELS = ["ball", "healthy", "inner", "outer"]
 DIRECTIONS = (("cwru-rig", "mfpt-rig"), ("mfpt-rig", "cwru777"), ("cwru-rig", "cwru777"))
 
 
@@ -63,22 +65,16 @@ def main(folder: Path, base: str, drawn: str) -> None:
             means = []
             for train_rig, test_rig in DIRECTIONS:
                 train, test = f"{train_rig}-{train_variant}", f"{test_rig}-{test_variant}"
-                accuracy, recall = [], []
-                for seed in range(3):
-                    weight = classifier.CLASS_WEIGHT
-                    model = make_pipeline(
-                        StandardScaler(),
-                        classifier.candidate_classifiers(seed, weight)["extra_trees"],
-                    )
-                    model.fit(tables[train][keep[train]], frames[train]["label"][keep[train]])
-                    predicted = model.predict(tables[test][keep[test]])
-                    truth = frames[test]["label"].to_numpy()[keep[test]]
-                    accuracy.append(balanced_accuracy_score(truth, predicted))
-                    recall.append(recall_score(truth, predicted, labels=LABELS, average=None))
-                means.append(np.mean(accuracy))
-                per_class = zip(LABELS, np.mean(recall, axis=0), strict=True)
+                score, recall, _ = extra_trees_score(
+                    tables[train][keep[train]],
+                    frames[train]["label"].to_numpy()[keep[train]],
+                    tables[test][keep[test]],
+                    frames[test]["label"].to_numpy()[keep[test]],
+                )
+                means.append(score)
+                per_class = zip(LABELS, recall, strict=True)
                 print(
-                    f"{train} -> {test}: {np.mean(accuracy):.3f} (recall "
+                    f"{train} -> {test}: {score:.3f} (recall "
                     + ", ".join(f"{k} {r:.2f}" for k, r in per_class)
                     + ")",
                     flush=True,

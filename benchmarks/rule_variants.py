@@ -283,13 +283,13 @@ def _cage_line(args) -> float:
 
 def cage_feature(cwru: str, mfpt: str, cwru777: str) -> None:
     from concurrent.futures import ProcessPoolExecutor
-
-    from sklearn.metrics import balanced_accuracy_score, recall_score
-    from sklearn.pipeline import make_pipeline
-    from sklearn.preprocessing import StandardScaler
+    from pathlib import Path
 
     from cmtool import classifier
     from features import FeatureExtractor
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from cross_domain import LABELS, extra_trees_score
 
     frames, plain, extra, keep = {}, {}, {}, {}
     for path in (cwru, mfpt, cwru777):
@@ -302,25 +302,19 @@ def cage_feature(cwru: str, mfpt: str, cwru777: str) -> None:
             cage = np.array(list(pool.map(_cage_line, rows, chunksize=8)))
         extra[path] = np.hstack([plain[path], cage[:, None]])
         keep[path] = ~(frame["fault_snr_db"].to_numpy() < -10.0)
-    labels = ["ball", "healthy", "inner", "outer"]
     for tag, tables in (("shipped", plain), ("with the FTF line", extra)):
         means = []
         for train, test in ((cwru, mfpt), (mfpt, cwru777), (cwru, cwru777)):
-            accuracy, recall = [], []
-            for seed in range(3):
-                weight = classifier.CLASS_WEIGHT
-                model = make_pipeline(
-                    StandardScaler(), classifier.candidate_classifiers(seed, weight)["extra_trees"]
-                )
-                model.fit(tables[train][keep[train]], frames[train]["label"][keep[train]])
-                predicted = model.predict(tables[test][keep[test]])
-                truth = frames[test]["label"].to_numpy()[keep[test]]
-                accuracy.append(balanced_accuracy_score(truth, predicted))
-                recall.append(recall_score(truth, predicted, labels=labels, average=None))
-            means.append(np.mean(accuracy))
-            per_class = zip(labels, np.mean(recall, axis=0), strict=True)
+            score, recall, _ = extra_trees_score(
+                tables[train][keep[train]],
+                frames[train]["label"].to_numpy()[keep[train]],
+                tables[test][keep[test]],
+                frames[test]["label"].to_numpy()[keep[test]],
+            )
+            means.append(score)
+            per_class = zip(LABELS, recall, strict=True)
             print(
-                f"{tag}, {train} -> {test}: {np.mean(accuracy):.3f} (recall "
+                f"{tag}, {train} -> {test}: {score:.3f} (recall "
                 + ", ".join(f"{k} {r:.2f}" for k, r in per_class)
                 + ")"
             )
