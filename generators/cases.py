@@ -14,7 +14,15 @@ from dataclasses import dataclass, field, fields
 
 import numpy as np
 
-__all__ = ["Case", "CaseRecord", "CASE_COLUMNS", "case_count", "expand_cases", "iter_cases"]
+__all__ = [
+    "Case",
+    "CaseRecord",
+    "CASE_COLUMNS",
+    "RIG_KEYS",
+    "case_count",
+    "expand_cases",
+    "iter_cases",
+]
 
 
 @dataclass(frozen=True)
@@ -139,6 +147,16 @@ class Case:
     film_damping_factor: float = math.nan
 
 
+#: The rig's parameters a recipe may draw under ``[model]``: recipe key (and case column) ->
+#: ``generators.Rig`` field. NaN in a case: the default Rig's value.
+RIG_KEYS = {
+    "shaft_mass_kg": "shaft_mass",
+    "housing_mass_kg": "housing_mass",
+    "pedestal_stiffness_n_m": "pedestal_stiffness",
+    "film_damping_factor": "film_damping_factor",
+}
+
+
 def _draw(spec: dict, rng: np.random.Generator, cycle: int, *, integer: bool = False):
     if "grid" in spec:
         v = spec["grid"][cycle % len(spec["grid"])]
@@ -248,15 +266,10 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                 load_angle = math.radians(_draw(op["load_angle_deg"], rng, k))
                 if kind == "localized" and cond["surface"] == "outer":
                     position += load_angle + math.pi / 2  # the recipe's angle is from the load
-            structure = [  # the rig's masses and support: drawn last as well
-                _draw(r["model"][key], rng, k) if key in r["model"] else math.nan
-                for key in (
-                    "shaft_mass_kg",
-                    "housing_mass_kg",
-                    "pedestal_stiffness_n_m",
-                    "film_damping_factor",
-                )
-            ]
+            rig = {  # the rig's masses, support and film damping: drawn last as well
+                key: _draw(r["model"][key], rng, k) if key in r["model"] else math.nan
+                for key in RIG_KEYS
+            }
             yield Case(
                 index=index,
                 label=cond["label"],
@@ -286,9 +299,6 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                 outer_form_waviness_m=form[1],
                 ball_form_waviness_m=form[2],
                 load_angle_rad=load_angle,
-                shaft_mass_kg=structure[0],
-                housing_mass_kg=structure[1],
-                pedestal_stiffness_n_m=structure[2],
-                film_damping_factor=structure[3],
+                **rig,
             )
             index += 1

@@ -19,7 +19,7 @@ from scipy import signal as sp_signal
 from . import _kernels as K
 from ._validate import ParameterError, SimulationDivergedError
 from .batches import lanes_supported, simulate_lanes
-from .cases import Case
+from .cases import RIG_KEYS, Case
 from .catalog import bearing
 from .form import form_waviness
 from .kinematics import characteristic_frequencies, passage_lines
@@ -161,10 +161,7 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         "shaft_frequency_hz": operating.shaft_frequency,
         "radial_load_n": case.radial_load_n,
         "load_angle_rad": case.load_angle_rad,
-        "shaft_mass_kg": case.shaft_mass_kg,
-        "housing_mass_kg": case.housing_mass_kg,
-        "pedestal_stiffness_n_m": case.pedestal_stiffness_n_m,
-        "film_damping_factor": case.film_damping_factor,
+        **{key: getattr(case, key) for key in RIG_KEYS},
         "radial_internal_clearance_m": geometry.radial_internal_clearance,
         "surface": case.surface or "none",
         "waviness_order": case.waviness_order,
@@ -209,18 +206,13 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
     if scene is None:
         scene = shared["scene"] = Scene(level=model["scene"], ehl=model["ehl"])
     rig = default_instance(Rig)
-    structure = {
-        name: value
-        for name, value in (
-            ("shaft_mass", case.shaft_mass_kg),
-            ("housing_mass", case.housing_mass_kg),
-            ("pedestal_stiffness", case.pedestal_stiffness_n_m),
-            ("film_damping_factor", case.film_damping_factor),
-        )
-        if not math.isnan(value)
+    drawn = {
+        field: getattr(case, key)
+        for key, field in RIG_KEYS.items()
+        if not math.isnan(getattr(case, key))
     }
-    if structure:  # the recipe draws the rig's structure (validated here, named on error)
-        rig = dataclasses.replace(rig, **structure)
+    if drawn:  # the recipe draws some of the rig (validated by Rig, named on error)
+        rig = dataclasses.replace(rig, **drawn)
 
     def healthy() -> Prepared:
         # the same case without its defects (prepare() without re-checking these objects)
