@@ -50,7 +50,7 @@ __all__ = [
     "DatasetError",
 ]
 
-DATASET_SCHEMA_VERSION = 4
+DATASET_SCHEMA_VERSION = 5
 
 #: Arrow type per storage kind of a metadata column (``generators.cases.CaseRecord``).
 _ARROW = {

@@ -18,6 +18,7 @@ __all__ = [
     "Case",
     "CaseRecord",
     "CASE_COLUMNS",
+    "DAMPING_RATIO_KEYS",
     "RIG_KEYS",
     "case_count",
     "expand_cases",
@@ -48,6 +49,8 @@ class CaseRecord:
     housing_mass_kg: float
     pedestal_stiffness_n_m: float
     film_damping_factor: float
+    housing_damping_ratio: float
+    shaft_damping_ratio: float
     radial_internal_clearance_m: float
     surface: str
     waviness_order: int
@@ -145,6 +148,8 @@ class Case:
     housing_mass_kg: float = math.nan
     pedestal_stiffness_n_m: float = math.nan
     film_damping_factor: float = math.nan
+    housing_damping_ratio: float = math.nan  # NaN: the Rig's dashpots as they are
+    shaft_damping_ratio: float = math.nan
 
 
 #: The rig's parameters a recipe may draw under ``[model]``: recipe key (and case column) ->
@@ -154,6 +159,16 @@ RIG_KEYS = {
     "housing_mass_kg": "housing_mass",
     "pedestal_stiffness_n_m": "pedestal_stiffness",
     "film_damping_factor": "film_damping_factor",
+}
+
+#: Modal damping ratios a recipe may draw under ``[model]``: recipe key (and case column) ->
+#: the ``generators.Rig`` dashpot it sets, c = 2 zeta sqrt(k M) (``synthesis.case_rig``): the
+#: housing on its support (k_h, M_h), the shaft on the bearing (its static radial stiffness at
+#: the case's load, M_s). A drawn mass or stiffness then keeps a plausible damping ratio,
+#: where a fixed dashpot would not (docs/realism.md 5).
+DAMPING_RATIO_KEYS = {
+    "housing_damping_ratio": "pedestal_damping",
+    "shaft_damping_ratio": "shaft_damping",
 }
 
 
@@ -270,6 +285,8 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                 key: _draw(r["model"][key], rng, k) if key in r["model"] else math.nan
                 for key in RIG_KEYS
             }
+            for key in DAMPING_RATIO_KEYS:  # the dashpots as damping ratios: drawn last
+                rig[key] = _draw(r["model"][key], rng, k) if key in r["model"] else math.nan
             yield Case(
                 index=index,
                 label=cond["label"],

@@ -198,6 +198,24 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
         doc="squeeze-film damping over docs/model.md 4.4's estimate, drawn per case (default 1)",
     ),
     Key(
+        "model.housing_damping_ratio",
+        "values",
+        1e-4,
+        1.0,
+        "",
+        doc="damping ratio of the housing on its support: pedestal damping 2 zeta sqrt(k_h M_h), "
+        "drawn per case (default: the Rig's 1e3 N s/m)",
+    ),
+    Key(
+        "model.shaft_damping_ratio",
+        "values",
+        1e-4,
+        1.0,
+        "",
+        doc="damping ratio of the shaft on the bearing: shaft damping 2 zeta sqrt(k_r M_s), k_r "
+        "the bearing's static radial stiffness at the case's load (default: the Rig's 600 N s/m)",
+    ),
+    Key(
         "sensor.quantity",
         "choice",
         default="acceleration",

@@ -19,7 +19,7 @@ from scipy import signal as sp_signal
 from . import _kernels as K
 from ._validate import ParameterError, SimulationDivergedError
 from .batches import lanes_supported, simulate_lanes
-from .cases import RIG_KEYS, Case
+from .cases import DAMPING_RATIO_KEYS, RIG_KEYS, Case
 from .catalog import bearing
 from .form import form_waviness
 from .kinematics import characteristic_frequencies, passage_lines
@@ -36,6 +36,7 @@ from .measurement import (
 )
 from .model import integrate
 from .params import (
+    BearingGeometry,
     LocalizedDefect,
     OperatingCondition,
     Rig,
@@ -44,9 +45,17 @@ from .params import (
     Waviness,
 )
 from .prepared import Prepared, default_instance, prepare_checked
+from .static import static_load_distribution
 from .steps import DEFAULT_OVERSAMPLE
 
-__all__ = ["generate_case", "generate_cases", "bound_steps", "step_group", "MAX_FAULT_GAIN"]
+__all__ = [
+    "case_rig",
+    "generate_case",
+    "generate_cases",
+    "bound_steps",
+    "step_group",
+    "MAX_FAULT_GAIN",
+]
 
 
 def _resonance(x: np.ndarray, fs: float, f0: float, zeta: float) -> np.ndarray:
@@ -162,6 +171,7 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         "radial_load_n": case.radial_load_n,
         "load_angle_rad": case.load_angle_rad,
         **{key: getattr(case, key) for key in RIG_KEYS},
+        **{key: getattr(case, key) for key in DAMPING_RATIO_KEYS},
         "radial_internal_clearance_m": geometry.radial_internal_clearance,
         "surface": case.surface or "none",
         "waviness_order": case.waviness_order,
@@ -205,14 +215,6 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
     scene = shared.get("scene")
     if scene is None:
         scene = shared["scene"] = Scene(level=model["scene"], ehl=model["ehl"])
-    rig = default_instance(Rig)
-    drawn = {
-        field: getattr(case, key)
-        for key, field in RIG_KEYS.items()
-        if not math.isnan(getattr(case, key))
-    }
-    if drawn:  # the recipe draws some of the rig (validated by Rig, named on error)
-        rig = dataclasses.replace(rig, **drawn)
 
     def healthy() -> Prepared:
         # the same case without its defects (prepare() without re-checking these objects)
@@ -220,6 +222,7 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         return prepare_checked(geometry, operating, form, scene, rig, settings, rng, freqs)
 
     try:
+        rig = case_rig(case, geometry)
         job.run = prepare_checked(
             geometry, operating, form + tuple(defects), scene, rig, settings, job.rng, freqs
         )
@@ -233,6 +236,48 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
     except ParameterError as err:  # e.g. no static equilibrium for this case's geometry
         job.error = f"not simulated: {err}"
     return job
+
+
+def case_rig(case: Case, geometry: BearingGeometry) -> Rig:
+    """The rig of a case: the default ``Rig`` with what the recipe drew for it.
+
+    ``RIG_KEYS`` columns replace their ``Rig`` fields; ``DAMPING_RATIO_KEYS`` columns set the
+    dashpots from modal damping ratios: the pedestal damping 2 zeta_h sqrt(k_h M_h) (the
+    housing on its support), the shaft damping 2 zeta_s sqrt(k_r M_s), k_r the bearing's
+    static radial stiffness at the case's load and clearance
+    (:func:`~generators.static.static_load_distribution`, dry Hertz). NaN columns keep the
+    default's values.
+
+    Parameters
+    ----------
+    case : Case
+        A drawn case.
+    geometry : BearingGeometry
+        The case's bearing (with its clearance).
+
+    Returns
+    -------
+    Rig
+        Validated (a value out of ``Rig``'s ranges raises ``ParameterError`` naming it).
+    """
+    rig = default_instance(Rig)
+    drawn = {
+        field: getattr(case, key)
+        for key, field in RIG_KEYS.items()
+        if not math.isnan(getattr(case, key))
+    }
+    if drawn:
+        rig = dataclasses.replace(rig, **drawn)
+    zeta_h, zeta_s = case.housing_damping_ratio, case.shaft_damping_ratio
+    dashpots = {}
+    if not math.isnan(zeta_h):
+        dashpots["pedestal_damping"] = (
+            2.0 * zeta_h * math.sqrt(rig.pedestal_stiffness * rig.housing_mass)
+        )
+    if not math.isnan(zeta_s):
+        k_r = static_load_distribution(geometry, case.radial_load_n).radial_stiffness
+        dashpots["shaft_damping"] = 2.0 * zeta_s * math.sqrt(k_r * rig.shaft_mass)
+    return dataclasses.replace(rig, **dashpots) if dashpots else rig
 
 
 def _untouched(prep: Prepared, settings: SimulationSettings) -> bool:

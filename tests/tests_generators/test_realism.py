@@ -503,3 +503,89 @@ def test_a_recipe_draws_the_rigs_structure_and_the_housing_mode_follows_it():
         modes = natural_frequencies(bearing("6205"), op, scene=scene, rig=rig)
         lowest.append(float(np.min(modes)))
     assert lowest[1] < 0.6 * lowest[0], lowest
+
+
+RIG_DAMPING = """
+name = "rig-damping"
+seed = 5
+bearings = ["6205"]
+[operating]
+rpm = 1797
+load_n = 400
+clearance_m = 5e-6
+[model]
+scene = "shaft+housing"
+ehl = false
+shaft_mass_kg = [1, 1, 5, 5]
+housing_mass_kg = [20, 20, 1, 1]
+pedestal_stiffness_n_m = [2e8, 2e8, 2e7, 2e7]
+{ratios}
+[sensor]
+fs_hz = 12000
+duration_s = 0.2
+[[conditions]]
+label = "healthy"
+count = 4
+"""
+
+
+def _lowest_mode_damping(run) -> float:
+    """Damping ratio -Re(lambda) / |lambda| of the lowest oscillatory mode of a prepared run
+    (the right-hand side linearised at its static start, docs/model.md 7.5)."""
+    from generators.steps import jacobian
+
+    lam = np.linalg.eigvals(jacobian(run.scene_code, run.ehl, run.p, run.wav, run.y0))
+    osc = lam[lam.imag > 1.0]
+    lowest = osc[np.argmin(np.abs(osc))]
+    return float(-lowest.real / abs(lowest))
+
+
+def test_a_recipe_draws_the_dashpots_as_damping_ratios():
+    """``[model] housing_damping_ratio`` and ``shaft_damping_ratio`` set the pedestal damping
+    to 2 zeta_h sqrt(k_h M_h) and the shaft damping to 2 zeta_s sqrt(k_r M_s), k_r the
+    bearing's static radial stiffness at the case's load: a drawn structure keeps a plausible
+    damping. With the Rig's fixed dashpots, a 20 kg housing on 2e8 N/m has its lowest mode at
+    about 1.4 % damping and a 1 kg one on 2e7 N/m with a 5 kg shaft at 6.5 %; with zeta_h =
+    0.05 and zeta_s = 0.03 both lie between 5 and 9 % (the two dashpots share the coupled
+    modes: the lowest mode's ratio sits between zeta_h and zeta_h + zeta_s)."""
+    import tomllib
+
+    from generators import _kernels as K
+    from generators import bearing, static_load_distribution
+    from generators.cases import expand_cases
+    from generators.recipe import validate_recipe
+    from generators.synthesis import _setup, generate_cases
+
+    fixed = validate_recipe(tomllib.loads(RIG_DAMPING.format(ratios="")))
+    drawn = validate_recipe(
+        tomllib.loads(
+            RIG_DAMPING.format(
+                ratios="housing_damping_ratio = [0.05, 0.05, 0.05, 0.05]\n"
+                "shaft_damping_ratio = [0.03, 0.03, 0.03, 0.03]"
+            )
+        )
+    )
+    k_r = static_load_distribution(
+        bearing("6205", radial_internal_clearance=5e-6), 400.0
+    ).radial_stiffness
+    for recipe, ratios in ((fixed, False), (drawn, True)):
+        cases = expand_cases(recipe)
+        runs = [_setup(recipe, c, "housing_acceleration_y", {}).run for c in cases[::2]]
+        zetas = [_lowest_mode_damping(run) for run in runs]
+        if not ratios:
+            assert all(np.isnan(c.housing_damping_ratio) for c in cases)
+            assert [run.p[K.P_PEDESTAL_DAMPING] for run in runs] == [1e3, 1e3]
+            assert [run.p[K.P_SHAFT_DAMPING] for run in runs] == [600.0, 600.0]
+            assert zetas[0] < 0.02 and zetas[1] > 0.05, zetas
+            continue
+        assert [c.housing_damping_ratio for c in cases] == [0.05] * 4
+        assert [c.shaft_damping_ratio for c in cases] == [0.03] * 4
+        for run, (m_s, m_h, k_h) in zip(runs, ((1.0, 20.0, 2e8), (5.0, 1.0, 2e7)), strict=True):
+            assert run.p[K.P_PEDESTAL_DAMPING] == pytest.approx(0.1 * np.sqrt(k_h * m_h), rel=1e-12)
+            assert run.p[K.P_SHAFT_DAMPING] == pytest.approx(0.06 * np.sqrt(k_r * m_s), rel=1e-12)
+        assert all(0.05 < z < 0.09 for z in zetas), zetas
+    # the columns reach the dataset rows
+    row = generate_cases(drawn, expand_cases(drawn)[:1])[0]
+    assert (row["housing_damping_ratio"], row["shaft_damping_ratio"]) == (0.05, 0.03)
+    row = generate_cases(fixed, expand_cases(fixed)[:1])[0]
+    assert np.isnan(row["housing_damping_ratio"]) and np.isnan(row["shaft_damping_ratio"])
