@@ -429,11 +429,17 @@ def band_power(x: np.ndarray, fs: float, band: tuple[float, float]) -> float:
     return float(np.sum(psd[keep]) * (f[1] - f[0]))
 
 
-def fault_band(signature: np.ndarray, fs: float) -> tuple[float, float]:
-    """The octave in which a fault's signature (faulty minus healthy signal) is strongest.
+def fault_band(
+    signature: np.ndarray, fs: float, rest: np.ndarray | None = None
+) -> tuple[float, float]:
+    """The octave in which a fault's signature (faulty minus healthy signal) shows most.
 
-    The band an envelope analyst demodulates: centred on the peak of the signature's Welch
-    PSD (the resonance its impacts ring at), one octave wide, inside (0, 0.45 fs).
+    The band an envelope analyst demodulates, one octave wide, inside (0, 0.45 fs) (an
+    octave reaching past 0.45 fs is cut there). Without ``rest``: centred on the peak of the
+    signature's Welch PSD (the resonance its impacts ring at). With ``rest`` (everything else
+    the sensor records: the healthy bearing, the machine, the noise): the octave, of those
+    centred on a Welch bin in (0.02, 0.45) fs, where the signature's power over the rest's is
+    largest, the band a band selector such as the kurtogram seeks (docs/realism.md 4).
 
     Parameters
     ----------
@@ -441,14 +447,31 @@ def fault_band(signature: np.ndarray, fs: float) -> tuple[float, float]:
         The fault's own contribution to the signal.
     fs : float
         Sample rate [Hz].
+    rest : ndarray, optional
+        Everything else, as long as ``signature``, in its unit.
 
     Returns
     -------
     (float, float)
         Band edges [Hz].
     """
-    f, psd = _welch(signature, fs, min(512, len(signature)))
+    nperseg = min(512, len(signature))
+    f, psd = _welch(signature, fs, nperseg)
     usable = (f > 0.02 * fs) & (f < 0.45 * fs)
-    centre = float(f[usable][np.argmax(psd[usable])])
+    if rest is None:
+        centre = float(f[usable][np.argmax(psd[usable])])
+    else:
+        _, rest_psd = _welch(rest, fs, nperseg)
+        centres = f[usable]
+        low = np.maximum(centres / math.sqrt(2.0), 0.01 * fs)
+        high = np.minimum(centres * math.sqrt(2.0), 0.45 * fs)
+        # band sums from cumulative sums: bins f_k with low <= f_k <= high
+        own_sum = np.concatenate([[0.0], np.cumsum(psd)])
+        rest_sum = np.concatenate([[0.0], np.cumsum(rest_psd)])
+        first = np.searchsorted(f, low, side="left")
+        last = np.searchsorted(f, high, side="right")
+        own = own_sum[last] - own_sum[first]
+        other = np.maximum(rest_sum[last] - rest_sum[first], 1e-300)
+        centre = float(centres[np.argmax(own / other)])
     low, high = centre / math.sqrt(2.0), centre * math.sqrt(2.0)
     return max(low, 0.01 * fs), min(high, 0.45 * fs)

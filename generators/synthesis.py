@@ -409,7 +409,7 @@ def _finish_realistic(
             # scaled to the drawn SNR, by at most MAX_FAULT_GAIN: a pit the balls barely
             # touch (outside the load zone) stays as faint as the model makes it, and the
             # SNR recorded is the one reached.
-            band = fault_band(signature, fs)
+            band = fault_band(signature, fs, rest=y)
             meta["fault_band_low_hz"], meta["fault_band_high_hz"] = band
             rest = band_power(y, fs, band)
             own = max(band_power(signature, fs, band), 1e-300)
