@@ -34,6 +34,7 @@ from ._validate import ParameterError, check_int, check_real
 __all__ = [
     "StructuralMode",
     "MachineBackground",
+    "SupportStructure",
     "transfer_path",
     "sensor_response",
     "anti_alias_filter",
@@ -67,6 +68,67 @@ class StructuralMode:
         check_real("frequency", self.frequency, low=0.0, high=1e6, low_inclusive=False, unit="Hz")
         check_real("damping", self.damping, low=0.0, high=1.0, low_inclusive=False)
         check_real("gain", self.gain, low=0.0, high=1e6)
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class SupportStructure:
+    """The bearing's own structure, linearised: shaft on bearing, housing on support.
+
+    The two-mass model of ``generators.Rig`` (docs/model.md 1). A force on the housing (the
+    rest of the machine's broadband excitation reaching the bearing through its frame) moves
+    the housing as the bearing's own forces do, through the same modes: :meth:`response`.
+
+    Attributes
+    ----------
+    shaft_mass, housing_mass : float
+        M_s, M_h [kg].
+    bearing_stiffness : float
+        k_r, the bearing's radial stiffness [N/m] (e.g. static, at the load).
+    pedestal_stiffness : float
+        k_h [N/m].
+    shaft_damping, pedestal_damping : float
+        c_s (shaft to ground, as in the model), c_h [N s/m].
+    """
+
+    shaft_mass: float
+    housing_mass: float
+    bearing_stiffness: float
+    pedestal_stiffness: float
+    shaft_damping: float
+    pedestal_damping: float
+
+    def __post_init__(self) -> None:
+        for name in ("shaft_mass", "housing_mass", "bearing_stiffness", "pedestal_stiffness"):
+            check_real(name, getattr(self, name), low=0.0, high=1e13, low_inclusive=False)
+        for name in ("shaft_damping", "pedestal_damping"):
+            check_real(name, getattr(self, name), low=0.0, high=1e9, unit="N s/m")
+
+    def response(self, force: np.ndarray, fs: float) -> np.ndarray:
+        """Housing acceleration for a force on the housing, times M_h.
+
+        Unit gain above the modes, where the housing moves as a free mass; a circular FFT
+        filter, for stationary noise.
+
+        Parameters
+        ----------
+        force : ndarray
+            Force record [any unit], sampled at ``fs`` [Hz].
+        fs : float
+            Sample rate [Hz].
+
+        Returns
+        -------
+        ndarray
+            Same length and unit as ``force``.
+        """
+        n = force.size
+        s = 2j * np.pi * np.fft.rfftfreq(n, 1.0 / fs)
+        ms, mh = self.shaft_mass, self.housing_mass
+        kr, kh = self.bearing_stiffness, self.pedestal_stiffness
+        shaft = ms * s**2 + self.shaft_damping * s + kr
+        det = shaft * (mh * s**2 + self.pedestal_damping * s + kh + kr) - kr * kr
+        gain = mh * s**2 * shaft / det
+        return np.fft.irfft(np.fft.rfft(force) * gain, n)
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -341,6 +403,7 @@ def machine_background(
     background: MachineBackground,
     modes: tuple[StructuralMode, ...],
     rng: np.random.Generator,
+    support: SupportStructure | None = None,
 ) -> np.ndarray:
     """A record of the rest of the machine: lines with random phases plus coloured noise.
 
@@ -358,6 +421,9 @@ def machine_background(
         The structure the broadband excitation rings through (:func:`transfer_path`).
     rng : numpy.random.Generator
         Source of phases and noise.
+    support : SupportStructure, optional
+        The bearing's own structure: the broadband excitation, a force on the housing, goes
+        through it before the modes, as the bearing's own vibration does.
 
     Returns
     -------
@@ -383,7 +449,10 @@ def machine_background(
             b = w * offsets
             add_line(y, np.cos(a), np.sin(a), np.cos(b), np.sin(b), amplitude)
     if background.broadband_rms > 0.0:
-        noise = transfer_path(rng.standard_normal(n), fs, modes)
+        force = rng.standard_normal(n)
+        if support is not None:
+            force = support.response(force, fs)
+        noise = transfer_path(force, fs, modes)
         y += noise * (background.broadband_rms / max(float(np.std(noise)), 1e-300))
     if background.floor_rms > 0.0:
         y += rng.normal(0.0, background.floor_rms, n)

@@ -26,6 +26,7 @@ from .kinematics import characteristic_frequencies, passage_lines
 from .measurement import (
     MachineBackground,
     StructuralMode,
+    SupportStructure,
     anti_alias_filter,
     band_power,
     digitise,
@@ -390,7 +391,16 @@ def _finish_realistic(
         other_lines=other_lines,
         floor_rms=level("floor_db", None),
     )
-    noise = machine_background(x.size, fs, case.rpm / 60.0, machine, modes, rng)
+    rig, geometry = job.run.rig, job.run.geometry
+    support = SupportStructure(
+        shaft_mass=rig.shaft_mass,
+        housing_mass=rig.housing_mass,
+        bearing_stiffness=static_load_distribution(geometry, case.radial_load_n).radial_stiffness,
+        pedestal_stiffness=rig.pedestal_stiffness,
+        shaft_damping=rig.shaft_damping,
+        pedestal_damping=rig.pedestal_damping,
+    )
+    noise = machine_background(x.size, fs, case.rpm / 60.0, machine, modes, rng, support)
     chain: dict = {
         "modes": [[m.frequency, m.damping, m.gain] for m in modes],
         "shaft_amplitudes": list(shaft),

@@ -19,6 +19,7 @@ from generators import _kernels as K
 from generators.measurement import (
     MachineBackground,
     StructuralMode,
+    SupportStructure,
     anti_alias_filter,
     band_power,
     digitise,
@@ -614,3 +615,42 @@ def test_a_recipe_draws_the_dashpots_as_damping_ratios():
     assert (row["housing_damping_ratio"], row["shaft_damping_ratio"]) == (0.05, 0.03)
     row = generate_cases(fixed, expand_cases(fixed)[:1])[0]
     assert np.isnan(row["housing_damping_ratio"]) and np.isnan(row["shaft_damping_ratio"])
+
+
+def test_the_support_structure_moves_the_housing_as_a_two_mass_model():
+    """A force on the housing through ``SupportStructure.response`` (times M_h): the mass line
+    (gain 1) far above the modes, the spring line M_h w^2 / k_h far below them (statics: the
+    housing on its support, the shaft riding along), and its largest gain at the coupled
+    system's lower natural frequency (undamped two-mass eigenvalue, within the 1 Hz bins)."""
+    ms, mh, kr, kh = 2.0, 10.0, 8e7, 5e7
+    support = SupportStructure(
+        shaft_mass=ms,
+        housing_mass=mh,
+        bearing_stiffness=kr,
+        pedestal_stiffness=kh,
+        shaft_damping=200.0,
+        pedestal_damping=300.0,
+    )
+    fs, n = 48000.0, 48000
+    t = np.arange(n) / fs
+
+    def gain(f):  # f on a bin of the record (the filter is circular)
+        out = support.response(np.sin(2 * np.pi * f * t), fs)
+        return np.std(out) / np.std(np.sin(2 * np.pi * f * t))
+
+    # undamped eigenfrequencies of [[ms, 0], [0, mh]] x'' + [[kr, -kr], [-kr, kr + kh]] x = 0
+    w2 = np.linalg.eigvals(np.linalg.solve(np.diag([ms, mh]), [[kr, -kr], [-kr, kr + kh]]))
+    f_low, f_high = np.sort(np.sqrt(w2.real)) / (2 * np.pi)
+    assert gain(round(20 * f_high)) == pytest.approx(1.0, rel=0.02)
+    f = round(f_low / 20)
+    assert gain(f) == pytest.approx(mh * (2 * np.pi * f) ** 2 / kh, rel=0.02)
+    impulse = support.response(np.r_[1.0, np.zeros(n - 1)], fs)
+    spectrum = np.abs(np.fft.rfft(impulse))  # 1 Hz bins
+    assert abs(np.argmax(spectrum[1:4000]) + 1 - f_low) <= 2.0
+    # and the machine's broadband noise carries the housing's mode once the support is given
+    background = MachineBackground(broadband_rms=1.0)
+    plain = machine_background(n, fs, 30.0, background, (), np.random.default_rng(2))
+    through = machine_background(n, fs, 30.0, background, (), np.random.default_rng(2), support)
+    octave = (f_low / math.sqrt(2), f_low * math.sqrt(2))
+    assert band_power(plain, fs, octave) < 0.1
+    assert band_power(through, fs, octave) > 5 * band_power(plain, fs, octave)
