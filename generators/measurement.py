@@ -83,7 +83,7 @@ class SupportStructure:
     shaft_mass, housing_mass : float
         M_s, M_h [kg].
     bearing_stiffness : float
-        k_r, the bearing's radial stiffness [N/m] (e.g. static, at the load).
+        k_r, the bearing's radial stiffness [N/m] (e.g. static, at the load; 0: unloaded).
     pedestal_stiffness : float
         k_h [N/m].
     shaft_damping, pedestal_damping : float
@@ -98,8 +98,10 @@ class SupportStructure:
     pedestal_damping: float
 
     def __post_init__(self) -> None:
-        for name in ("shaft_mass", "housing_mass", "bearing_stiffness", "pedestal_stiffness"):
+        for name in ("shaft_mass", "housing_mass", "pedestal_stiffness"):
             check_real(name, getattr(self, name), low=0.0, high=1e13, low_inclusive=False)
+        # 0: an unloaded bearing with clearance, the shaft free of the housing
+        check_real("bearing_stiffness", self.bearing_stiffness, low=0.0, high=1e13, unit="N/m")
         for name in ("shaft_damping", "pedestal_damping"):
             check_real(name, getattr(self, name), low=0.0, high=1e9, unit="N s/m")
 
@@ -127,7 +129,8 @@ class SupportStructure:
         kr, kh = self.bearing_stiffness, self.pedestal_stiffness
         shaft = ms * s**2 + self.shaft_damping * s + kr
         det = shaft * (mh * s**2 + self.pedestal_damping * s + kh + kr) - kr * kr
-        gain = mh * s**2 * shaft / det
+        gain = np.zeros_like(s)
+        gain[1:] = mh * s[1:] ** 2 * shaft[1:] / det[1:]  # no acceleration at 0 Hz
         return np.fft.irfft(np.fft.rfft(force) * gain, n)
 
 

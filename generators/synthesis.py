@@ -37,6 +37,7 @@ from .measurement import (
 )
 from .model import integrate
 from .params import (
+    GRAVITY,
     BearingGeometry,
     LocalizedDefect,
     OperatingCondition,
@@ -50,6 +51,7 @@ from .static import static_load_distribution
 from .steps import DEFAULT_OVERSAMPLE
 
 __all__ = [
+    "bearing_stiffness",
     "case_rig",
     "generate_case",
     "generate_cases",
@@ -245,9 +247,8 @@ def case_rig(case: Case, geometry: BearingGeometry) -> Rig:
     ``RIG_KEYS`` columns replace their ``Rig`` fields; ``DAMPING_RATIO_KEYS`` columns set the
     dashpots from modal damping ratios: the pedestal damping 2 zeta_h sqrt(k_h M_h) (the
     housing on its support), the shaft damping 2 zeta_s sqrt(k_r M_s), k_r the bearing's
-    static radial stiffness at the case's load and clearance
-    (:func:`~generators.static.static_load_distribution`, dry Hertz). NaN columns keep the
-    default's values.
+    static radial stiffness at the case's load and clearance (:func:`bearing_stiffness`).
+    NaN columns keep the default's values.
 
     Parameters
     ----------
@@ -276,9 +277,21 @@ def case_rig(case: Case, geometry: BearingGeometry) -> Rig:
             2.0 * zeta_h * math.sqrt(rig.pedestal_stiffness * rig.housing_mass)
         )
     if not math.isnan(zeta_s):
-        k_r = static_load_distribution(geometry, case.radial_load_n).radial_stiffness
+        k_r = bearing_stiffness(geometry, case.radial_load_n, rig)
         dashpots["shaft_damping"] = 2.0 * zeta_s * math.sqrt(k_r * rig.shaft_mass)
     return dataclasses.replace(rig, **dashpots) if dashpots else rig
+
+
+def bearing_stiffness(geometry: BearingGeometry, radial_load: float, rig: Rig) -> float:
+    """The bearing's static radial stiffness k_r [N/m] at a case's load (dry Hertz).
+
+    At ``radial_load`` [N]; where that leaves a bearing with clearance unloaded (no load),
+    at the shaft's weight, which the model applies (``Rig.gravity``); 0 if neither loads it.
+    """
+    k_r = static_load_distribution(geometry, radial_load).radial_stiffness
+    if k_r <= 0.0 and rig.gravity:
+        k_r = static_load_distribution(geometry, rig.shaft_mass * GRAVITY).radial_stiffness
+    return k_r
 
 
 def _untouched(prep: Prepared, settings: SimulationSettings) -> bool:
@@ -395,7 +408,7 @@ def _finish_realistic(
     support = SupportStructure(
         shaft_mass=rig.shaft_mass,
         housing_mass=rig.housing_mass,
-        bearing_stiffness=static_load_distribution(geometry, case.radial_load_n).radial_stiffness,
+        bearing_stiffness=bearing_stiffness(geometry, case.radial_load_n, rig),
         pedestal_stiffness=rig.pedestal_stiffness,
         shaft_damping=rig.shaft_damping,
         pedestal_damping=rig.pedestal_damping,

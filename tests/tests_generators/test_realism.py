@@ -654,3 +654,72 @@ def test_the_support_structure_moves_the_housing_as_a_two_mass_model():
     octave = (f_low / math.sqrt(2), f_low * math.sqrt(2))
     assert band_power(plain, fs, octave) < 0.1
     assert band_power(through, fs, octave) > 5 * band_power(plain, fs, octave)
+
+
+def test_an_unloaded_bearing_keeps_a_support_structure_and_a_shaft_damping():
+    """A recipe's load may be 0 N: a bearing with clearance is then loaded by the shaft's
+    weight alone (the model applies it), and that is the stiffness the damping ratio and the
+    machine noise's structure use; without gravity the shaft is free of the housing (k_r = 0)
+    and the structure is the housing on its support, finite everywhere."""
+    from generators import Rig, static_load_distribution
+    from generators.synthesis import bearing_stiffness
+
+    g = bearing("6205", radial_internal_clearance=10e-6)
+    assert static_load_distribution(g, 0.0).radial_stiffness == 0.0
+    weight = static_load_distribution(g, 2.0 * 9.81).radial_stiffness
+    assert bearing_stiffness(g, 0.0, Rig(shaft_mass=2.0)) == weight > 1e6
+    assert bearing_stiffness(g, 0.0, Rig(shaft_mass=2.0, gravity=False)) == 0.0
+    loaded = static_load_distribution(g, 300.0).radial_stiffness
+    assert bearing_stiffness(g, 300.0, Rig(shaft_mass=2.0)) == loaded
+    free = SupportStructure(
+        shaft_mass=1.0,
+        housing_mass=4.0,
+        bearing_stiffness=0.0,
+        pedestal_stiffness=4e7,
+        shaft_damping=0.0,
+        pedestal_damping=400.0,
+    )
+    fs, n = 12000.0, 12000
+    out = free.response(np.random.default_rng(1).standard_normal(n), fs)
+    assert np.all(np.isfinite(out))
+    spectrum = np.abs(np.fft.rfft(free.response(np.r_[1.0, np.zeros(n - 1)], fs)))
+    # the housing alone on its support: sqrt(k_h / M_h) / 2 pi = 503 Hz
+    assert abs(np.argmax(spectrum[1:]) + 1 - math.sqrt(4e7 / 4.0) / (2 * math.pi)) <= 2.0
+
+
+UNLOADED = """
+name = "unloaded"
+seed = 6
+bearings = ["6205"]
+[operating]
+rpm = 1797
+load_n = 0
+clearance_m = 10e-6
+[model]
+scene = "shaft+housing"
+ehl = false
+shaft_damping_ratio = 0.03
+housing_damping_ratio = 0.05
+[sensor]
+fs_hz = 12000
+duration_s = 0.2
+background_db = 10
+modes = 2
+mode_hz = { min = 1000, max = 4000 }
+[[conditions]]
+label = "healthy"
+count = 1
+"""
+
+
+def test_a_recipe_at_zero_load_generates_with_its_structure():
+    import tomllib
+
+    from generators.cases import expand_cases
+    from generators.recipe import validate_recipe
+    from generators.synthesis import generate_cases
+
+    recipe = validate_recipe(tomllib.loads(UNLOADED))
+    (row,) = generate_cases(recipe, expand_cases(recipe))
+    assert row["error"] is None and np.all(np.isfinite(row["signal"]))
+    assert np.std(row["signal"]) > 0.0
