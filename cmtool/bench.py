@@ -612,7 +612,7 @@ def plot_pd_vs_snr(table: pd.DataFrame, path: Path, *, pfa: float = 1e-2, title:
             ax.fill_between(
                 part["snr_db"], part["ci_low"], part["ci_high"], color=line.get_color(), alpha=0.1
             )
-        ax.set_xlabel("fault SNR where the impacts ring [dB]")
+        ax.set_xlabel("fault SNR where the fault stands out most [dB]")
         ax.set_ylim(-0.02, 1.02)
         ax.grid(alpha=0.3)
         ax.set_title("every fault" if fault == "all" else fault)

@@ -213,7 +213,7 @@ def make_classifier(name: str = "random_forest", *, random_state: int = 0, **ext
 #: Default feature set of :func:`train` and ``cmtool train``: the one that carried over best
 #: between simulated rigs (``benchmarks/cross_domain.py``; features.FEATURE_SETS).
 DEFAULT_FEATURE_SET = "evidence+scale-free"
-#: Faulty training signals whose fault SNR (where their impacts ring) is below this are left
+#: Faulty training signals whose fault SNR (where the fault stands out) is below this are left
 #: out by default [dB]: nothing in them can show the fault their label names.
 MIN_FAULT_SNR_DB = -10.0
 

@@ -427,7 +427,7 @@ def _finish_realistic(
         signature = at_sensor - healthy_at_sensor
         gain = 1.0
         if not math.isnan(case.fault_snr_db) and np.any(signature):
-            # the fault's visibility where its impacts ring: the band SNR is the label. How
+            # the fault's visibility where it stands out most: the band SNR is the label. How
             # loud a pit of a given size is on a machine is not known, so the signature is
             # scaled to the drawn SNR, by at most MAX_FAULT_GAIN: a pit the balls barely
             # touch (outside the load zone) stays as faint as the model makes it, and the
