@@ -43,6 +43,7 @@ __all__ = [
     "machine_background",
     "band_power",
     "fault_band",
+    "fault_band_powers",
 ]
 
 
@@ -496,7 +497,17 @@ def band_power(x: np.ndarray, fs: float, band: tuple[float, float]) -> float:
     float
         Power in the band, in the unit of ``x`` squared.
     """
-    f, psd = _welch(x, fs, min(512, len(x)))
+    f, psd = _psd(x, fs)
+    return _band_sum(f, psd, band)
+
+
+def _psd(x: np.ndarray, fs: float) -> tuple[np.ndarray, np.ndarray]:
+    """The Welch PSD that :func:`band_power` and :func:`fault_band` read (512-sample segments)."""
+    return _welch(x, fs, min(512, len(x)))
+
+
+def _band_sum(f: np.ndarray, psd: np.ndarray, band: tuple[float, float]) -> float:
+    """A PSD integrated over ``band`` [Hz] (the bins inside it, edges included)."""
     keep = (f >= band[0]) & (f <= band[1])
     return float(np.sum(psd[keep]) * (f[1] - f[0]))
 
@@ -527,13 +538,45 @@ def fault_band(
     (float, float)
         Band edges [Hz].
     """
-    nperseg = min(512, len(signature))
-    f, psd = _welch(signature, fs, nperseg)
+    f, psd = _psd(signature, fs)
+    return _octave(f, psd, fs, None if rest is None else _psd(rest, fs)[1])
+
+
+def fault_band_powers(
+    signature: np.ndarray, rest: np.ndarray, fs: float
+) -> tuple[tuple[float, float], float, float]:
+    """:func:`fault_band` with ``rest``, and the two powers in that band (:func:`band_power`).
+
+    The same figures as the three calls, each record's Welch PSD computed once.
+
+    Parameters
+    ----------
+    signature : ndarray
+        The fault's own contribution to the signal.
+    rest : ndarray
+        Everything else, as long as ``signature``, in its unit.
+    fs : float
+        Sample rate [Hz].
+
+    Returns
+    -------
+    ((float, float), float, float)
+        Band edges [Hz], the signature's and the rest's power in the band [unit^2].
+    """
+    f, psd = _psd(signature, fs)
+    _, rest_psd = _psd(rest, fs)
+    band = _octave(f, psd, fs, rest_psd)
+    return band, _band_sum(f, psd, band), _band_sum(f, rest_psd, band)
+
+
+def _octave(
+    f: np.ndarray, psd: np.ndarray, fs: float, rest_psd: np.ndarray | None
+) -> tuple[float, float]:
+    """:func:`fault_band`'s octave from the signature's PSD (and the rest's, when given)."""
     usable = (f > 0.02 * fs) & (f < 0.45 * fs)
-    if rest is None:
+    if rest_psd is None:
         centre = float(f[usable][np.argmax(psd[usable])])
     else:
-        _, rest_psd = _welch(rest, fs, nperseg)
         centres = f[usable]
         low = np.maximum(centres / math.sqrt(2.0), 0.01 * fs)
         high = np.minimum(centres * math.sqrt(2.0), 0.45 * fs)

@@ -28,9 +28,8 @@ from .measurement import (
     StructuralMode,
     SupportStructure,
     anti_alias_filter,
-    band_power,
     digitise,
-    fault_band,
+    fault_band_powers,
     machine_background,
     sensor_response,
     transfer_path,
@@ -432,10 +431,9 @@ def _finish_realistic(
             # scaled to the drawn SNR, by at most MAX_FAULT_GAIN: a pit the balls barely
             # touch (outside the load zone) stays as faint as the model makes it, and the
             # SNR recorded is the one reached.
-            band = fault_band(signature, fs, rest=y)
+            band, own, rest = fault_band_powers(signature, y, fs)
             meta["fault_band_low_hz"], meta["fault_band_high_hz"] = band
-            rest = band_power(y, fs, band)
-            own = max(band_power(signature, fs, band), 1e-300)
+            own = max(own, 1e-300)
             wanted = rest * 10.0 ** (case.fault_snr_db / 10.0)
             gain = min(math.sqrt(wanted / own), MAX_FAULT_GAIN)
             meta["fault_snr_db"] = 10.0 * math.log10(max(gain * gain * own, 1e-300) / rest)

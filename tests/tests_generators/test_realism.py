@@ -24,6 +24,7 @@ from generators.measurement import (
     band_power,
     digitise,
     fault_band,
+    fault_band_powers,
     machine_background,
     sensor_response,
     transfer_path,
@@ -234,6 +235,12 @@ def test_fault_band_is_where_the_fault_stands_out_most_over_the_rest():
         return band_power(signature, fs, b) / band_power(rest, fs, b)
 
     assert ratio(band) > 10.0 * ratio(peak_band)
+    # the chain's single pass over both records gives the same band and powers
+    assert fault_band_powers(signature, rest, fs) == (
+        band,
+        band_power(signature, fs, band),
+        band_power(rest, fs, band),
+    )
 
 
 BALL_PITS = """
