@@ -142,6 +142,15 @@ def extra_trees_score(train_x, train_y, test_x, test_y, seeds: int = 3):
     return float(np.mean(accuracy)), np.mean(recall, axis=0), accuracy
 
 
+def print_cell(title, train_x, train_y, test_x, test_y):
+    """:func:`extra_trees_score` of one train -> test cell, printed as ``title: score (recall
+    per class)``; returns (mean balanced accuracy, mean recall per ``LABELS`` class)."""
+    score, recall, _ = extra_trees_score(train_x, train_y, test_x, test_y)
+    per_class = ", ".join(f"{k} {r:.2f}" for k, r in zip(LABELS, recall, strict=True))
+    print(f"{title}: {score:.3f} (recall {per_class})", flush=True)
+    return score, recall
+
+
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("datasets", nargs="+", help="dataset folders of different rig recipes")

@@ -20,7 +20,7 @@ import numpy as np
 from cmtool.datasets import read_dataset
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from cross_domain import CACHE, LABELS, extra_trees_score  # noqa: E402
+from cross_domain import CACHE, LABELS, print_cell  # noqa: E402
 from randomisation_check import DIRECTIONS, _table  # noqa: E402
 
 THRESHOLDS = (-15.0, -10.0, -5.0, 0.0)
@@ -40,16 +40,15 @@ def main(folder: Path, variant: str) -> None:
         for train, test in DIRECTIONS:
             fit = ~(snr[train] < threshold)  # NaN (healthy) kept
             scored = ~(snr[test] < SCORED_FROM_DB)
-            accuracy, recall, _ = extra_trees_score(
-                tables[train][fit], labels[train][fit], tables[test][scored], labels[test][scored]
+            accuracy, recall = print_cell(
+                f"  >= {threshold:g} dB ({int(fit.sum())} training signals), {train} -> {test}",
+                tables[train][fit],
+                labels[train][fit],
+                tables[test][scored],
+                labels[test][scored],
             )
             means.append(accuracy)
             worst_healthy = min(worst_healthy, float(recall[LABELS.index("healthy")]))
-            print(
-                f"  >= {threshold:g} dB, {train} -> {test}: {accuracy:.3f} (recall "
-                + ", ".join(f"{k} {v:.2f}" for k, v in zip(LABELS, recall, strict=True))
-                + f"; trained on {int(fit.sum())})"
-            )
         print(
             f"training faults >= {threshold:g} dB: mean {np.mean(means):.3f}, "
             f"least healthy recall {worst_healthy:.2f}"

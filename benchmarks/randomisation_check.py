@@ -33,10 +33,9 @@ from features import FeatureExtractor
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from cross_domain import (  # noqa: E402
     CACHE,
-    LABELS,
     MIN_FAULT_SNR_DB,
     _digest,
-    extra_trees_score,
+    print_cell,
 )
 
 DIRECTIONS = (("cwru-rig", "mfpt-rig"), ("mfpt-rig", "cwru777"), ("cwru-rig", "cwru777"))
@@ -67,20 +66,14 @@ def main(folder: Path, base: str, drawn: str) -> None:
             means = []
             for train_rig, test_rig in DIRECTIONS:
                 train, test = f"{train_rig}-{train_variant}", f"{test_rig}-{test_variant}"
-                score, recall, _ = extra_trees_score(
+                score, _ = print_cell(
+                    f"{train} -> {test}",
                     tables[train][keep[train]],
                     frames[train]["label"].to_numpy()[keep[train]],
                     tables[test][keep[test]],
                     frames[test]["label"].to_numpy()[keep[test]],
                 )
                 means.append(score)
-                per_class = zip(LABELS, recall, strict=True)
-                print(
-                    f"{train} -> {test}: {score:.3f} (recall "
-                    + ", ".join(f"{k} {r:.2f}" for k, r in per_class)
-                    + ")",
-                    flush=True,
-                )
             print(f"trained {train_variant}, tested {test_variant}: mean {np.mean(means):.3f}\n")
 
 

@@ -289,7 +289,7 @@ def cage_feature(cwru: str, mfpt: str, cwru777: str) -> None:
     from features import FeatureExtractor
 
     sys.path.insert(0, str(Path(__file__).resolve().parent))
-    from cross_domain import LABELS, extra_trees_score
+    from cross_domain import print_cell
 
     frames, plain, extra, keep = {}, {}, {}, {}
     for path in (cwru, mfpt, cwru777):
@@ -305,19 +305,14 @@ def cage_feature(cwru: str, mfpt: str, cwru777: str) -> None:
     for tag, tables in (("shipped", plain), ("with the FTF line", extra)):
         means = []
         for train, test in ((cwru, mfpt), (mfpt, cwru777), (cwru, cwru777)):
-            score, recall, _ = extra_trees_score(
+            score, _ = print_cell(
+                f"{tag}, {train} -> {test}",
                 tables[train][keep[train]],
                 frames[train]["label"].to_numpy()[keep[train]],
                 tables[test][keep[test]],
                 frames[test]["label"].to_numpy()[keep[test]],
             )
             means.append(score)
-            per_class = zip(LABELS, recall, strict=True)
-            print(
-                f"{tag}, {train} -> {test}: {score:.3f} (recall "
-                + ", ".join(f"{k} {r:.2f}" for k, r in per_class)
-                + ")"
-            )
         print(f"{tag}: mean {np.mean(means):.3f}")
 
 
