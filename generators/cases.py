@@ -281,12 +281,10 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                 load_angle = math.radians(_draw(op["load_angle_deg"], rng, k))
                 if kind == "localized" and cond["surface"] == "outer":
                     position += load_angle + math.pi / 2  # the recipe's angle is from the load
-            rig = {  # the rig's masses, support and film damping: drawn last as well
+            rig = {  # the rig's masses, support, film damping, damping ratios: drawn last too
                 key: _draw(r["model"][key], rng, k) if key in r["model"] else math.nan
-                for key in RIG_KEYS
+                for key in (*RIG_KEYS, *DAMPING_RATIO_KEYS)
             }
-            for key in DAMPING_RATIO_KEYS:  # the dashpots as damping ratios: drawn last
-                rig[key] = _draw(r["model"][key], rng, k) if key in r["model"] else math.nan
             yield Case(
                 index=index,
                 label=cond["label"],
