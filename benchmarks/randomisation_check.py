@@ -14,7 +14,9 @@ Stop 40's two checks (docs/realism.md 5): the load's direction from the sensor
 { min = 1, max = 5 }``, ``housing_mass_kg = { min = 1, max = 20 }``, ``pedestal_stiffness_n_m
 = { min = 2e7, max = 2e8 }``). Stop 41's: the dashpots as damping ratios (``zeta``: ``str``
 plus ``housing_damping_ratio = { min = 0.02, max = 0.08 }`` and ``shaft_damping_ratio = { min
-= 0.02, max = 0.05 }`` under ``[model]``, as the recipes now draw them).
+= 0.02, max = 0.05 }`` under ``[model]``, as the recipes now draw them). Stop 42's: the
+rotor's broadband excitation (``b3``: the recipes as stop 41 left them; ``b5``: ``b3`` plus
+``rotor_force_db = { min = -10, max = 10 }`` under ``[background]``, as they now draw it).
 
 Run: .venv/bin/python benchmarks/randomisation_check.py FOLDER [BASE DRAWN] (default: ehl
 ang), FOLDER holding cwru-rig-V, mfpt-rig-V and cwru777-V for both variants V, each from

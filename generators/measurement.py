@@ -106,18 +106,25 @@ class SupportStructure:
         for name in ("shaft_damping", "pedestal_damping"):
             check_real(name, getattr(self, name), low=0.0, high=1e9, unit="N s/m")
 
-    def response(self, force: np.ndarray, fs: float) -> np.ndarray:
-        """Housing acceleration for a force on the housing, times M_h.
+    def response(
+        self, force: np.ndarray, fs: float, shaft_force: np.ndarray | None = None
+    ) -> np.ndarray:
+        """Housing acceleration for a force on the housing (and one on the shaft), times M_h.
 
-        Unit gain above the modes, where the housing moves as a free mass; a circular FFT
-        filter, for stationary noise.
+        A force on the housing passes with unit gain above the modes, where the housing moves
+        as a free mass, and not at all at the shaft-on-bearing frequency sqrt(k_r / M_s), where
+        the shaft absorbs it (an antiresonance). A force on the shaft (the rotor's own
+        excitation) reaches the housing through the bearing, as the bearing's own forces do,
+        with a resonance there. A circular FFT filter, for stationary noise.
 
         Parameters
         ----------
         force : ndarray
-            Force record [any unit], sampled at ``fs`` [Hz].
+            Force on the housing [any unit], sampled at ``fs`` [Hz].
         fs : float
             Sample rate [Hz].
+        shaft_force : ndarray, optional
+            Force on the shaft, same length and unit as ``force``.
 
         Returns
         -------
@@ -132,7 +139,12 @@ class SupportStructure:
         det = shaft * (mh * s**2 + self.pedestal_damping * s + kh + kr) - kr * kr
         gain = np.zeros_like(s)
         gain[1:] = mh * s[1:] ** 2 * shaft[1:] / det[1:]  # no acceleration at 0 Hz
-        return np.fft.irfft(np.fft.rfft(force) * gain, n)
+        spectrum = np.fft.rfft(force) * gain
+        if shaft_force is not None:
+            through = np.zeros_like(s)
+            through[1:] = mh * s[1:] ** 2 * kr / det[1:]
+            spectrum += np.fft.rfft(shaft_force) * through
+        return np.fft.irfft(spectrum, n)
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -158,6 +170,10 @@ class MachineBackground:
         bearing's varying-compliance lines.
     floor_rms : float
         RMS of the sensor's and the electronics' white noise floor.
+    rotor_force_ratio : float
+        The broadband excitation's white force on the shaft over the one on the housing
+        (amplitude ratio; 0: the housing's only). Used with a ``support`` structure in
+        :func:`machine_background`; without one both forces are white and add.
     """
 
     broadband_rms: float = 0.0
@@ -166,10 +182,12 @@ class MachineBackground:
     line_harmonics: tuple[float, ...] = ()
     other_lines: tuple[tuple[float, float], ...] = ()
     floor_rms: float = 0.0
+    rotor_force_ratio: float = 0.0
 
     def __post_init__(self) -> None:
         check_real("broadband_rms", self.broadband_rms, low=0.0, high=1e12)
         check_real("floor_rms", self.floor_rms, low=0.0, high=1e12)
+        check_real("rotor_force_ratio", self.rotor_force_ratio, low=0.0, high=1e6)
         check_real("line_frequency", self.line_frequency, low=1.0, high=1e4, unit="Hz")
         for name, values in (
             ("shaft_harmonics", self.shaft_harmonics),
@@ -426,8 +444,9 @@ def machine_background(
     rng : numpy.random.Generator
         Source of phases and noise.
     support : SupportStructure, optional
-        The bearing's own structure: the broadband excitation, a force on the housing, goes
-        through it before the modes, as the bearing's own vibration does.
+        The bearing's own structure: the broadband excitation, a force on the housing and
+        (``background.rotor_force_ratio``) one on the shaft, goes through it before the
+        modes, as the bearing's own vibration does.
 
     Returns
     -------
@@ -454,8 +473,12 @@ def machine_background(
             add_line(y, np.cos(a), np.sin(a), np.cos(b), np.sin(b), amplitude)
     if background.broadband_rms > 0.0:
         force = rng.standard_normal(n)
+        ratio = background.rotor_force_ratio
+        rotor = rng.standard_normal(n) * ratio if ratio > 0.0 else None
         if support is not None:
-            force = support.response(force, fs)
+            force = support.response(force, fs, rotor)
+        elif rotor is not None:
+            force = force + rotor
         noise = transfer_path(force, fs, modes)
         y += noise * (background.broadband_rms / max(float(np.std(noise)), 1e-300))
     if background.floor_rms > 0.0:

@@ -361,6 +361,14 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
     ),
     Key("background.floor_db", "values", -80.0, 80.0, "dB", doc="white floor"),
     Key(
+        "background.rotor_force_db",
+        "values",
+        -80.0,
+        80.0,
+        "dB",
+        doc="broadband force on the rotor over the housing's (default: none)",
+    ),
+    Key(
         "conditions.label",
         "text",
         required=True,

@@ -395,13 +395,18 @@ def _finish_realistic(
     if "other_bearing" in background and other > 0.0:
         f = characteristic_frequencies(bearing(background["other_bearing"]), case.rpm / 60.0)
         other_lines = ((f.bpfo, other), (2.0 * f.bpfo, other / 2.0), (f.bpfi, other / 2.0))
+    floor = level("floor_db", None)
+    # the rotor's own broadband excitation (electromagnetic pull, coupling, the other
+    # bearing) over the frame's, drawn last so that recipes without it keep their draws
+    rotor_db = _pick(background.get("rotor_force_db"), rng, None)
     machine = MachineBackground(
         broadband_rms=reference * 10.0 ** (case.background_db / 20.0),
         shaft_harmonics=shaft,
         line_frequency=line_hz,
         line_harmonics=(line_2x / 2.0, line_2x),
         other_lines=other_lines,
-        floor_rms=level("floor_db", None),
+        floor_rms=floor,
+        rotor_force_ratio=0.0 if rotor_db is None else 10.0 ** (rotor_db / 20.0),
     )
     rig, geometry = job.run.rig, job.run.geometry
     support = SupportStructure(
@@ -421,6 +426,8 @@ def _finish_realistic(
         "other_lines": [list(pair) for pair in other_lines],
         "floor_rms": machine.floor_rms,
     }
+    if rotor_db is not None:
+        chain["rotor_force_db"] = rotor_db
     y = healthy_at_sensor + noise
     if healthy is not x:
         signature = at_sensor - healthy_at_sensor

@@ -663,6 +663,54 @@ def test_the_support_structure_moves_the_housing_as_a_two_mass_model():
     assert band_power(through, fs, octave) > 5 * band_power(plain, fs, octave)
 
 
+def test_a_force_on_the_rotor_fills_the_housing_antiresonance_at_the_shaft_mode():
+    """A force on the housing is absorbed by the shaft at sqrt(k_r / M_s) (the housing's
+    antiresonance: the numerator M_s s^2 + c_s s + k_r), where the bearing's own forces ring;
+    a force on the shaft reaches the housing there with a resonance, M_h w^2 k_r / |det|, and
+    falls as k_r / (M_s w^2) far above the modes. ``MachineBackground.rotor_force_ratio``
+    adds it (0: the housing's force alone, the same draws as before)."""
+    ms, mh, kr, kh = 2.0, 10.0, 8e7, 5e7
+    cs, ch = 200.0, 300.0
+    support = SupportStructure(
+        shaft_mass=ms,
+        housing_mass=mh,
+        bearing_stiffness=kr,
+        pedestal_stiffness=kh,
+        shaft_damping=cs,
+        pedestal_damping=ch,
+    )
+    fs, n = 48000.0, 48000
+    zero = np.zeros(n)
+    impulse = np.r_[1.0, np.zeros(n - 1)]
+    housing = np.abs(np.fft.rfft(support.response(impulse, fs)))  # 1 Hz bins
+    shaft = np.abs(np.fft.rfft(support.response(zero, fs, impulse)))
+    f_shaft = round(math.sqrt(kr / ms) / (2 * math.pi))  # 1007 Hz
+    w = 2 * np.pi * f_shaft
+    s = 1j * w
+    det = (ms * s**2 + cs * s + kr) * (mh * s**2 + ch * s + kh + kr) - kr * kr
+    assert shaft[f_shaft] == pytest.approx(mh * w**2 * kr / abs(det), rel=1e-6)
+    assert housing[f_shaft] < 0.03 * shaft[f_shaft]  # the antiresonance the rotor fills
+    w_high = 2 * np.pi * 20000
+    assert shaft[20000] == pytest.approx(kr / (ms * w_high**2), rel=0.02)
+    # the two forces add linearly
+    both = support.response(impulse, fs, impulse)
+    assert np.allclose(both, support.response(impulse, fs) + support.response(zero, fs, impulse))
+    # in the machine's background: the octave round the shaft mode filled, 0 the same as none
+    octave = (f_shaft / math.sqrt(2), f_shaft * math.sqrt(2))
+    noise = {}
+    for ratio in (0.0, 3.0):
+        background = MachineBackground(broadband_rms=1.0, rotor_force_ratio=ratio)
+        rng = np.random.default_rng(4)
+        noise[ratio] = machine_background(n, fs, 30.0, background, (), rng, support)
+    old = machine_background(
+        n, fs, 30.0, MachineBackground(broadband_rms=1.0), (), np.random.default_rng(4), support
+    )
+    assert np.array_equal(noise[0.0], old)
+    assert band_power(noise[3.0], fs, octave) > 3 * band_power(noise[0.0], fs, octave)
+    with pytest.raises(ParameterError, match="rotor_force_ratio"):
+        MachineBackground(rotor_force_ratio=-1.0)
+
+
 def test_an_unloaded_bearing_keeps_a_support_structure_and_a_shaft_damping():
     """A recipe's load may be 0 N: a bearing with clearance is then loaded by the shaft's
     weight alone (the model applies it), and that is the stiffness the damping ratio and the
