@@ -35,6 +35,11 @@ Modes:
     ``comb``, FTF, 2 and 3 x FTF as a third test of their own, the ball's probability three
     times the least of the fundamental's, the family's and the comb's (Bonferroni).
 
+``band-floor DATASET [DATASET ...]``
+    As ``ball-odd``, with every candidate band raised to start at 3 x the fastest fault rate,
+    the highest envelope line weighed (``select_band(..., min_frequency=...)``), against the
+    shipped tree whose bands may start at 0 Hz (docs/diagnosis.md, "Bands from 0 Hz").
+
 ``cage-feature CWRU MFPT CWRU777``
     The FTF line of the envelope over its floor (in the chosen band) as a model feature added
     to ``evidence+scale-free``: extra trees (``cmtool train``'s model for the rig recipes, three
@@ -244,6 +249,19 @@ def _with_odd_ball_lines(x, fs, fault_frequencies):
     return result
 
 
+def _floored_select_band(x, fs, rates, **options):
+    return separation.select_band(x, fs, rates, min_frequency=3.0 * max(rates.values()), **options)
+
+
+def _with_band_floor(x, fs, fault_frequencies, floor: bool):
+    """The shipped evidence, its bands starting at 3 x the fastest rate (``floor``) or not.
+
+    Each variant sets the module's ``select_band`` the same way in every thread (the variants
+    run one after the other)."""
+    evidence.select_band = _floored_select_band if floor else separation.select_band
+    return _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
+
+
 def _with_cage_lines(x, fs, fault_frequencies, comb_as_test: bool):
     """The shipped evidence, with the envelope's cage-rate lines weighed for the ball."""
     from scipy.stats import chi2
@@ -326,6 +344,15 @@ if __name__ == "__main__":
         entry_jitter()
     elif mode == "ball-odd" and len(sys.argv) > 2:
         ball_odd(sys.argv[2:])
+    elif mode == "band-floor" and len(sys.argv) > 2:
+        ball_odd(
+            sys.argv[2:],
+            {
+                "shipped": lambda x, fs, f: _with_band_floor(x, fs, f, False),
+                "from 3 x the fastest rate": lambda x, fs, f: _with_band_floor(x, fs, f, True),
+            },
+        )
+        evidence.select_band = separation.select_band
     elif mode == "cage-feature" and len(sys.argv) == 5:
         cage_feature(*sys.argv[2:])
     elif mode == "ball-cage" and len(sys.argv) > 2:

@@ -323,10 +323,13 @@ def candidate_bands(
     min_bandwidth: float,
     nlevel: int = 6,
     max_frequency: float | None = None,
+    min_frequency: float = 0.0,
 ) -> list[tuple[float, float]]:
     """The bands of the kurtogram's 1/3-binary tree that are at least ``min_bandwidth`` wide.
 
-    Bands reaching above ``max_frequency`` are cut there (and dropped when then too narrow).
+    Bands reaching above ``max_frequency`` are cut there, bands starting below
+    ``min_frequency`` start there (and either is dropped when then too narrow); when no band
+    is left above ``min_frequency``, the tree without it.
 
     Parameters
     ----------
@@ -342,6 +345,8 @@ def candidate_bands(
         Highest frequency analysed [Hz]; default ``fs / ANALYSER_RATIO``, the alias-free
         span of an analyser (what lies above has been through the anti-alias filter's
         transition band).
+    min_frequency : float
+        Lowest frequency a band may hold [Hz] (default 0).
 
     Returns
     -------
@@ -350,6 +355,11 @@ def candidate_bands(
     """
     fs = check_fs(fs)
     top = fs / ANALYSER_RATIO if max_frequency is None else float(max_frequency)
+    min_frequency = float(min_frequency)
+    if not 0.0 <= min_frequency < top:
+        raise FeatureError(
+            f"min_frequency = {min_frequency!r} Hz is outside the allowed range [0, {top:g}) Hz"
+        )
     splits = [1]
     for k in range(1, int(nlevel) + 1):
         splits += [2**k, 3 * 2 ** (k - 1)]
@@ -359,9 +369,13 @@ def candidate_bands(
         if bw < min_bandwidth or bw * n / fs < 64:
             continue
         for b in range(nb):
-            low, high = b * bw, min((b + 1) * bw, top)
+            low, high = max(b * bw, min_frequency), min((b + 1) * bw, top)
             if high - low >= min_bandwidth and (low, high) not in out:
                 out.append((low, high))
+    if not out and min_frequency > 0.0:
+        return candidate_bands(
+            fs, n, min_bandwidth=min_bandwidth, nlevel=nlevel, max_frequency=max_frequency
+        )
     if not out:
         out = [(0.0, top)]
     return out
@@ -593,6 +607,7 @@ def select_band(
     *,
     min_bandwidth: float | None = None,
     nlevel: int = 6,
+    min_frequency: float = 0.0,
 ) -> BandSelection:
     """The demodulation band where the envelope shows one of ``rates`` most clearly.
 
@@ -609,6 +624,10 @@ def select_band(
         and a margin), at most fs / 4.
     nlevel : int
         Depth of the band tree.
+    min_frequency : float
+        Lowest frequency a band may hold [Hz]: bands starting below start there (default 0,
+        the whole tree; 3 x the fastest rate, the highest envelope line weighed, was measured
+        and not made the default: docs/diagnosis.md, "Bands from 0 Hz").
 
     Returns
     -------
@@ -623,7 +642,9 @@ def select_band(
     values = np.array([check_positive(f"rates[{k!r}]", rates[k], unit="Hz") for k in names])
     if min_bandwidth is None:
         min_bandwidth = min(3.0 * float(values.max()), fs / 4)
-    bands = candidate_bands(fs, x.size, min_bandwidth=min_bandwidth, nlevel=nlevel)
+    bands = candidate_bands(
+        fs, x.size, min_bandwidth=min_bandwidth, nlevel=nlevel, min_frequency=min_frequency
+    )
     n = x.size
     spec = np.fft.fft((x - x.mean()) * _windows.tukey(n, 0.05))
     df = fs / n

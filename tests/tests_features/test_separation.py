@@ -145,6 +145,22 @@ def test_candidate_bands_respect_width_and_the_analyser_span():
     assert len(set(bands)) == len(bands)
 
 
+def test_candidate_bands_can_start_above_a_lowest_frequency():
+    """``min_frequency`` raises every band's lower edge (the widest band then starts there),
+    drops the bands left too narrow, keeps the rest of the tree as it was, and refuses a
+    negative value naming it; 0 is the tree unchanged."""
+    tree = candidate_bands(FS, 12000, min_bandwidth=500.0)
+    raised = candidate_bands(FS, 12000, min_bandwidth=500.0, min_frequency=600.0)
+    assert candidate_bands(FS, 12000, min_bandwidth=500.0, min_frequency=0.0) == tree
+    assert raised[0] == (600.0, pytest.approx(FS / 2.56))
+    assert all(low >= 600.0 and high - low >= 500.0 for low, high in raised)
+    expected = {(max(lo, 600.0), hi) for lo, hi in tree if hi - max(lo, 600.0) >= 500.0}
+    assert set(raised) == expected
+    assert (0.0, 750.0) in tree and all(high > 1100.0 for _, high in raised)
+    with pytest.raises(features.FeatureError, match=r"min_frequency = -1\.0 Hz"):
+        candidate_bands(FS, 12000, min_bandwidth=500.0, min_frequency=-1.0)
+
+
 def test_library_envelope_band_is_the_diagnose_band(rng):
     from cmtool.diagnose import diagnose_signal
     from generators import bearing, characteristic_frequencies
