@@ -778,3 +778,27 @@ def test_a_recipe_at_zero_load_generates_with_its_structure():
     (row,) = generate_cases(recipe, expand_cases(recipe))
     assert row["error"] is None and np.all(np.isfinite(row["signal"]))
     assert np.std(row["signal"]) > 0.0
+
+
+def test_a_recipe_draws_the_rotor_force_into_its_chain_and_without_it_keeps_its_draws():
+    """``[background] rotor_force_db`` is drawn last of the chain's background (its value in
+    the ``chain`` JSON, within the range); the same recipe without the key draws every other
+    value of the chain as before and its record differs only by the rotor's noise."""
+    import json
+    import tomllib
+
+    from generators.cases import expand_cases
+    from generators.recipe import validate_recipe
+    from generators.synthesis import generate_cases
+
+    text = UNLOADED.replace("load_n = 0", "load_n = 300")
+    text += "\n[background]\nfloor_db = { min = -20, max = 0 }\n"
+    plain = validate_recipe(tomllib.loads(text))
+    drawn = validate_recipe(tomllib.loads(text + "rotor_force_db = { min = -10, max = 10 }\n"))
+    (without,) = generate_cases(plain, expand_cases(plain))
+    (with_rotor,) = generate_cases(drawn, expand_cases(drawn))
+    chain_without, chain_with = json.loads(without["chain"]), json.loads(with_rotor["chain"])
+    assert "rotor_force_db" not in chain_without
+    assert -10.0 <= chain_with.pop("rotor_force_db") <= 10.0
+    assert chain_with == chain_without
+    assert not np.array_equal(without["signal"], with_rotor["signal"])
