@@ -14,7 +14,7 @@ literature and the rigs' published descriptions:
 * :func:`digitise`: quantisation to a number of bits over a full scale, clipping beyond it;
 * :func:`machine_background`: shaft harmonics (unbalance, misalignment), electrical lines at
   the line frequency and its harmonics, another bearing's lines and coloured broadband noise
-  (white noise through the same structure).
+  (white forces on the housing and the rotor through the same structure).
 
 All functions take plain arrays in the signal's own unit (m/s^2 for acceleration) and SI
 frequencies; the parameter objects validate their inputs.
@@ -76,8 +76,9 @@ class SupportStructure:
     """The bearing's own structure, linearised: shaft on bearing, housing on support.
 
     The two-mass model of ``generators.Rig`` (docs/model.md 1). A force on the housing (the
-    rest of the machine's broadband excitation reaching the bearing through its frame) moves
-    the housing as the bearing's own forces do, through the same modes: :meth:`response`.
+    rest of the machine's broadband excitation reaching the bearing through its frame) and one
+    on the shaft (the rotor's own excitation) move the housing through the same modes as the
+    bearing's own forces do: :meth:`response`.
 
     Attributes
     ----------
