@@ -142,6 +142,11 @@ class SupportStructure:
         gain[1:] = mh * s[1:] ** 2 * shaft[1:] / det[1:]  # no acceleration at 0 Hz
         spectrum = np.fft.rfft(force) * gain
         if shaft_force is not None:
+            if np.shape(shaft_force) != np.shape(force):
+                raise ParameterError(
+                    f"shaft_force has shape {np.shape(shaft_force)}: expected the force's, "
+                    f"{np.shape(force)}"
+                )
             through = np.zeros_like(s)
             through[1:] = mh * s[1:] ** 2 * kr / det[1:]
             spectrum += np.fft.rfft(shaft_force) * through

@@ -709,6 +709,8 @@ def test_a_force_on_the_rotor_fills_the_housing_antiresonance_at_the_shaft_mode(
     assert band_power(noise[3.0], fs, octave) > 3 * band_power(noise[0.0], fs, octave)
     with pytest.raises(ParameterError, match="rotor_force_ratio"):
         MachineBackground(rotor_force_ratio=-1.0)
+    with pytest.raises(ParameterError, match="shaft_force has shape"):
+        support.response(impulse, fs, impulse[:-1])
 
 
 def test_an_unloaded_bearing_keeps_a_support_structure_and_a_shaft_damping():
