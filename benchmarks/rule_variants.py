@@ -40,6 +40,12 @@ Modes:
     the highest envelope line weighed (``select_band(..., min_frequency=...)``), against the
     shipped tree whose bands may start at 0 Hz (docs/diagnosis.md, "Bands from 0 Hz").
 
+``sideband-cap DATASET [DATASET ...]``
+    As ``ball-odd``, with each first sideband weighed at most at its fundamental's ratio: the
+    squared envelope is the fault's train times a non-negative modulation (load zone, shaft,
+    cage), whose Fourier coefficients satisfy |M_1| <= M_0, so no sideband of a real fault
+    stands above its fundamental (docs/diagnosis.md, "A sideband above its line").
+
 ``cage-feature CWRU MFPT CWRU777``
     The FTF line of the envelope over its floor (in the chosen band) as a model feature added
     to ``evidence+scale-free``: extra trees (``cmtool train``'s model for the rig recipes, three
@@ -52,6 +58,7 @@ Run: .venv/bin/python benchmarks/rule_variants.py MODE [DATASET ...]
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -262,6 +269,29 @@ def _with_band_floor(x, fs, fault_frequencies, floor: bool):
     return _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
 
 
+def _with_capped_sidebands(x, fs, fault_frequencies):
+    """The shipped evidence, each first sideband counted at most at its fundamental's ratio."""
+    result = _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
+    families = {}
+    for fault, family in result.families.items():
+        fundamental = dict(family)["1x"][0]
+        families[fault] = [
+            (name, (min(r[0], fundamental), *r[1:]) if name in ("1x-", "1x+") else r)
+            for name, r in family
+        ]
+    searched = max(1, *(family[0][1][2] for family in result.families.values()))
+    floor = min(family[0][1][3] for family in result.families.values())
+    spacings = {
+        fault: float(fault_frequencies.get(evidence._SIDEBANDS.get(fault, ""), 0.0))
+        for fault in evidence.EVIDENCE_FAULTS
+    }
+    ef = result.envelope_frequencies
+    combined = evidence.explain_shared_lines(
+        families, len(result.selection.bands), searched, floor, float(ef[1] - ef[0]), spacings
+    )
+    return dataclasses.replace(result, combined=combined)
+
+
 def _with_cage_lines(x, fs, fault_frequencies, comb_as_test: bool):
     """The shipped evidence, with the envelope's cage-rate lines weighed for the ball."""
     from scipy.stats import chi2
@@ -353,6 +383,8 @@ if __name__ == "__main__":
             },
         )
         evidence.select_band = separation.select_band
+    elif mode == "sideband-cap" and len(sys.argv) > 2:
+        ball_odd(sys.argv[2:], {"shipped": _SHIPPED_EVIDENCE, "capped": _with_capped_sidebands})
     elif mode == "cage-feature" and len(sys.argv) == 5:
         cage_feature(*sys.argv[2:])
     elif mode == "ball-cage" and len(sys.argv) > 2:
