@@ -8,6 +8,7 @@ row: the case's columns, the signal and an error message where it could not be m
 from __future__ import annotations
 
 import dataclasses
+import functools
 import json
 import math
 from collections.abc import Iterable
@@ -287,10 +288,20 @@ def bearing_stiffness(geometry: BearingGeometry, radial_load: float, rig: Rig) -
     At ``radial_load`` [N]; where that leaves a bearing with clearance unloaded (no load),
     at the shaft's weight, which the model applies (``Rig.gravity``); 0 if neither loads it.
     """
-    k_r = static_load_distribution(geometry, radial_load).radial_stiffness
+    k_r = _radial_stiffness(geometry, radial_load)
     if k_r <= 0.0 and rig.gravity:
-        k_r = static_load_distribution(geometry, rig.shaft_mass * GRAVITY).radial_stiffness
+        k_r = _radial_stiffness(geometry, rig.shaft_mass * GRAVITY)
     return k_r
+
+
+@functools.lru_cache(maxsize=256)
+def _radial_stiffness(geometry: BearingGeometry, radial_load: float) -> float:
+    """``static_load_distribution``'s radial stiffness [N/m], solved once per bearing and load.
+
+    A case asks for it twice: its shaft dashpot (:func:`case_rig`) and its machine noise's
+    structure (``_finish_realistic``).
+    """
+    return static_load_distribution(geometry, radial_load).radial_stiffness
 
 
 def _untouched(prep: Prepared, settings: SimulationSettings) -> bool:
