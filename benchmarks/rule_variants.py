@@ -46,6 +46,11 @@ Modes:
     cage), whose Fourier coefficients satisfy |M_1| <= M_0, so no sideband of a real fault
     stands above its fundamental (docs/diagnosis.md, "A sideband above its line").
 
+``squared-envelope DATASET [DATASET ...]``
+    As ``ball-odd``, demodulating with the squared envelope |z|^2 (the squared envelope
+    spectrum of Randall and Antoni 2011) instead of its modulus |z|, in the band selection and
+    in the evidence, against the shipped modulus.
+
 ``cage-feature CWRU MFPT CWRU777``
     The FTF line of the envelope over its floor (in the chosen band) as a model feature added
     to ``evidence+scale-free``: extra trees (``cmtool train``'s model for the rig recipes, three
@@ -59,6 +64,7 @@ Run: .venv/bin/python benchmarks/rule_variants.py MODE [DATASET ...]
 from __future__ import annotations
 
 import dataclasses
+import math
 import sys
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -269,6 +275,36 @@ def _with_band_floor(x, fs, fault_frequencies, floor: bool):
     return _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
 
 
+_SHIPPED_BAND_SPECTRUM = separation._band_envelope_spectrum
+_SHIPPED_ENVELOPE = evidence.envelope
+
+
+def _squared_band_envelope_spectrum(spec, df, low, high):
+    """``separation._band_envelope_spectrum`` of the squared envelope |z|^2."""
+    i0, i1 = int(math.ceil(low / df)), int(math.floor(high / df))
+    m = i1 - i0 + 1
+    weights = separation._windows.tukey(m, 0.25) if m > 2 else np.ones(m)
+    z = np.fft.ifft(spec[i0 : i1 + 1] * weights)
+    env = np.abs(z) ** 2
+    env = env - env.mean()
+    amp = np.abs(np.fft.rfft(env * separation._windows.hanning(m)))
+    return np.arange(amp.size) * df, amp
+
+
+def _with_squared_envelope(x, fs, fault_frequencies, squared: bool):
+    """The shipped evidence with the squared envelope (``squared``) or its modulus.
+
+    Each variant sets the modules' functions the same way in every thread (the variants run
+    one after the other)."""
+    if squared:
+        separation._band_envelope_spectrum = _squared_band_envelope_spectrum
+        evidence.envelope = lambda y, f, **o: _SHIPPED_ENVELOPE(y, f, method="squared", **o)
+    else:
+        separation._band_envelope_spectrum = _SHIPPED_BAND_SPECTRUM
+        evidence.envelope = _SHIPPED_ENVELOPE
+    return _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
+
+
 def _with_capped_sidebands(x, fs, fault_frequencies):
     """The shipped evidence, each first sideband counted at most at its fundamental's ratio."""
     result = _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
@@ -385,6 +421,14 @@ if __name__ == "__main__":
         evidence.select_band = separation.select_band
     elif mode == "sideband-cap" and len(sys.argv) > 2:
         ball_odd(sys.argv[2:], {"shipped": _SHIPPED_EVIDENCE, "capped": _with_capped_sidebands})
+    elif mode == "squared-envelope" and len(sys.argv) > 2:
+        ball_odd(
+            sys.argv[2:],
+            {
+                "modulus |z| (shipped)": lambda x, fs, f: _with_squared_envelope(x, fs, f, False),
+                "squared |z|^2": lambda x, fs, f: _with_squared_envelope(x, fs, f, True),
+            },
+        )
     elif mode == "cage-feature" and len(sys.argv) == 5:
         cage_feature(*sys.argv[2:])
     elif mode == "ball-cage" and len(sys.argv) > 2:
