@@ -22,6 +22,7 @@ import hashlib
 import json
 import re
 import zipfile
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -46,6 +47,7 @@ from sklearn.pipeline import Pipeline, make_pipeline
 from sklearn.preprocessing import StandardScaler
 
 import features
+from generators import bearing
 
 from . import __version__
 from .io import atomic_write
@@ -238,9 +240,122 @@ def visible_faults(frame: pd.DataFrame, min_fault_snr_db: float | None) -> pd.Se
     return ~(frame["fault_snr_db"] < min_fault_snr_db)
 
 
-def _features(frame: pd.DataFrame, feature_set: str = "all") -> tuple[np.ndarray, list[str]]:
+#: Signals per progress report of :func:`train`'s long stage (per worker).
+PROGRESS_CHUNK = 32
+
+#: ``progress(stage, done, total)``: what :func:`train` reports after each chunk of signals.
+Progress = Callable[[str, int, int], None]
+
+
+def _chunks(total: int, workers: int) -> list[slice]:
+    """Consecutive slices of ``PROGRESS_CHUNK`` signals per worker covering ``range(total)``."""
+    size = PROGRESS_CHUNK * max(1, workers)
+    return [slice(start, min(start + size, total)) for start in range(0, total, size)]
+
+
+def _table_and_rule_chunk(
+    items, rule_rows, names, faults, n_harmonics
+) -> tuple[list, list[dict[str, float]]]:
+    """One chunk's feature rows and rule probabilities, each signal's evidence computed once.
+
+    ``items`` are the extractor's ``(signal, context)``, ``rule_rows`` the ``(fs, rpm,
+    bearing)`` the rule reads. The rows' ``fault_evidence`` is the rule's own when the
+    dataset's context holds exactly the rates the rule computes from the bearing and speed;
+    otherwise the rule computes its own (the result is the same either way).
+    """
+    from .diagnose import rule_candidates, rule_context, rule_probabilities
+
+    rows, found = features.transformer.feature_rows_with_evidence(items, faults, n_harmonics, names)
+    rules = []
+    for (signal, ctx), evidence, (fs, rpm, name) in zip(items, found, rule_rows, strict=True):
+        x = np.asarray(signal, dtype=float)
+        _, _, rates, _ = rule_context(x, fs, rpm, bearing(name))
+        same = evidence is not None and ctx.get("fs") == fs
+        if not (same and all(ctx.get(k) == v for k, v in rates.items())):
+            evidence = features.fault_evidence(x, fs, rates)
+        rules.append(rule_probabilities(rule_candidates(evidence, rates)))
+    return rows, rules
+
+
+def _table_and_rule(
+    frame: pd.DataFrame,
+    feature_set: str,
+    *,
+    workers: int = 1,
+    progress: Progress | None = None,
+) -> tuple[np.ndarray, list[str], list[dict[str, float]]]:
+    """The feature table of ``frame`` and the rule detector's probabilities of each signal.
+
+    In ``workers`` processes, chunk by chunk; the same for any ``workers`` and chunking as
+    the extractor's table and :func:`_rule_pass` one after the other.
+    """
     ext = features.FeatureExtractor(feature_set=feature_set).fit(frame)
-    return ext.transform(frame), list(ext.get_feature_names_out())
+    names = list(ext.get_feature_names_out())
+    items = list(ext._rows(frame))
+    rule_rows = list(zip(frame["fs_hz"], frame["rpm"], frame["bearing"], strict=True))
+    table: list = []
+    rule: list[dict[str, float]] = []
+    for part in _chunks(len(items), workers):
+        chunk, chunk_rule = items[part], rule_rows[part]
+        if workers > 1 and len(chunk) > 1:
+            from joblib import Parallel, delayed
+
+            done = Parallel(n_jobs=workers)(
+                delayed(_table_and_rule_chunk)(
+                    chunk[i::workers], chunk_rule[i::workers], names, ext.faults, ext.n_harmonics
+                )
+                for i in range(workers)
+            )
+            rows: list = [None] * len(chunk)
+            probabilities: list = [None] * len(chunk)
+            for i, (r, p) in enumerate(done):
+                rows[i::workers] = r
+                probabilities[i::workers] = p
+        else:
+            rows, probabilities = _table_and_rule_chunk(
+                chunk, chunk_rule, names, ext.faults, ext.n_harmonics
+            )
+        table.extend(rows)
+        rule.extend(probabilities)
+        if progress is not None:
+            progress("features and rule evidence", part.stop, len(items))
+    array = np.asarray(table, dtype=float).reshape(len(items), len(names))
+    return array, names, rule
+
+
+def _rule_probabilities(rows: list[tuple]) -> list[dict[str, float]]:
+    """The rule detector's verdict probabilities of ``(signal, fs, rpm, bearing)`` rows."""
+    from .diagnose import diagnose_signal, rule_probabilities
+
+    out = []
+    for signal, fs, rpm, name in rows:
+        d = diagnose_signal(np.asarray(signal), fs, rpm, name, waviness=False)
+        out.append(rule_probabilities(d.candidates))
+    return out
+
+
+def _rule_pass(
+    frame: pd.DataFrame, *, workers: int = 1, progress: Progress | None = None
+) -> list[dict[str, float]]:
+    """:func:`_rule_probabilities` of every row of ``frame``, in ``workers`` processes."""
+    rows = list(zip(frame["signal"], frame["fs_hz"], frame["rpm"], frame["bearing"], strict=True))
+    out: list[dict[str, float]] = []
+    for part in _chunks(len(rows), workers):
+        chunk = rows[part]
+        if workers > 1 and len(chunk) > 1:
+            from joblib import Parallel, delayed
+
+            split = [chunk[i::workers] for i in range(workers)]
+            done = Parallel(n_jobs=workers)(delayed(_rule_probabilities)(c) for c in split)
+            merged: list = [None] * len(chunk)
+            for i, values in enumerate(done):
+                merged[i::workers] = values
+            out.extend(merged)
+        else:
+            out.extend(_rule_probabilities(chunk))
+        if progress is not None:
+            progress("rule evidence", part.stop, len(rows))
+    return out
 
 
 def _grouped_cv(X, y, groups, estimator, n_splits: int) -> tuple[float, np.ndarray]:
@@ -293,6 +408,10 @@ def pooled_calibration(
     n_splits: int,
     left_out: pd.DataFrame | None = None,
     X_left_out=None,
+    *,
+    rule: list[dict[str, float]] | None = None,
+    workers: int = 1,
+    progress: Progress | None = None,
 ) -> dict | None:
     """Calibration of ``diagnose``'s pooled verdict (rule + this model) on the training data.
 
@@ -310,12 +429,7 @@ def pooled_calibration(
         ``slope``, ``intercept``, ``signals``, and the expected calibration error (10 bins)
         before and after on these signals (``ece_pooled``, ``ece_calibrated``; in-sample).
     """
-    from .diagnose import (
-        diagnose_signal,
-        model_label_verdict,
-        pool_probabilities,
-        rule_probabilities,
-    )
+    from .diagnose import model_label_verdict, pool_probabilities
 
     kinds = class_kinds(frame)
 
@@ -334,14 +448,13 @@ def pooled_calibration(
         frame = pd.concat([frame, left_out], ignore_index=True)
         proba = np.vstack([proba, proba_left_out])
     top, right = [], []
-    for i, row in enumerate(frame.itertuples(index=False)):
-        d = diagnose_signal(np.asarray(row.signal), row.fs_hz, row.rpm, row.bearing, waviness=False)
-        pooled = pool_probabilities(
-            rule_probabilities(d.candidates), dict(zip(classes, proba[i], strict=True)), kinds
-        )
+    if rule is None:
+        rule = _rule_pass(frame, workers=workers, progress=progress)
+    for i, label in enumerate(frame["label"]):
+        pooled = pool_probabilities(rule[i], dict(zip(classes, proba[i], strict=True)), kinds)
         verdict = max(pooled, key=pooled.get)
         top.append(pooled[verdict])
-        right.append(verdict == model_label_verdict(str(row.label), kinds))
+        right.append(verdict == model_label_verdict(str(label), kinds))
     top, right = np.clip(np.array(top), 1e-9, 1 - 1e-9), np.array(right)
     if right.all() or not right.any():
         return None
@@ -395,6 +508,8 @@ def train(
     feature_set: str = DEFAULT_FEATURE_SET,
     min_fault_snr_db: float | None = MIN_FAULT_SNR_DB,
     classifier: str | None = FROM_RECIPE,
+    workers: int = 1,
+    progress: Progress | None = None,
 ) -> dict[str, Any]:
     """Score the candidates with grouped cross-validation; keep ``classifier`` (or the best).
 
@@ -420,6 +535,13 @@ def train(
         The candidate kept (``candidate_classifiers``); ``FROM_RECIPE`` (default): the one
         ``recipe`` names in ``[training] classifier``, else the best grouped-CV score, which
         None always keeps.
+    workers : int
+        Processes for the long stage, every signal's features and the rule detector's
+        evidence for the pooled calibration (one ``fault_evidence`` serves both); the bundle
+        is the same for any count.
+    progress : callable, optional
+        ``progress(stage, done, total)`` after each chunk of signals (``stage``: ``"features
+        and rule evidence"``).
 
     Returns
     -------
@@ -434,7 +556,15 @@ def train(
     left_out = int((~kept).sum())
     faint = frame[~kept.to_numpy()].reset_index(drop=True)
     frame = frame[kept.to_numpy()].reset_index(drop=True)
-    X, names = _features(frame, feature_set)
+    # one pass computes every signal's features and the rule's evidence for the calibration
+    # (kept signals first, then the faint ones, as pooled_calibration orders them)
+    table, names, rule = _table_and_rule(
+        pd.concat([frame, faint], ignore_index=True) if len(faint) else frame,
+        feature_set,
+        workers=workers,
+        progress=progress,
+    )
+    X, X_faint = table[: len(frame)], (table[len(frame) :] if len(faint) else None)
     y = frame["label"].astype(str).to_numpy()
     groups = frame["operating_point_id"].to_numpy()
     n_groups = len(np.unique(groups))
@@ -454,9 +584,16 @@ def train(
         )
     best = classifier if classifier is not None else max(scores, key=scores.get)
     head = make_pipeline(StandardScaler(), candidate_classifiers(random_state)[best])
-    X_faint = _features(faint, feature_set)[0] if len(faint) else None
     calibration = pooled_calibration(
-        frame, X, y, groups, head, n_splits, faint if len(faint) else None, X_faint
+        frame,
+        X,
+        y,
+        groups,
+        head,
+        n_splits,
+        faint if len(faint) else None,
+        X_faint,
+        rule=rule,
     )
     extrapolation = _extrapolation(X, y, frame, head)
     pipeline = make_classifier(best, random_state=random_state, feature_set=feature_set)
@@ -494,10 +631,20 @@ def train(
     }
 
 
-def evaluate(bundle: dict[str, Any], frame: pd.DataFrame) -> dict[str, Any]:
-    """Accuracy, per-class precision/recall and the confusion matrix of a model on a dataset."""
+def evaluate(bundle: dict[str, Any], frame: pd.DataFrame, *, workers: int = 1) -> dict[str, Any]:
+    """Accuracy, per-class precision/recall and the confusion matrix of a model on a dataset.
+
+    ``workers`` processes extract the features (the result is the same for any count).
+    """
     y = frame["label"].astype(str).to_numpy()
-    pred = bundle["pipeline"].predict(frame)
+    pipeline = bundle["pipeline"]
+    extractor = pipeline.steps[0][1]
+    jobs = extractor.n_jobs
+    extractor.n_jobs = workers  # restored below: the bundle is left as it came
+    try:
+        pred = pipeline.predict(frame)
+    finally:
+        extractor.n_jobs = jobs
     labels = sorted(set(y) | set(pred))
     report = classification_report(y, pred, labels=labels, output_dict=True, zero_division=0)
     return {

@@ -183,6 +183,13 @@ def build_parser() -> argparse.ArgumentParser:
         "classifier, the rig recipes the one that carried over best between simulated rigs; "
         "else best-cv: the best grouped cross-validation score on this dataset)",
     )
+    p.add_argument(
+        "--workers",
+        type=_positive_int,
+        default=os.cpu_count() or 1,
+        help="processes for the features and the rule evidence of the calibration (default: "
+        "all cores; the model is the same for any count)",
+    )
     _add_allow_incomplete(p)
     p.set_defaults(func=cmd_train)
 
@@ -194,6 +201,12 @@ def build_parser() -> argparse.ArgumentParser:
         "--allow-training-data",
         action="store_true",
         help="score the model even on signals it was trained on (outputs labelled in-sample)",
+    )
+    p.add_argument(
+        "--workers",
+        type=_positive_int,
+        default=os.cpu_count() or 1,
+        help="feature-extraction processes (default: all cores)",
     )
     _add_allow_incomplete(p)
     p.set_defaults(func=cmd_evaluate)

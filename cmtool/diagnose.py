@@ -45,6 +45,8 @@ __all__ = [
     "DETECTION_DB",
     "FAULTS",
     "pool_probabilities",
+    "rule_candidates",
+    "rule_context",
     "rule_probabilities",
     "verdict_probabilities",
     "model_label_verdict",
@@ -171,6 +173,138 @@ def check_signal_quality(x: np.ndarray) -> list[str]:
     return warnings
 
 
+def rule_context(
+    x: np.ndarray, fs: float, rpm: float, geometry: BearingGeometry
+) -> tuple[float, BearingFrequencies, dict[str, float], list[str]]:
+    """What the rule detector needs before it weighs a signal, or why it cannot.
+
+    Parameters
+    ----------
+    x : ndarray
+        The signal.
+    fs : float
+        Sample rate [Hz].
+    rpm : float
+        Shaft speed [rev/min].
+    geometry : BearingGeometry
+        The bearing.
+
+    Returns
+    -------
+    rpm : float
+        The speed, checked [rev/min].
+    freqs : BearingFrequencies
+        The bearing's characteristic frequencies at that speed [Hz].
+    ctx : dict of str to float
+        ``shaft``, ``ftf``, ``bpfo``, ``bpfi`` and ``two_bsf`` [Hz]: ``fault_evidence``'s
+        rates.
+    warnings : list of str
+        What makes the answer less certain (the signal's quality, the speed, the record).
+
+    Raises
+    ------
+    ValueError
+        When ``fs`` is too low for envelope analysis of these rates, or the record too short
+        to tell them apart.
+    """
+    warnings = check_signal_quality(x)
+    rpm = check_shaft_speed_rpm("rpm", rpm)
+    if geometry.limiting_speed_rpm is not None and rpm > geometry.limiting_speed_rpm:
+        warnings.append(
+            f"{rpm:g} rpm is above the catalogue limiting speed of the {geometry.name} "
+            f"({geometry.limiting_speed_rpm:g} rpm): check --rpm and --bearing"
+        )
+    freqs = characteristic_frequencies(geometry, rpm / 60.0)
+    ctx = {
+        "shaft": freqs.shaft,
+        "ftf": freqs.ftf,
+        "bpfo": freqs.bpfo,
+        "bpfi": freqs.bpfi,
+        "two_bsf": freqs.two_bsf,
+    }
+    fastest = max(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])
+    # the demodulation band (3 x the fastest rate wide) must fit under the analyser span
+    # fs / 2.56, with the rates' third harmonics inside it
+    needed = features.separation.ANALYSER_RATIO * features.table.MIN_BAND_FACTOR * fastest
+    if fs < needed:
+        raise ValueError(
+            f"fs = {fs:g} Hz is too low to diagnose this bearing at {rpm:g} rpm: envelope "
+            f"analysis of fault rates up to {fastest:.1f} Hz needs fs >= {needed:.0f} Hz"
+        )
+    slowest = min(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])
+    shortest = MIN_RATE_PERIODS / slowest
+    if x.size / fs < shortest:
+        raise ValueError(
+            f"the record is {x.size / fs:.3g} s long ({x.size} samples at {fs:g} Hz); telling "
+            f"the fault rates apart needs at least {MIN_RATE_PERIODS} periods of the slowest "
+            f"({slowest:.1f} Hz): {shortest:.3g} s, {int(math.ceil(shortest * fs))} samples"
+        )
+    if x.size / fs < 20.0 / freqs.ftf:
+        warnings.append(
+            f"record of {x.size / fs:.2f} s holds fewer than 20 cage revolutions; "
+            "sideband resolution is poor"
+        )
+    return rpm, freqs, ctx, warnings
+
+
+def rule_candidates(evidence: features.Evidence, ctx: dict[str, float]) -> list[dict]:
+    """The rule detector's candidates, one per fault, ranked by their weighed evidence.
+
+    Parameters
+    ----------
+    evidence : features.Evidence
+        ``features.fault_evidence`` of the signal.
+    ctx : dict of str to float
+        The bearing's rates [Hz]: ``bpfo``, ``bpfi`` and ``two_bsf`` at least.
+
+    Returns
+    -------
+    list of dict
+        Per fault: its rate and the line found [Hz], the envelope lines [dB], the weighed
+        evidence [dB] and its false-alarm probability, the lines weighed, whether it is
+        detected (evidence at the threshold or above), the lines a stronger fault explains
+        and its confidence; the strongest first (ties by the fundamental).
+    """
+    threshold = evidence.threshold_db
+    candidates = []
+    for name, key in FAULTS.items():
+        snr = [r for r, _ in evidence.lines[key]]
+        weighed = evidence.combined[key]
+        harmonics = int(sum(s >= DETECTION_DB / 2 for s in snr))
+        margin = weighed["evidence_db"] - threshold
+        sidebands = evidence.features[f"evidence_{key}_sideband_snr"]
+        candidates.append(
+            {
+                "fault": name,
+                "frequency_hz": round(ctx[key], 3),
+                "found_hz": round(evidence.lines[key][0][1], 3),
+                "envelope_snr_db": [round(s, 2) for s in snr],
+                "harmonics_above_6db": harmonics,
+                "sideband_snr_db": round(sidebands, 2) if key in ("bpfi", "two_bsf") else None,
+                "evidence_db": round(weighed["evidence_db"], 2),
+                "false_alarm_probability": float(f"{weighed['false_alarm']:.3g}"),
+                "lines_weighed": [
+                    {"line": n, "snr_db": r, "false_alarm_probability": float(f"{p:.3g}")}
+                    for n, r, p in weighed["lines"]
+                ],
+                "detected": bool(weighed["evidence_db"] >= threshold),
+                # lines on a stronger detected fault's series (features.explain_shared_lines):
+                # counted as absent in this fault's weighing
+                "explained": [
+                    {"line": line, "by": FAULT_NAMES[other], "harmonic": k}
+                    for line, other, k in weighed.get("explained", [])
+                ],
+                "confidence": round(
+                    _logistic(margin, CONFIDENCE_SCALE_DB, CONFIDENCE_OFFSET_DB), 4
+                ),
+            }
+        )
+    # ranked by the weighed evidence of each fault's line family (fundamental, harmonics,
+    # sidebands), ties by the fundamental
+    candidates.sort(key=lambda c: (c["evidence_db"], c["envelope_snr_db"][0]), reverse=True)
+    return candidates
+
+
 def diagnose_signal(
     x: np.ndarray,
     fs: float,
@@ -222,45 +356,11 @@ def diagnose_signal(
     """
     geometry = bearing(geometry) if isinstance(geometry, str) else geometry
     x = np.asarray(x, dtype=float)
-    warnings = check_signal_quality(x)
-    rpm = check_shaft_speed_rpm("rpm", rpm)
-    if geometry.limiting_speed_rpm is not None and rpm > geometry.limiting_speed_rpm:
-        warnings.append(
-            f"{rpm:g} rpm is above the catalogue limiting speed of the {geometry.name} "
-            f"({geometry.limiting_speed_rpm:g} rpm): check --rpm and --bearing"
-        )
-    freqs = characteristic_frequencies(geometry, rpm / 60.0)
-    ctx = {
-        "shaft": freqs.shaft,
-        "ftf": freqs.ftf,
-        "bpfo": freqs.bpfo,
-        "bpfi": freqs.bpfi,
-        "two_bsf": freqs.two_bsf,
-    }
+    rpm, freqs, ctx, warnings = rule_context(x, fs, rpm, geometry)
     fastest = max(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])
-    # the demodulation band (3 x the fastest rate wide) must fit under the analyser span
-    # fs / 2.56, with the rates' third harmonics inside it
-    needed = features.separation.ANALYSER_RATIO * features.table.MIN_BAND_FACTOR * fastest
-    if fs < needed:
-        raise ValueError(
-            f"fs = {fs:g} Hz is too low to diagnose this bearing at {rpm:g} rpm: envelope "
-            f"analysis of fault rates up to {fastest:.1f} Hz needs fs >= {needed:.0f} Hz"
-        )
-    slowest = min(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])
-    shortest = MIN_RATE_PERIODS / slowest
-    if x.size / fs < shortest:
-        raise ValueError(
-            f"the record is {x.size / fs:.3g} s long ({x.size} samples at {fs:g} Hz); telling "
-            f"the fault rates apart needs at least {MIN_RATE_PERIODS} periods of the slowest "
-            f"({slowest:.1f} Hz): {shortest:.3g} s, {int(math.ceil(shortest * fs))} samples"
-        )
-    if x.size / fs < 20.0 / freqs.ftf:
-        warnings.append(
-            f"record of {x.size / fs:.2f} s holds fewer than 20 cage revolutions; "
-            "sideband resolution is poor"
-        )
     evidence = features.fault_evidence(x, fs, {**ctx, "ftf": freqs.ftf})
     selection, threshold = evidence.selection, evidence.threshold_db
+    candidates = rule_candidates(evidence, ctx)
     plain_f, plain_a = features.amplitude_spectrum(x, fs)
     spectra = features.Spectra(
         plain_f,
@@ -270,42 +370,6 @@ def diagnose_signal(
         selection.band,
         None,
     )
-    candidates = []
-    for name, key in FAULTS.items():
-        snr = [r for r, _ in evidence.lines[key]]
-        weighed = evidence.combined[key]
-        harmonics = int(sum(s >= DETECTION_DB / 2 for s in snr))
-        margin = weighed["evidence_db"] - threshold
-        sidebands = evidence.features[f"evidence_{key}_sideband_snr"]
-        candidates.append(
-            {
-                "fault": name,
-                "frequency_hz": round(ctx[key], 3),
-                "found_hz": round(evidence.lines[key][0][1], 3),
-                "envelope_snr_db": [round(s, 2) for s in snr],
-                "harmonics_above_6db": harmonics,
-                "sideband_snr_db": round(sidebands, 2) if key in ("bpfi", "two_bsf") else None,
-                "evidence_db": round(weighed["evidence_db"], 2),
-                "false_alarm_probability": float(f"{weighed['false_alarm']:.3g}"),
-                "lines_weighed": [
-                    {"line": n, "snr_db": r, "false_alarm_probability": float(f"{p:.3g}")}
-                    for n, r, p in weighed["lines"]
-                ],
-                "detected": bool(weighed["evidence_db"] >= threshold),
-                # lines on a stronger detected fault's series (features.explain_shared_lines):
-                # counted as absent in this fault's weighing
-                "explained": [
-                    {"line": line, "by": FAULT_NAMES[other], "harmonic": k}
-                    for line, other, k in weighed.get("explained", [])
-                ],
-                "confidence": round(
-                    _logistic(margin, CONFIDENCE_SCALE_DB, CONFIDENCE_OFFSET_DB), 4
-                ),
-            }
-        )
-    # ranked by the weighed evidence of each fault's line family (fundamental, harmonics,
-    # sidebands), ties by the fundamental
-    candidates.sort(key=lambda c: (c["evidence_db"], c["envelope_snr_db"][0]), reverse=True)
     top = candidates[0]
     margin = top["evidence_db"] - threshold
     if top["detected"]:

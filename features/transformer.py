@@ -44,14 +44,44 @@ CONTEXT_COLUMNS = {
 }
 
 
-def _feature_rows(items, faults, n_harmonics, names):
-    out = []
+def feature_rows_with_evidence(
+    items, faults: tuple[str, ...], n_harmonics: int, names: list[str], keep_evidence: bool = True
+) -> tuple[list[list[float]], list]:
+    """Feature rows of ``(signal, context)`` items, and each signal's ``fault_evidence``.
+
+    Parameters
+    ----------
+    items : iterable of (ndarray, dict)
+        Signals [U] with their context (``fs`` [Hz] and the rates of ``CONTEXT_COLUMNS`` [Hz]).
+    faults : tuple of str
+        Fault frequencies measured.
+    n_harmonics : int
+        Harmonics per fault.
+    names : list of str
+        The features of each row, in order.
+    keep_evidence : bool
+        Return each signal's :class:`features.Evidence` (what its ``evidence_*`` features
+        come from; a caller that also weighs the rule detector's evidence, ``cmtool train``'s
+        calibration, need not compute it again). False returns an empty list and holds no
+        evidence (each holds the signal's random part and spectra).
+
+    Returns
+    -------
+    rows : list of list of float
+        One row per item.
+    evidence : list of Evidence or None
+        Per item (None when ``names`` holds no ``evidence_*`` feature); empty unless
+        ``keep_evidence``.
+    """
+    out, found = [], []
     evidence = any(name.startswith("evidence_") for name in names)
     table = any(not name.startswith("evidence_") for name in names)
     for signal, ctx in items:
         feats: dict[str, float] = {}
+        result = None
         if evidence:
-            feats.update(fault_evidence(signal, ctx["fs"], ctx).features)
+            result = fault_evidence(signal, ctx["fs"], ctx)
+            feats.update(result.features)
         if table:
             feats.update(
                 extract_features(
@@ -59,7 +89,13 @@ def _feature_rows(items, faults, n_harmonics, names):
                 )
             )
         out.append([feats[name] for name in names])
-    return out
+        if keep_evidence:
+            found.append(result)
+    return out, found
+
+
+def _feature_rows(items, faults, n_harmonics, names):
+    return feature_rows_with_evidence(items, faults, n_harmonics, names, keep_evidence=False)[0]
 
 
 class FeatureExtractor(TransformerMixin, BaseEstimator):

@@ -72,14 +72,29 @@ def cmd_train(args: argparse.Namespace) -> int:
 
     frame = read_dataset(args.dataset, allow_incomplete=args.allow_incomplete)
     recipe = Path(args.dataset, "recipe.toml")
-    bundle = train(
-        frame,
-        recipe=recipe.read_text() if recipe.is_file() else "",
-        random_state=args.seed,
-        feature_set=args.feature_set,
-        min_fault_snr_db=None if args.min_fault_snr is None else float(args.min_fault_snr),
-        classifier=None if args.classifier == "best-cv" else args.classifier,
-    )
+    bars: dict = {}
+
+    def progress(stage: str, done: int, total: int) -> None:
+        if stage not in bars:
+            for bar in bars.values():
+                bar.close()
+            bars[stage] = progress_bar(total, f"train: {stage}", "signal")
+        bars[stage].update(done - bars[stage].n)
+
+    try:
+        bundle = train(
+            frame,
+            recipe=recipe.read_text() if recipe.is_file() else "",
+            random_state=args.seed,
+            feature_set=args.feature_set,
+            min_fault_snr_db=None if args.min_fault_snr is None else float(args.min_fault_snr),
+            classifier=None if args.classifier == "best-cv" else args.classifier,
+            workers=args.workers,
+            progress=progress,
+        )
+    finally:
+        for bar in bars.values():
+            bar.close()
     print(
         f"trained on {len(frame) - bundle['left_out']} signals ({bundle['left_out']} faulty "
         f"ones below the fault SNR floor left out), {frame['operating_point_id'].nunique()} "
@@ -110,7 +125,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     bundle = load_model(args.model)
     frame = read_dataset(args.dataset, allow_incomplete=args.allow_incomplete)
     in_sample = check_training_overlap(bundle, frame, args)
-    result = evaluate(bundle, frame)
+    result = evaluate(bundle, frame, workers=args.workers)
     result["in_sample_fraction"] = in_sample
     tag = " (IN-SAMPLE: signals the model was trained on; not a measure of accuracy)"
     print(

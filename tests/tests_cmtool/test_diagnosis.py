@@ -721,6 +721,63 @@ def test_the_pooled_verdicts_confidence_is_calibrated_at_training(bundle, bundle
     assert all(0.0 < v < 1.0 for v in values) and values == sorted(values)
 
 
+def test_train_on_two_workers_makes_the_same_model_and_reports_its_progress(
+    small, light_forests, monkeypatch
+):
+    """``train(workers=2)`` extracts the features and weighs the rule detector's evidence for
+    the pooled calibration in two processes, chunk by chunk: the bundle is the one a single
+    process makes (scores, out-of-fold predictions, calibration, probabilities on other
+    signals), and the pass reports its progress up to its total. (Chunks of 5 signals per
+    worker here, so that several chunks meet their order; the labels read by name, so that a
+    calibration is fitted: see the test above.)"""
+    import cmtool.classifier as classifier_module
+
+    monkeypatch.setattr(classifier_module, "PROGRESS_CHUNK", 5)
+    part = small.drop(columns="defect_kind").groupby("label").head(12).reset_index(drop=True)
+    reports: list[tuple[str, int, int]] = []
+    one = classifier_module.train(part, n_splits=3, workers=1)
+    two = classifier_module.train(
+        part, n_splits=3, workers=2, progress=lambda *r: reports.append(r)
+    )
+    assert one["pooled_calibration"] is not None
+    for key in ("scores", "cv_predictions", "pooled_calibration", "feature_names"):
+        assert one[key] == two[key], key
+    other = small.groupby("label").tail(3)
+    np.testing.assert_array_equal(
+        one["pipeline"].predict_proba(other), two["pipeline"].predict_proba(other)
+    )
+    # one pass: each signal's features and the rule's evidence for the calibration (one
+    # fault_evidence serves both); 48 signals in chunks of 5 x 2
+    assert reports == [("features and rule evidence", done, 48) for done in (10, 20, 30, 40, 48)]
+
+
+def test_train_weighs_each_signals_evidence_once(small, light_forests, monkeypatch):
+    """The features' ``fault_evidence`` of a signal is the rule's own for the calibration
+    (the dataset's rates are the ones the rule computes from the bearing and the speed), so
+    ``train`` computes it once per signal, not twice; where a dataset's rates differ, the rule
+    computes its own and the calibration is still the rule's."""
+    import cmtool.classifier as classifier_module
+    import features.transformer as transformer_module
+
+    calls = []
+    shipped = features.fault_evidence
+
+    def counting(x, fs, ctx):
+        calls.append(fs)
+        return shipped(x, fs, ctx)
+
+    monkeypatch.setattr(transformer_module, "fault_evidence", counting)
+    monkeypatch.setattr(features, "fault_evidence", counting)
+    part = small.drop(columns="defect_kind").groupby("label").head(6).reset_index(drop=True)
+    once = classifier_module.train(part, n_splits=3)
+    assert len(calls) == len(part)
+    calls.clear()
+    shifted = part.assign(bpfo_hz=part["bpfo_hz"] * (1 + 1e-12))
+    twice = classifier_module.train(shifted, n_splits=3)
+    assert len(calls) == 2 * len(part)
+    assert twice["pooled_calibration"] == once["pooled_calibration"]
+
+
 def test_a_recipe_names_the_classifier_train_keeps(small, light_forests):
     """``[training] classifier`` in the dataset's recipe is what ``train`` keeps by default
     (the rig recipes name the one that carried over between simulated rigs); without it, or
