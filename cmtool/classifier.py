@@ -287,7 +287,8 @@ def _table_and_rule(
     """The feature table of ``frame`` and the rule detector's probabilities of each signal.
 
     In ``workers`` processes, chunk by chunk; the same for any ``workers`` and chunking as
-    the extractor's table and :func:`_rule_pass` one after the other.
+    the extractor's table and ``cmtool.diagnose.diagnose_signal``'s rule, one signal at a
+    time.
     """
     ext = features.FeatureExtractor(feature_set=feature_set).fit(frame)
     names = list(ext.get_feature_names_out())
@@ -321,41 +322,6 @@ def _table_and_rule(
             progress("features and rule evidence", part.stop, len(items))
     array = np.asarray(table, dtype=float).reshape(len(items), len(names))
     return array, names, rule
-
-
-def _rule_probabilities(rows: list[tuple]) -> list[dict[str, float]]:
-    """The rule detector's verdict probabilities of ``(signal, fs, rpm, bearing)`` rows."""
-    from .diagnose import diagnose_signal, rule_probabilities
-
-    out = []
-    for signal, fs, rpm, name in rows:
-        d = diagnose_signal(np.asarray(signal), fs, rpm, name, waviness=False)
-        out.append(rule_probabilities(d.candidates))
-    return out
-
-
-def _rule_pass(
-    frame: pd.DataFrame, *, workers: int = 1, progress: Progress | None = None
-) -> list[dict[str, float]]:
-    """:func:`_rule_probabilities` of every row of ``frame``, in ``workers`` processes."""
-    rows = list(zip(frame["signal"], frame["fs_hz"], frame["rpm"], frame["bearing"], strict=True))
-    out: list[dict[str, float]] = []
-    for part in _chunks(len(rows), workers):
-        chunk = rows[part]
-        if workers > 1 and len(chunk) > 1:
-            from joblib import Parallel, delayed
-
-            split = [chunk[i::workers] for i in range(workers)]
-            done = Parallel(n_jobs=workers)(delayed(_rule_probabilities)(c) for c in split)
-            merged: list = [None] * len(chunk)
-            for i, values in enumerate(done):
-                merged[i::workers] = values
-            out.extend(merged)
-        else:
-            out.extend(_rule_probabilities(chunk))
-        if progress is not None:
-            progress("rule evidence", part.stop, len(rows))
-    return out
 
 
 def _grouped_cv(X, y, groups, estimator, n_splits: int) -> tuple[float, np.ndarray]:
@@ -409,9 +375,7 @@ def pooled_calibration(
     left_out: pd.DataFrame | None = None,
     X_left_out=None,
     *,
-    rule: list[dict[str, float]] | None = None,
-    workers: int = 1,
-    progress: Progress | None = None,
+    rule: list[dict[str, float]],
 ) -> dict | None:
     """Calibration of ``diagnose``'s pooled verdict (rule + this model) on the training data.
 
@@ -421,7 +385,9 @@ def pooled_calibration(
     (``cmtool.diagnose``); the pooled verdict's probability is mapped to P(the verdict is
     right) by a logistic in its log-odds. The left-out signals count: a diagnosis meets
     them too, and without them the calibration is over-confident. None when every pooled
-    verdict is right (or every one wrong): nothing to fit.
+    verdict is right (or every one wrong): nothing to fit. ``rule`` holds the rule detector's
+    probabilities (``cmtool.diagnose.rule_probabilities``) of ``frame``'s rows, then of
+    ``left_out``'s (:func:`_table_and_rule` computes them with the features).
 
     Returns
     -------
@@ -447,9 +413,12 @@ def pooled_calibration(
     if extra:
         frame = pd.concat([frame, left_out], ignore_index=True)
         proba = np.vstack([proba, proba_left_out])
+    if len(rule) != len(frame):
+        raise ValueError(
+            f"rule holds {len(rule)} probabilities for {len(frame)} signals (the kept ones, "
+            "then the left-out ones)"
+        )
     top, right = [], []
-    if rule is None:
-        rule = _rule_pass(frame, workers=workers, progress=progress)
     for i, label in enumerate(frame["label"]):
         pooled = pool_probabilities(rule[i], dict(zip(classes, proba[i], strict=True)), kinds)
         verdict = max(pooled, key=pooled.get)
