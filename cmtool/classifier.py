@@ -254,27 +254,28 @@ def _chunks(total: int, workers: int) -> list[slice]:
 
 
 def _table_and_rule_chunk(
-    items, rule_rows, names, faults, n_harmonics
-) -> tuple[list, list[dict[str, float]]]:
-    """One chunk's feature rows and rule probabilities, each signal's evidence computed once.
+    items: list[tuple], names: list[str], faults: tuple[str, ...], n_harmonics: int
+) -> list[tuple[list[float], dict[str, float]]]:
+    """Each signal's feature row and rule probabilities, its evidence computed once.
 
-    ``items`` are the extractor's ``(signal, context)``, ``rule_rows`` the ``(fs, rpm,
-    bearing)`` the rule reads. The rows' ``fault_evidence`` is the rule's own when the
-    dataset's context holds exactly the rates the rule computes from the bearing and speed;
-    otherwise the rule computes its own (the result is the same either way).
+    ``items`` are the extractor's ``(signal, context)`` with the ``(fs, rpm, bearing)`` the
+    rule reads. The row's ``fault_evidence`` is the rule's own when the dataset's context
+    holds exactly the rates the rule computes from the bearing and speed; otherwise the rule
+    computes its own (the result is the same either way).
     """
     from .diagnose import rule_candidates, rule_context, rule_probabilities
 
-    rows, found = features.transformer.feature_rows_with_evidence(items, faults, n_harmonics, names)
-    rules = []
-    for (signal, ctx), evidence, (fs, rpm, name) in zip(items, found, rule_rows, strict=True):
+    pairs = [(signal, ctx) for signal, ctx, _ in items]
+    rows, found = features.transformer.feature_rows_with_evidence(pairs, faults, n_harmonics, names)
+    out = []
+    for (signal, ctx, (fs, rpm, name)), row, evidence in zip(items, rows, found, strict=True):
         x = np.asarray(signal, dtype=float)
         _, _, rates, _ = rule_context(x, fs, rpm, bearing(name))
         same = evidence is not None and ctx.get("fs") == fs
         if not (same and all(ctx.get(k) == v for k, v in rates.items())):
             evidence = features.fault_evidence(x, fs, rates)
-        rules.append(rule_probabilities(rule_candidates(evidence, rates)))
-    return rows, rules
+        out.append((row, rule_probabilities(rule_candidates(evidence, rates))))
+    return out
 
 
 def _table_and_rule(
@@ -292,32 +293,16 @@ def _table_and_rule(
     """
     ext = features.FeatureExtractor(feature_set=feature_set).fit(frame)
     names = list(ext.get_feature_names_out())
-    items = list(ext._rows(frame))
-    rule_rows = list(zip(frame["fs_hz"], frame["rpm"], frame["bearing"], strict=True))
+    rule_rows = zip(frame["fs_hz"], frame["rpm"], frame["bearing"], strict=True)
+    items = [(*item, rule) for item, rule in zip(ext._rows(frame), rule_rows, strict=True)]
     table: list = []
     rule: list[dict[str, float]] = []
     for part in _chunks(len(items), workers):
-        chunk, chunk_rule = items[part], rule_rows[part]
-        if workers > 1 and len(chunk) > 1:
-            from joblib import Parallel, delayed
-
-            done = Parallel(n_jobs=workers)(
-                delayed(_table_and_rule_chunk)(
-                    chunk[i::workers], chunk_rule[i::workers], names, ext.faults, ext.n_harmonics
-                )
-                for i in range(workers)
-            )
-            rows: list = [None] * len(chunk)
-            probabilities: list = [None] * len(chunk)
-            for i, (r, p) in enumerate(done):
-                rows[i::workers] = r
-                probabilities[i::workers] = p
-        else:
-            rows, probabilities = _table_and_rule_chunk(
-                chunk, chunk_rule, names, ext.faults, ext.n_harmonics
-            )
-        table.extend(rows)
-        rule.extend(probabilities)
+        done = features.transformer.map_in_processes(
+            _table_and_rule_chunk, items[part], workers, names, ext.faults, ext.n_harmonics
+        )
+        table.extend(row for row, _ in done)
+        rule.extend(probabilities for _, probabilities in done)
         if progress is not None:
             progress("features and rule evidence", part.stop, len(items))
     array = np.asarray(table, dtype=float).reshape(len(items), len(names))

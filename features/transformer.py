@@ -98,6 +98,25 @@ def _feature_rows(items, faults, n_harmonics, names):
     return feature_rows_with_evidence(items, faults, n_harmonics, names, keep_evidence=False)[0]
 
 
+def map_in_processes(function, items: list, n_jobs: int | None, *args) -> list:
+    """``function(part, *args)`` over ``items`` in ``n_jobs`` processes, results in order.
+
+    ``function`` takes a list of items and returns one result per item; each process gets
+    every ``n_jobs``-th item (round robin, so that costly items spread), and the results are
+    put back in the items' order. ``None`` or 1: in this process.
+    """
+    if n_jobs in (None, 1) or len(items) < 2:
+        return function(items, *args)
+    from joblib import Parallel, delayed, effective_n_jobs
+
+    jobs = effective_n_jobs(n_jobs)
+    parts = Parallel(n_jobs=jobs)(delayed(function)(items[i::jobs], *args) for i in range(jobs))
+    out: list = [None] * len(items)
+    for i, part in enumerate(parts):
+        out[i::jobs] = part
+    return out
+
+
 class FeatureExtractor(TransformerMixin, BaseEstimator):
     """Signals in, feature table out (``features.extract_features`` per signal).
 
@@ -202,19 +221,9 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
             X = validate_data(self, X, dtype=np.float64, reset=False, ensure_min_features=1)
         names = list(self.feature_names_out_)
         items = list(self._rows(X))
-        if self.n_jobs in (None, 1) or len(items) < 2:
-            rows = _feature_rows(items, self.faults, self.n_harmonics, names)
-        else:
-            from joblib import Parallel, delayed, effective_n_jobs
-
-            jobs = effective_n_jobs(self.n_jobs)
-            chunks = [items[i::jobs] for i in range(jobs)]
-            parts = Parallel(n_jobs=jobs)(
-                delayed(_feature_rows)(c, self.faults, self.n_harmonics, names) for c in chunks
-            )
-            rows = [None] * len(items)
-            for i, part in enumerate(parts):
-                rows[i::jobs] = part
+        rows = map_in_processes(
+            _feature_rows, items, self.n_jobs, self.faults, self.n_harmonics, names
+        )
         return np.asarray(rows, dtype=float).reshape(len(items), len(names))
 
     def get_feature_names_out(self, input_features=None) -> np.ndarray:
