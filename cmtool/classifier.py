@@ -18,6 +18,7 @@ scikit-learn version raises ``ModelVersionError``.
 
 from __future__ import annotations
 
+import copy
 import hashlib
 import json
 import re
@@ -294,7 +295,8 @@ def _table_and_rule(
     ext = features.FeatureExtractor(feature_set=feature_set).fit(frame)
     names = list(ext.get_feature_names_out())
     rule_rows = zip(frame["fs_hz"], frame["rpm"], frame["bearing"], strict=True)
-    items = [(*item, rule) for item, rule in zip(ext._rows(frame), rule_rows, strict=True)]
+    signals = ext.signals_with_context(frame)
+    items = [(*item, rule) for item, rule in zip(signals, rule_rows, strict=True)]
     table: list = []
     rule: list[dict[str, float]] = []
     for part in _chunks(len(items), workers):
@@ -592,13 +594,9 @@ def evaluate(bundle: dict[str, Any], frame: pd.DataFrame, *, workers: int = 1) -
     """
     y = frame["label"].astype(str).to_numpy()
     pipeline = bundle["pipeline"]
-    extractor = pipeline.steps[0][1]
-    jobs = extractor.n_jobs
-    extractor.n_jobs = workers  # restored below: the bundle is left as it came
-    try:
-        pred = pipeline.predict(frame)
-    finally:
-        extractor.n_jobs = jobs
+    extractor = copy.copy(pipeline[0])  # the bundle's own extractor is left as it came
+    extractor.n_jobs = workers
+    pred = pipeline[1:].predict(extractor.transform(frame))
     labels = sorted(set(y) | set(pred))
     report = classification_report(y, pred, labels=labels, output_dict=True, zero_division=0)
     return {

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 
 import numpy as np
 import pandas as pd
@@ -164,7 +164,23 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
         self.n_harmonics = n_harmonics
         self.signal_column = signal_column
 
-    def _rows(self, X):
+    def signals_with_context(self, X) -> Iterator[tuple[np.ndarray, dict[str, float]]]:
+        """Each signal of ``X`` with its context, in order, as ``transform`` reads them.
+
+        Parameters
+        ----------
+        X : pandas.DataFrame or array_like, shape (n_signals, n_samples)
+            The signals [any unit] and, in a DataFrame, the context columns
+            (``CONTEXT_COLUMNS``: sample rate [Hz], fault rates [Hz], shaft rate [Hz]).
+
+        Yields
+        ------
+        signal : numpy.ndarray
+            One signal as floats.
+        context : dict
+            ``{"fs": ..., "bpfo": ..., ...}`` [Hz], the keys of ``CONTEXT_COLUMNS`` that
+            ``X`` gives (array input: ``fs`` and ``fault_frequencies``).
+        """
         if isinstance(X, pd.DataFrame):
             if self.signal_column not in X.columns:
                 raise FeatureError(f"X has no column {self.signal_column!r} (the signals)")
@@ -220,7 +236,7 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
             # one, gets scikit-learn's "X has n features, but ... is expecting m" error)
             X = validate_data(self, X, dtype=np.float64, reset=False, ensure_min_features=1)
         names = list(self.feature_names_out_)
-        items = list(self._rows(X))
+        items = list(self.signals_with_context(X))
         rows = map_in_processes(
             _feature_rows, items, self.n_jobs, self.faults, self.n_harmonics, names
         )

@@ -167,6 +167,19 @@ def test_evaluate_metrics(bundle, small):
     pickle.dumps(result)
 
 
+def test_evaluate_on_two_workers_gives_the_same_result_and_leaves_the_bundle_as_it_came(
+    bundle, small
+):
+    """``evaluate(workers=2)`` extracts the features in two processes: the same metrics as in
+    one, and the bundle's own extractor keeps its ``n_jobs`` (a bundle saved afterwards is the
+    one that was loaded)."""
+    extractor = bundle["pipeline"][0]
+    before = extractor.n_jobs
+    part = small.iloc[::4]
+    assert evaluate(bundle, part, workers=2) == evaluate(bundle, part)
+    assert extractor.n_jobs == before
+
+
 def test_cli_train_evaluate(tmp_path, capsys, light_forests):
     """train, evaluate and bench through the CLI (forests of 30 trees: the test is about the
     commands, not the model's quality)."""
