@@ -29,7 +29,15 @@ from generators import characteristic_frequencies
 from .bench import MANIFEST_BEARINGS
 from .io import read_recording
 
-__all__ = ["realism", "recording_segments", "plot_realism", "context_columns", "CONTEXT_UNITS"]
+__all__ = [
+    "realism",
+    "recording_segments",
+    "plot_realism",
+    "context_columns",
+    "feature_difference",
+    "CONTEXT_UNITS",
+    "SIMULATED_RANGE",
+]
 
 #: Units of the features that repeat a signal's context instead of measuring the signal
 #: (``features.feature_units``): the gauge leaves them out.
@@ -128,6 +136,8 @@ def realism(
     dict
         ``auc``, ``folds``, ``recordings``, ``segments``, ``simulated``, ``roc`` (false and
         true positive rates), ``features`` (name, importance) most telling first,
+        ``differences`` (the same order: each feature's importance, unit and
+        :func:`feature_difference`, which way measured and simulated differ),
         ``context_left_out`` (features that only repeat the context, not used) and the
         out-of-fold ``scores``.
     """
@@ -169,6 +179,16 @@ def realism(
         n_estimators=300, class_weight="balanced", random_state=random_state, n_jobs=-1
     ).fit(X, y)
     ranked = sorted(zip(names, forest.feature_importances_, strict=True), key=lambda item: -item[1])
+    column = {name: j for j, name in enumerate(names)}
+    differences = [
+        {
+            "feature": name,
+            "importance": float(value),
+            **feature_difference(X[y == 0, column[name]], X[y == 1, column[name]]),
+            "unit": units.get(name, ""),
+        }
+        for name, value in ranked
+    ]
     return {
         "auc": auc,
         "folds": folds,
@@ -179,12 +199,59 @@ def realism(
         "context_left_out": left_out,
         "roc": {"false_positive_rate": fpr.tolist(), "true_positive_rate": tpr.tolist()},
         "features": [(name, float(value)) for name, value in ranked],
+        "differences": differences,
         "scores": scores.tolist(),
     }
 
 
+#: Quantiles [-] of the simulated values that bound "the simulated range" of a feature.
+SIMULATED_RANGE = (0.01, 0.99)
+
+
+def feature_difference(simulated: np.ndarray, measured: np.ndarray) -> dict[str, Any]:
+    """Which way one feature differs between simulated signals and measured segments.
+
+    Parameters
+    ----------
+    simulated, measured : numpy.ndarray, 1-D
+        The feature's values [its unit] on the simulated signals and the measured segments.
+
+    Returns
+    -------
+    dict
+        ``simulated_median`` and ``measured_median`` [the feature's unit];
+        ``simulated_range`` (its ``SIMULATED_RANGE`` quantiles); ``measured_below_range`` and
+        ``measured_above_range``, the shares of measured segments outside it [-] (what no
+        amount of reweighting the recipe's draws can reach: its ranges must widen or its
+        physics change); ``auc``, the feature's own ROC AUC for "measured" [-] (0.5: alike,
+        above 0.5: measured higher, below: lower); ``direction``, ``"measured higher"``,
+        ``"measured lower"`` or ``"alike"`` (AUC within 0.4-0.6).
+    """
+    from scipy.stats import mannwhitneyu
+
+    simulated = np.asarray(simulated, dtype=float)
+    measured = np.asarray(measured, dtype=float)
+    low, high = np.quantile(simulated, SIMULATED_RANGE)
+    u = mannwhitneyu(measured, simulated, alternative="two-sided").statistic
+    auc = float(u / (measured.size * simulated.size))
+    direction = "measured higher" if auc > 0.6 else "measured lower" if auc < 0.4 else "alike"
+    return {
+        "simulated_median": float(np.median(simulated)),
+        "measured_median": float(np.median(measured)),
+        "simulated_range": [float(low), float(high)],
+        "measured_below_range": float(np.mean(measured < low)),
+        "measured_above_range": float(np.mean(measured > high)),
+        "auc": auc,
+        "direction": direction,
+    }
+
+
 def plot_realism(result: dict[str, Any], path: str | Path, *, top: int = 12) -> Path:
-    """ROC curve of the gauge and the features that give the simulation away (PNG)."""
+    """ROC curve of the gauge and the features that give the simulation away (PNG).
+
+    The features' bars are coloured by which way the measured segments lie
+    (:func:`feature_difference`: measured higher, lower, or alike).
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -202,7 +269,12 @@ def plot_realism(result: dict[str, Any], path: str | Path, *, top: int = 12) -> 
     roc.legend(loc="lower right")
     names = [n for n, _ in result["features"][:top]][::-1]
     values = [v for _, v in result["features"][:top]][::-1]
-    bars.barh(names, values)
+    way = {d["feature"]: d["direction"] for d in result.get("differences", [])}
+    colours = {"measured higher": "tab:red", "measured lower": "tab:blue", "alike": "tab:gray"}
+    bars.barh(names, values, color=[colours[way.get(n, "alike")] for n in names])
+    for label, colour in colours.items():
+        bars.barh([], [], color=colour, label=label)
+    bars.legend(loc="lower right", fontsize=8)
     bars.set(xlabel="importance (mean decrease in impurity)", title="what gives it away")
     bars.tick_params(axis="y", labelsize=8)
     fig.tight_layout()

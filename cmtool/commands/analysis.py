@@ -145,9 +145,18 @@ def cmd_realism(args: argparse.Namespace) -> int:
             else ""
         )
     )
-    print("what gives the simulation away (random-forest importance):")
-    for name, value in result["features"][:10]:
-        print(f"  {name:<40s} {value:.3f}")
+    print(
+        "what gives the simulation away (random-forest importance; medians, measured against "
+        "simulated; measured segments outside the simulated 1-99 % range):"
+    )
+    for d in result["differences"][:10]:
+        unit = "" if d["unit"] in ("", "-") else f" {d['unit']}"
+        outside = d["measured_below_range"] + d["measured_above_range"]
+        print(
+            f"  {d['feature']:<40s} {d['importance']:.3f}  {d['direction']:<15s} "
+            f"{d['measured_median']:.3g} against {d['simulated_median']:.3g}{unit}, "
+            f"{outside:.0%} outside"
+        )
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)

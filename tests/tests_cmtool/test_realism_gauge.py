@@ -9,7 +9,7 @@ import pytest
 
 from cmtool.cli import main
 from cmtool.datasets import read_dataset
-from cmtool.realism import context_columns, realism, recording_segments
+from cmtool.realism import context_columns, feature_difference, realism, recording_segments
 
 SMALL = Path(__file__).resolve().parents[2] / "datasets" / "small"
 
@@ -97,3 +97,49 @@ def test_gauge_judges_signals_not_the_speed_grid(tmp_path):
     assert result["context_left_out"] == ["shaft_frequency"]
     assert "shaft_frequency" not in dict(result["features"])
     assert result["auc"] < 0.75, result["auc"]
+
+
+def test_feature_difference_says_which_way_and_what_lies_outside_the_simulated_range():
+    simulated = np.arange(100.0)  # its 1-99 % range: 0.99 to 98.01
+    measured = np.array([150.0, 200.0, 50.0, 60.0])
+    d = feature_difference(simulated, measured)
+    # pairs with the measured value higher: 100 + 100 + 50.5 + 60.5 (a tie counts half)
+    assert d["auc"] == pytest.approx(311 / 400)
+    assert d["direction"] == "measured higher"
+    assert d["measured_above_range"] == 0.5 and d["measured_below_range"] == 0.0
+    assert d["simulated_median"] == 49.5 and d["measured_median"] == 105.0
+    assert d["simulated_range"] == pytest.approx([0.99, 98.01])
+    lower = feature_difference(simulated, -measured)
+    assert lower["direction"] == "measured lower" and lower["auc"] == pytest.approx(0.0)
+    assert lower["measured_below_range"] == 1.0
+    alike = feature_difference(simulated, simulated[::-1].copy())
+    assert alike["direction"] == "alike" and alike["auc"] == pytest.approx(0.5)
+
+
+def test_gauge_says_which_way_a_telling_feature_differs(small, tmp_path, capsys):
+    """'Recordings' that are the simulation's own healthy signals plus a tone at each one's
+    BPFI, six times the signal's RMS: the plain spectrum's BPFI line is what differs, higher in
+    the measured, outside what the simulation ever shows; the CLI and the plot say so."""
+    from generators import bearing, characteristic_frequencies
+
+    healthy = small[small["label"] == "healthy"]
+    held = healthy.sample(12, random_state=1)
+    rest = small.drop(held.index)
+    signals = []
+    for x, rpm in zip(held["signal"], held["rpm"], strict=True):
+        bpfi = characteristic_frequencies(bearing("6205"), rpm / 60.0).bpfi
+        t = np.arange(x.size) / 6400.0
+        signals.append([x + 6.0 * np.std(x) * np.sqrt(2) * np.sin(2 * np.pi * bpfi * t)])
+    tones = _recordings(tmp_path / "tones", signals, list(held["rpm"]), 6400.0)
+    result = realism(rest, recording_segments(tones, 1.0))
+    assert [d["feature"] for d in result["differences"]] == [n for n, _ in result["features"]]
+    line = next(d for d in result["differences"] if d["feature"] == "spectrum_bpfi_h1_snr")
+    assert line["direction"] == "measured higher" and line["unit"] == "dB"
+    assert line["measured_above_range"] > 0.9, line
+    assert line["measured_median"] > line["simulated_range"][1]
+    rc = main(["realism", str(SMALL), str(tones), "--out", str(tmp_path / "out")])
+    assert rc == 0
+    out = capsys.readouterr().out
+    assert "spectrum_bpfi_h1_snr" in out and "measured higher" in out
+    saved = json.loads((tmp_path / "out" / "realism.json").read_text())
+    assert saved["differences"][0]["feature"] == saved["features"][0][0]
