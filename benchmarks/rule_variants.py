@@ -51,6 +51,14 @@ Modes:
     spectrum of Randall and Antoni 2011) instead of its modulus |z|, in the band selection and
     in the evidence, against the shipped modulus.
 
+``cage-band DATASET [DATASET ...]``
+    As ``ball-odd``, the evidence before stop 44 (the band chosen by the fault rates alone,
+    the ball's family without the cage lines) against the shipped one, whose band is chosen
+    by the cage rate too (scored in bands from 3 x the fastest fault rate up) and whose ball
+    family weighs FTF and 2 x FTF (``features.separation.fault_band``; docs/diagnosis.md,
+    "The cage rate chooses the ball's band"). Since stop 44 the other modes' "shipped"
+    includes both.
+
 ``cage-feature CWRU MFPT CWRU777``
     The FTF line of the envelope over its floor (in the chosen band) as a model feature added
     to ``evidence+scale-free``: extra trees (``cmtool train``'s model for the rig recipes, three
@@ -356,6 +364,24 @@ def _with_cage_lines(x, fs, fault_frequencies, comb_as_test: bool):
     return result
 
 
+_SHIPPED_FAULT_BAND = separation.fault_band
+
+
+def _without_cage_rate(rest, fs, rates, cage_rate=None, **options):
+    return _SHIPPED_FAULT_BAND(rest, fs, rates, None, **options)
+
+
+def _with_cage_rate(x, fs, fault_frequencies, cage: bool):
+    """The shipped evidence (``cage``) or the evidence before stop 44: the band chosen by the
+    fault rates alone and the ball's family without the cage lines.
+
+    Each variant sets the module's names the same way in every thread (the variants run one
+    after the other)."""
+    evidence.fault_band = _SHIPPED_FAULT_BAND if cage else _without_cage_rate
+    evidence.CAGE_HARMONICS = (1, 2) if cage else ()
+    return _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
+
+
 def _cage_line(args) -> float:
     """The FTF line of a signal's envelope over its floor [dB] (the rule's chosen band)."""
     x, fs, rpm, name = args
@@ -427,6 +453,14 @@ if __name__ == "__main__":
             {
                 "modulus |z| (shipped)": lambda x, fs, f: _with_squared_envelope(x, fs, f, False),
                 "squared |z|^2": lambda x, fs, f: _with_squared_envelope(x, fs, f, True),
+            },
+        )
+    elif mode == "cage-band" and len(sys.argv) > 2:
+        ball_odd(
+            sys.argv[2:],
+            {
+                "before stop 44 (no cage rate)": lambda x, fs, f: _with_cage_rate(x, fs, f, False),
+                "shipped (the cage rate)": lambda x, fs, f: _with_cage_rate(x, fs, f, True),
             },
         )
     elif mode == "cage-feature" and len(sys.argv) == 5:

@@ -5,12 +5,15 @@ The rule-based detector always runs:
 1. discrete/random separation (``features.separate_discrete``): the periodic part of the
    signal (a loaded bearing's varying compliance, shaft harmonics, mains, gears) is removed; a
    local fault's impacts, whose timing jitters (slip), stay;
-2. band selection (``features.select_band``): of the kurtogram tree's bands at least
-   ``features.table.MIN_BAND_FACTOR`` times the fastest fault rate wide, the one whose
-   envelope spectrum shows a fault rate highest above its floor;
+2. band selection (``features.separation.fault_band``): of the kurtogram tree's bands at
+   least ``features.table.MIN_BAND_FACTOR`` times the fastest fault rate wide, the one whose
+   envelope spectrum shows a fault rate highest above its floor, the cage rate counted in
+   bands from 3 x the fastest fault rate up (a ball pit strikes in bursts, once per cage
+   turn);
 3. for each fault (outer race: BPFO, inner race: BPFI, ball: 2 x BSF) the height of its
    fundamental above the local noise floor (median of the envelope spectrum within +/- 10 %
-   of the line), its harmonics and sidebands, weighed into one figure (``evidence_db``:
+   of the line), its harmonics and sidebands (the ball's also the cage rate and its second
+   harmonic), weighed into one figure (``evidence_db``:
    :attr:`features.Evidence.combined`) by which the candidates are ranked and detected.
 
 Threshold, fixed a priori from noise statistics (not tuned on any recording): for Gaussian

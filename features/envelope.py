@@ -24,7 +24,7 @@ from scipy import fft as sp_fft
 
 from . import _windows
 from ._validate import FeatureError, check_band, check_fs, check_signal
-from .separation import select_band, separate_discrete
+from .separation import fault_band, separate_discrete
 from .spectra import amplitude_spectrum
 
 __all__ = ["KurtogramResult", "kurtogram", "envelope", "envelope_spectrum", "prewhiten"]
@@ -163,8 +163,10 @@ def envelope_spectrum(
         Demodulation band [Hz]. ``None`` with ``fault_frequencies``: the band ``cmtool
         diagnose`` uses (periodic parts and discrete lines removed by
         :func:`features.separate_discrete`, then :func:`features.select_band` for the rates
-        ``bpfo``, ``bpfi``, ``two_bsf`` given, at least 3 x the fastest wide); ``None``
-        without: the band of largest spectral kurtosis (:func:`kurtogram`).
+        ``bpfo``, ``bpfi``, ``two_bsf`` given, at least 3 x the fastest wide, and the cage
+        rate, scored from 3 x the fastest rate up: ``features.separation.fault_band``; the
+        cage rate is ``ftf`` or, without it, shaft x BPFO / (BPFO + BPFI));
+        ``None`` without: the band of largest spectral kurtosis (:func:`kurtogram`).
     method : {"hilbert", "squared"}
         Envelope |z| or squared envelope |z|^2.
     prewhitening : bool
@@ -177,8 +179,8 @@ def envelope_spectrum(
         Also return the band used ``(low, high)`` [Hz].
     fault_frequencies : mapping of str to float, optional
         Fault rates to look for [Hz], e.g. ``{"bpfo": 107.4, "bpfi": 162.2, "two_bsf": 141.2,
-        "shaft": 29.95}`` (only used to choose the band; with ``shaft`` and ``bpfo`` their
-        harmonics are removed first, exactly as ``cmtool diagnose`` does).
+        "shaft": 29.95, "ftf": 11.9}`` (only used to choose the band; with ``shaft`` and
+        ``bpfo`` their harmonics are removed first, exactly as ``cmtool diagnose`` does).
 
     Returns
     -------
@@ -206,7 +208,13 @@ def envelope_spectrum(
         rates = {k: v for k, v in fault_frequencies.items() if k in ("bpfo", "bpfi", "two_bsf")}
         periodic = tuple(fault_frequencies[k] for k in ("shaft", "bpfo") if k in fault_frequencies)
         x = separate_discrete(x, fs, fundamentals=periodic)
-        band = select_band(x, fs, rates or fault_frequencies, nlevel=nlevel).band
+        cage = fault_frequencies.get("ftf")
+        if cage is None and all(k in fault_frequencies for k in ("shaft", "bpfo", "bpfi")):
+            # BPFO = Z x FTF and BPFO + BPFI = Z x the shaft rate, whatever the geometry
+            f = fault_frequencies
+            cage = f["shaft"] * f["bpfo"] / (f["bpfo"] + f["bpfi"])
+        cage = cage if rates else None
+        band = fault_band(x, fs, rates or fault_frequencies, cage, nlevel=nlevel).band
     elif band is None:
         band = kurtogram(x, fs, nlevel=nlevel).band
     env = envelope(x, fs, band=band, method=method)

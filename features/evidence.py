@@ -2,7 +2,9 @@
 
 The random part of the signal (:func:`features.separate_discrete`, the shaft's and the ball
 pass's harmonics removed), demodulated in the band where a fault rate shows most clearly
-(:func:`features.select_band`); then for each fault (``bpfo``, ``bpfi``, ``two_bsf``):
+(:func:`features.select_band` through :func:`features.separation.fault_band`: the fault
+rates and the cage rate, the latter only in bands from 3 x the fastest fault rate up); then
+for each fault (``bpfo``, ``bpfi``, ``two_bsf``):
 
 * ``evidence_<fault>_h<k>_snr`` [dB], k = 1, 2, 3: the envelope line at k x the rate,
   searched from ``SLIP_SEARCH[0]`` below to ``SLIP_SEARCH[1]`` above it (real bearings slip:
@@ -20,18 +22,20 @@ the bearing's own rates: independent of the sensor's unit and gain, the transfer
 machine's periodic components, and the same for any bearing and speed, which is what lets one
 model serve every machine given its bearing and speed.
 
-Beyond the row, :attr:`Evidence.combined` weighs each fault's line family as an analyst does:
-the fundamental, its second and third harmonics and its first sidebands (inner race: shaft
-rate; ball: cage rate about 2 x BSF). Each line's false-alarm probability under Gaussian noise
-(:func:`features.separation.line_false_alarm`; the fundamental's counted over every band
-searched) is combined by Fisher's method (-2 sum ln p is chi-square with 2 m degrees of
-freedom under noise), and the fault's probability is twice the smaller of the fundamental's
-and the family's (Bonferroni over the two tests: one clear fundamental keeps its weight, a
-family of moderate lines adds up). ``evidence_db`` is that probability on the dB scale of the
-detection threshold (:func:`features.separation.ratio_for_false_alarm`), so that a fault is
-detected when ``evidence_db`` reaches it, at the same false-alarm probability per fault. A
-line that lies on a stronger detected fault's harmonics or their sidebands counts for that
-fault only (:func:`explain_shared_lines`); the row's line ratios are as found.
+Beyond the row, :attr:`Evidence.combined` weighs each fault's line family as an analyst
+does: the fundamental, its second and third harmonics and its first sidebands (inner race:
+shaft rate; ball: cage rate about 2 x BSF), and for the ball the cage rate and its second
+harmonic (a ball pit strikes in bursts, once per cage revolution). Each line's false-alarm
+probability under Gaussian noise (:func:`features.separation.line_false_alarm`; the
+fundamental's counted over every band searched) is combined by Fisher's method (-2 sum ln p
+is chi-square with 2 m degrees of freedom under noise), and the fault's probability is twice
+the smaller of the fundamental's and the family's (Bonferroni over the two tests: one clear
+fundamental keeps its weight, a family of moderate lines adds up). ``evidence_db`` is that
+probability on the dB scale of the detection threshold
+(:func:`features.separation.ratio_for_false_alarm`), so that a fault is detected when
+``evidence_db`` reaches it, at the same false-alarm probability per fault. A line that lies
+on a stronger detected fault's harmonics or their sidebands counts for that fault only
+(:func:`explain_shared_lines`); the row's line ratios are as found.
 """
 
 from __future__ import annotations
@@ -49,9 +53,9 @@ from .separation import (
     FLOOR_BINS,
     BandSelection,
     detection_threshold_db,
+    fault_band,
     line_false_alarm,
     ratio_for_false_alarm,
-    select_band,
     separate_discrete,
 )
 from .spectra import amplitude_spectrum
@@ -227,7 +231,7 @@ def fault_evidence(x: np.ndarray, fs: float, fault_frequencies: Mapping[str, flo
     ctx = {k: float(v) for k, v in fault_frequencies.items()}
     rates = {k: ctx[k] for k in EVIDENCE_FAULTS}
     random_part = separate_discrete(x, fs, fundamentals=(ctx["shaft"], ctx["bpfo"]))
-    selection = select_band(random_part, fs, rates)
+    selection = fault_band(random_part, fs, rates, ctx["ftf"])
     env = envelope(random_part, fs, band=selection.band)
     ef, ea = amplitude_spectrum(env, fs)
     out: dict[str, float] = {}
@@ -260,6 +264,10 @@ def fault_evidence(x: np.ndarray, fs: float, fault_frequencies: Mapping[str, flo
     combined = explain_shared_lines(
         found_all, len(selection.bands), searched, floor, float(ef[1] - ef[0]), spacings
     )
+    cage = [(f"cage {k}x", slip_line(ef, ea, k * ctx["ftf"])) for k in CAGE_HARMONICS]
+    combined["two_bsf"] = _with_cage_lines(
+        combined["two_bsf"], found_all["two_bsf"], cage, len(selection.bands), searched, floor
+    )
     return Evidence(out, selection, threshold, lines, random_part, ef, ea, combined, found_all)
 
 
@@ -269,6 +277,9 @@ def fault_evidence(x: np.ndarray, fs: float, fault_frequencies: Mapping[str, flo
 #: k-th harmonic over about k times the slip, and its peak or its slip sidebands can stand
 #: anywhere in that width.
 SHARED_LINE_BINS = 1.0
+#: Harmonics of the cage rate weighed into the ball's family (docs/diagnosis.md, "The cage
+#: rate chooses the ball's band").
+CAGE_HARMONICS = (1, 2)
 SHARED_LINE_SLIP = 0.015
 #: Harmonics of a stronger fault that can account for another fault's line.
 SHARED_LINE_ORDERS = 10
@@ -335,6 +346,20 @@ def explain_shared_lines(
         if weighed["detected"]:
             explainers.append((fault, families[fault][0][1][1], spacings.get(fault, 0.0)))
     return {fault: combined[fault] for fault in families}
+
+
+def _with_cage_lines(weighed: dict, family, cage, n_bands: int, searched: int, floor: int):
+    """The ball's weighing with its cage-rate lines added to its family.
+
+    A ball pit strikes only while its ball crosses the load zone, once per cage revolution,
+    so its impacts come in bursts and its envelope shows the cage rate and its harmonics
+    (Randall and Antoni 2011); the lines another fault accounts for stay out, as in
+    :func:`explain_shared_lines`, whose ranking is left as it was.
+    """
+    explained = weighed.get("explained", [])
+    names = {name for name, *_ in explained}
+    family = [(name, (0.0, *line[1:]) if name in names else line) for name, line in family]
+    return {**_weigh(family + list(cage), n_bands, searched, floor), "explained": explained}
 
 
 def _on_series(

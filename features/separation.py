@@ -608,6 +608,7 @@ def select_band(
     min_bandwidth: float | None = None,
     nlevel: int = 6,
     min_frequency: float = 0.0,
+    floors: Mapping[str, float] | None = None,
 ) -> BandSelection:
     """The demodulation band where the envelope shows one of ``rates`` most clearly.
 
@@ -628,6 +629,12 @@ def select_band(
         Lowest frequency a band may hold [Hz]: bands starting below start there (default 0,
         the whole tree; 3 x the fastest rate, the highest envelope line weighed, was measured
         and not made the default: docs/diagnosis.md, "Bands from 0 Hz").
+    floors : mapping of str to float, optional
+        Per rate, the lowest band start [Hz] at which that rate is scored (its score in lower
+        bands is not counted; ``scores_db`` holds -inf there). For a slow rate whose line
+        the machine's low-frequency lines can make by beating with each other in a band
+        from 0 Hz: :func:`fault_band` scores the cage rate only from 3 x the fastest fault
+        rate up.
 
     Returns
     -------
@@ -656,6 +663,13 @@ def select_band(
             scores[i, j], bins, floor_bins = _ratio_db(freqs, amp, r)
             searched = max(searched, bins)
             floor = floor_bins if floor is None else min(floor, floor_bins)
+    for name, lowest in (floors or {}).items():
+        if name not in names:
+            raise FeatureError(f"floors names {name!r}, which is not one of the rates {names}")
+        starts = np.array([low for low, _ in bands])
+        scores[starts < lowest, names.index(name)] = -np.inf
+    if not np.isfinite(scores).any():
+        raise FeatureError(f"floors = {dict(floors or {})} leave no band to score a rate in")
     i, j = np.unravel_index(int(np.argmax(scores)), scores.shape)
     return BandSelection(
         band=(float(bands[i][0]), float(bands[i][1])),
@@ -666,4 +680,53 @@ def select_band(
         rates=names,
         searched_bins=searched,
         floor_bins=floor,
+    )
+
+
+#: The cage rate is scored for the band only in bands that start at this many times the
+#: fastest fault rate or higher (the highest envelope line weighed): a band from 0 Hz holds
+#: the machine's low-frequency lines, whose beats can fall on it (docs/diagnosis.md, "The
+#: cage rate chooses the ball's band").
+CAGE_BAND_FLOOR = 3.0
+
+
+def fault_band(
+    random_part: np.ndarray,
+    fs: float,
+    rates: Mapping[str, float],
+    cage_rate: float | None = None,
+    *,
+    nlevel: int = 6,
+) -> BandSelection:
+    """The band ``cmtool diagnose`` and :func:`features.fault_evidence` demodulate.
+
+    :func:`select_band` over the fault ``rates`` and, when ``cage_rate`` is given, the cage
+    rate as one more: a ball pit strikes only while its ball crosses the load zone, once per
+    cage revolution, so its impacts come in bursts whose cage-rate line can stand where the
+    slip-smeared 2 x BSF does not (Randall and Antoni 2011). The cage rate is scored only in
+    bands from ``CAGE_BAND_FLOOR`` x the fastest fault rate up.
+
+    Parameters
+    ----------
+    random_part : array_like, 1-D
+        The signal's random part [U] (:func:`separate_discrete`).
+    fs : float
+        Sample rate [Hz].
+    rates : mapping of str to float
+        Fault rates [Hz] (``bpfo``, ``bpfi``, ``two_bsf``).
+    cage_rate : float, optional
+        The cage rate (FTF) [Hz].
+    nlevel : int
+        Depth of the band tree.
+
+    Returns
+    -------
+    BandSelection
+        As :func:`select_band`; with ``cage_rate``, ``rates`` ends with ``"ftf"``.
+    """
+    if cage_rate is None:
+        return select_band(random_part, fs, rates, nlevel=nlevel)
+    floor = CAGE_BAND_FLOOR * max(float(v) for v in rates.values())
+    return select_band(
+        random_part, fs, {**rates, "ftf": cage_rate}, nlevel=nlevel, floors={"ftf": floor}
     )

@@ -85,3 +85,24 @@ def test_an_inner_race_faults_sidebands_are_its_own():
     # without the sideband spacing only the harmonic is explained
     plain = explain_shared_lines(families, 6, 5, 60, 0.5)
     assert plain["two_bsf"]["explained"] == []
+
+
+def test_the_balls_cage_lines_leave_the_lines_another_fault_explains_out():
+    """The ball's cage lines (FTF, 2 x FTF) join its family after the shared lines are given
+    away: the outer race's 4x that the ball's 3x found still counts for the outer race."""
+    from features.evidence import _with_cage_lines
+
+    families = _outer_pit_families(3 * BPFO)
+    combined = explain_shared_lines(families, 6, 5, 60, 0.1)
+    cage = _family([("cage 1x", 3.0, 11.93), ("cage 2x", 2.0, 23.86)])
+    ball = _with_cage_lines(combined["two_bsf"], families["two_bsf"], cage, 6, 5, 60)
+    assert ball["explained"] == [("3x", "bpfo", 4)]
+    assert [name for name, *_ in ball["lines"]] == ["1x", "2x", "3x", "1x-", "1x+"] + [
+        "cage 1x",
+        "cage 2x",
+    ]
+    assert dict((n, r) for n, r, _ in ball["lines"])["3x"] == 0.0
+    assert not ball["detected"]
+    # strong cage lines do make a ball of it
+    loud = _family([("cage 1x", 30.0, 11.93), ("cage 2x", 25.0, 23.86)])
+    assert _with_cage_lines(combined["two_bsf"], families["two_bsf"], loud, 6, 5, 60)["detected"]

@@ -176,6 +176,16 @@ def test_library_envelope_band_is_the_diagnose_band(rng):
     )
     assert d.verdict == "inner race"
     assert band == pytest.approx(d.band_hz)
+    # a ball pit's bursts, whose band the cage rate chooses: the same band, with the cage
+    # rate given or derived from the shaft rate, BPFO and BPFI (shaft x BPFO / (BPFO + BPFI))
+    assert f.shaft * f.bpfo / (f.bpfo + f.bpfi) == pytest.approx(f.ftf, rel=1e-12)
+    ball = _ball_pit_bursts(rng, 1.0, 24000)
+    d = diagnose_signal(ball, FS, 1797.0, "6205")
+    assert d.verdict == "ball"
+    rates = {"bpfo": f.bpfo, "bpfi": f.bpfi, "two_bsf": f.two_bsf, "shaft": f.shaft}
+    for given in (rates, {**rates, "ftf": f.ftf}):
+        _, _, band = features.envelope_spectrum(ball, FS, fault_frequencies=given, return_band=True)
+        assert band == pytest.approx(d.band_hz)
 
 
 def test_line_probabilities_share_the_threshold_scale():
@@ -235,3 +245,78 @@ def test_weighed_evidence_keeps_its_false_alarm_rate_on_noise(rng):
     ]
     rate = float(np.mean(np.array(smallest) <= 0.1))
     assert 0.02 <= rate <= 0.3
+
+
+# 6205 at 1797 rpm [Hz]
+BPFO, BPFI, TWO_BSF, FTF, SHAFT = 107.36, 162.19, 141.17, 11.93, 29.95
+
+
+def test_select_band_scores_a_rate_only_from_its_floor(rng):
+    """Two low tones FTF apart beat at FTF in every band from 0 Hz that holds both (that is
+    not envelope analysis); a 3 kHz ring modulated at FTF is. With the cage rate's floor at 3
+    x the fastest fault rate the selection demodulates the ring; without it, the beat."""
+    t = np.arange(12000) / FS
+    beat = np.cos(2 * np.pi * 150.0 * t) + np.cos(2 * np.pi * (150.0 + FTF) * t)
+    ring = (1.0 + 0.5 * np.cos(2 * np.pi * FTF * t)) * np.cos(2 * np.pi * 3000.0 * t)
+    x = beat + 0.05 * ring + 0.01 * rng.standard_normal(t.size)
+    rates = {"bpfo": BPFO, "bpfi": BPFI, "two_bsf": TWO_BSF, "ftf": FTF}
+    floor = 3.0 * BPFI
+    free = select_band(x, FS, rates)
+    assert free.rate == "ftf" and free.band[0] < floor
+    floored = select_band(x, FS, rates, floors={"ftf": floor})
+    assert floored.rate == "ftf" and floored.band[0] <= 3000.0 <= floored.band[1]
+    assert floored.band[0] >= floor
+    low = np.array([lo for lo, _ in floored.bands]) < floor
+    assert np.all(np.isneginf(floored.scores_db[low, 3]))
+    assert np.all(np.isfinite(floored.scores_db[:, :3]))
+    assert np.array_equal(floored.scores_db[~low], free.scores_db[~low])
+    # the library's function of the command's choice: the cage rate from 3 x the fastest rate
+    chosen = features.separation.fault_band(x, FS, {k: rates[k] for k in rates if k != "ftf"}, FTF)
+    assert chosen.band == floored.band and chosen.rates[-1] == "ftf"
+    with pytest.raises(features.FeatureError, match="floors names 'cage'"):
+        select_band(x, FS, rates, floors={"cage": floor})
+    with pytest.raises(features.FeatureError, match="leave no band"):
+        select_band(x, FS, {"ftf": FTF}, floors={"ftf": FS})
+
+
+def _ball_pit_bursts(rng, noise: float, n: int = 12000) -> np.ndarray:
+    """A ball pit's impacts, 2 x BSF apart with 1.5 % jitter, struck only while its ball
+    crosses the load zone (a third of each cage turn, strongest in its middle), each ringing
+    at 3.2 kHz; white noise ``noise`` x the impacts' RMS."""
+    t = np.arange(200) / FS
+    ring = np.exp(-800.0 * t) * np.sin(2 * np.pi * 3200.0 * t)
+    x = np.zeros(n)
+    time = 0.0
+    while time < n / FS:
+        time += (1.0 + 0.015 * rng.standard_normal()) / TWO_BSF
+        phase = (time * FTF) % 1.0
+        i = int(time * FS)
+        if phase < 1.0 / 3.0 and i + ring.size < n:
+            x[i : i + ring.size] += ring * np.sin(3.0 * np.pi * phase)
+    return x + noise * np.std(x) * rng.standard_normal(n)
+
+
+def test_the_cage_rate_finds_a_ball_pits_bursts(monkeypatch):
+    """A ball pit strikes in bursts once per cage turn (Randall and Antoni 2011): its cage line
+    stands where its slip-smeared 2 x BSF family is weak. In noise 4.5 x the impacts' RMS,
+    twelve records: the ball is detected in 9 or more of them with the cage rate choosing the
+    band and weighed in the ball's family (11 when written), in 6 or fewer without (3); pure
+    noise gives no ball either way."""
+    from features import fault_evidence
+
+    rates = {"bpfo": BPFO, "bpfi": BPFI, "two_bsf": TWO_BSF, "ftf": FTF, "shaft": SHAFT}
+    records = [_ball_pit_bursts(np.random.default_rng(seed), 4.5) for seed in range(12)]
+    noise = [np.random.default_rng(100 + seed).standard_normal(12000) for seed in range(12)]
+
+    def balls(signals) -> int:
+        return sum(fault_evidence(x, FS, rates).combined["two_bsf"]["detected"] for x in signals)
+
+    assert balls(records) >= 9
+    assert balls(noise) == 0
+    shipped = features.separation.fault_band
+    monkeypatch.setattr(
+        features.evidence, "fault_band", lambda x, fs, r, cage=None, **o: shipped(x, fs, r, **o)
+    )
+    monkeypatch.setattr(features.evidence, "CAGE_HARMONICS", ())
+    assert balls(records) <= 6
+    assert balls(noise) == 0
