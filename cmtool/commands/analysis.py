@@ -90,11 +90,13 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
             f"{a['record_s']:g} s ({a['samples']} samples), channel {a['channel']}"
         )
         for c in diagnosis.candidates:
+            cage = [w for w in c.get("lines_weighed", []) if w["line"] == "cage 1x"]
             print(
                 f"  {c['fault']:<11s} {c['frequency_hz']:9.3f} Hz  envelope SNR "
                 f"{c['envelope_snr_db'][0]:6.1f} / {c['envelope_snr_db'][1]:6.1f} / "
-                f"{c['envelope_snr_db'][2]:6.1f} dB (1x/2x/3x), weighed "
-                f"{c['evidence_db']:5.1f} dB"
+                f"{c['envelope_snr_db'][2]:6.1f} dB (1x/2x/3x)"
+                + (f", cage rate {cage[0]['snr_db']:.1f} dB" if cage else "")
+                + f", weighed {c['evidence_db']:5.1f} dB"
                 + ("  DETECTED" if c["detected"] else "")
                 + (f"  ({shared})" if (shared := explained_lines(c)) else "")
             )

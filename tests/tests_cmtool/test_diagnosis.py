@@ -291,6 +291,30 @@ def test_cli_diagnose_says_a_faults_size_is_not_estimated(tmp_path, capsys, rng)
     assert "## Fault size" in report and SEVERITY_NOT_ESTIMATED in report
 
 
+def test_cli_diagnose_shows_the_balls_cage_line(tmp_path, capsys, rng):
+    """A ball pit's impacts come in bursts once per cage turn: the ball's line in the text says
+    how far its cage-rate line stands over the floor, beside 1x/2x/3x (docs/diagnosis.md)."""
+    from generators import bearing, characteristic_frequencies
+
+    fs, n = 12000.0, 24000
+    f = characteristic_frequencies(bearing("6205"), 1797 / 60)
+    times = np.cumsum((1 + 0.015 * rng.standard_normal(800)) / f.two_bsf)
+    times = times[(times < n / fs - 0.02) & ((times * f.ftf) % 1.0 < 1.0 / 3.0)]
+    x = np.zeros(n)
+    x[(times * fs).astype(int)] = np.sin(3.0 * np.pi * ((times * f.ftf) % 1.0))
+    t = np.arange(200) / fs
+    x = np.convolve(x, np.exp(-800.0 * t) * np.sin(2 * np.pi * 3200.0 * t))[:n]
+    x = x + x.std() * rng.standard_normal(n)
+    np.save(tmp_path / "ball.npy", x)
+    args = ["diagnose", str(tmp_path / "ball.npy"), "--fs", "12000", "--rpm", "1797"]
+    assert main([*args, "--bearing", "6205"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("ball.npy: ball")
+    ball = next(line for line in out.splitlines() if line.strip().startswith("ball "))
+    assert "cage rate" in ball and "DETECTED" in ball
+    assert not any("cage rate" in line for line in out.splitlines() if "race" in line)
+
+
 def test_diagnose_bad_input(rng):
     with pytest.raises(ValueError, match="constant"):
         diagnose_signal(np.ones(5000), 12000.0, 1800.0)
