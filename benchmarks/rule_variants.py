@@ -36,9 +36,10 @@ Modes:
     times the least of the fundamental's, the family's and the comb's (Bonferroni).
 
 ``band-floor DATASET [DATASET ...]``
-    As ``ball-odd``, with every candidate band raised to start at 3 x the fastest fault rate,
-    the highest envelope line weighed (``select_band(..., min_frequency=...)``), against the
-    shipped tree whose bands may start at 0 Hz (docs/diagnosis.md, "Bands from 0 Hz").
+    As ``ball-odd``, the rule as shipped (every candidate band starting at 3 x the fastest
+    fault rate, the highest envelope line weighed: ``features.separation.fault_band``) against
+    the tree whose bands may start at 0 Hz, the cage rate in both (docs/diagnosis.md, "Bands
+    from 0 Hz": measured in stop 42 without the cage rate, shipped in stop 44, B15).
 
 ``sideband-cap DATASET [DATASET ...]``
     As ``ball-odd``, with each first sideband weighed at most at its fundamental's ratio: the
@@ -53,11 +54,11 @@ Modes:
 
 ``cage-band DATASET [DATASET ...]``
     As ``ball-odd``, the evidence before stop 44 (the band chosen by the fault rates alone,
-    the ball's family without the cage lines) against the shipped one, whose band is chosen
-    by the cage rate too (scored in bands from 3 x the fastest fault rate up) and whose ball
-    family weighs FTF and 2 x FTF (``features.separation.fault_band``; docs/diagnosis.md,
-    "The cage rate chooses the ball's band"). Since stop 44 the other modes' "shipped"
-    includes both.
+    the ball's family without the cage lines) against B14's, whose band is chosen by the cage
+    rate too (scored in bands from 3 x the fastest fault rate up) and whose ball family weighs
+    FTF and 2 x FTF (docs/diagnosis.md, "The cage rate chooses the ball's band"), both on the
+    band tree from 0 Hz. Since stop 44 the other modes' "shipped" has the cage rate and the
+    band floor.
 
 ``cage-feature CWRU MFPT CWRU777``
     The FTF line of the envelope over its floor (in the chosen band) as a model feature added
@@ -244,7 +245,11 @@ def ball_odd(paths: list[str], variants=None) -> None:
                 verdicts = np.array(list(pool.map(one, frame.itertuples())))
             right = verdicts == frame["label"].map(LABELS).to_numpy()
             frame = frame.assign(right=right)
-            print(f"{variant}, {path} ({len(frame)} signals, {time.perf_counter() - start:.0f} s)")
+            alarms = int((frame["label"].eq("healthy") & ~frame["right"]).sum())
+            print(
+                f"{variant}, {path} ({len(frame)} signals, {time.perf_counter() - start:.0f} s; "
+                f"right {int(frame['right'].sum())}, healthy false alarms {alarms})"
+            )
             print(frame.groupby("label")["right"].mean().round(3).to_string())
     features.fault_evidence = _SHIPPED_EVIDENCE
 
@@ -268,19 +273,6 @@ def _with_odd_ball_lines(x, fs, fault_frequencies):
     bands = len(result.selection.bands)
     result.combined["two_bsf"] = evidence._weigh(lines, bands, searched, floor)
     return result
-
-
-def _floored_select_band(x, fs, rates, **options):
-    return separation.select_band(x, fs, rates, min_frequency=3.0 * max(rates.values()), **options)
-
-
-def _with_band_floor(x, fs, fault_frequencies, floor: bool):
-    """The shipped evidence, its bands starting at 3 x the fastest rate (``floor``) or not.
-
-    Each variant sets the module's ``select_band`` the same way in every thread (the variants
-    run one after the other)."""
-    evidence.select_band = _floored_select_band if floor else separation.select_band
-    return _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
 
 
 _SHIPPED_BAND_SPECTRUM = separation._band_envelope_spectrum
@@ -367,19 +359,24 @@ def _with_cage_lines(x, fs, fault_frequencies, comb_as_test: bool):
 _SHIPPED_FAULT_BAND = separation.fault_band
 
 
-def _without_cage_rate(rest, fs, rates, cage_rate=None, **options):
-    return _SHIPPED_FAULT_BAND(rest, fs, rates, None, **options)
-
-
-def _with_cage_rate(x, fs, fault_frequencies, cage: bool):
-    """The shipped evidence (``cage``) or the evidence before stop 44: the band chosen by the
-    fault rates alone and the ball's family without the cage lines.
+def _rule(cage: bool, tree_from_zero: bool):
+    """The rule's evidence with or without the cage rate (band choice and the ball's family)
+    and with the band tree from 0 Hz (as before stop 44) or from 3 x the fastest rate (shipped).
 
     Each variant sets the module's names the same way in every thread (the variants run one
     after the other)."""
-    evidence.fault_band = _SHIPPED_FAULT_BAND if cage else _without_cage_rate
-    evidence.CAGE_HARMONICS = (1, 2) if cage else ()
-    return _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
+
+    def band(x, fs, rates, cage_rate=None, **options):
+        lowest = 0.0 if tree_from_zero else None
+        rate = cage_rate if cage else None
+        return _SHIPPED_FAULT_BAND(x, fs, rates, rate, min_frequency=lowest, **options)
+
+    def rule_evidence(x, fs, fault_frequencies):
+        evidence.fault_band = band
+        evidence.CAGE_HARMONICS = (1, 2) if cage else ()
+        return _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
+
+    return rule_evidence
 
 
 def _cage_line(args) -> float:
@@ -440,11 +437,10 @@ if __name__ == "__main__":
         ball_odd(
             sys.argv[2:],
             {
-                "shipped": lambda x, fs, f: _with_band_floor(x, fs, f, False),
-                "from 3 x the fastest rate": lambda x, fs, f: _with_band_floor(x, fs, f, True),
+                "B14 (the tree from 0 Hz)": _rule(cage=True, tree_from_zero=True),
+                "shipped (from 3 x the fastest rate)": _rule(cage=True, tree_from_zero=False),
             },
         )
-        evidence.select_band = separation.select_band
     elif mode == "sideband-cap" and len(sys.argv) > 2:
         ball_odd(sys.argv[2:], {"shipped": _SHIPPED_EVIDENCE, "capped": _with_capped_sidebands})
     elif mode == "squared-envelope" and len(sys.argv) > 2:
@@ -459,8 +455,8 @@ if __name__ == "__main__":
         ball_odd(
             sys.argv[2:],
             {
-                "before stop 44 (no cage rate)": lambda x, fs, f: _with_cage_rate(x, fs, f, False),
-                "shipped (the cage rate)": lambda x, fs, f: _with_cage_rate(x, fs, f, True),
+                "before stop 44 (no cage rate)": _rule(cage=False, tree_from_zero=True),
+                "B14 (the cage rate)": _rule(cage=True, tree_from_zero=True),
             },
         )
     elif mode == "cage-feature" and len(sys.argv) == 5:
@@ -476,3 +472,4 @@ if __name__ == "__main__":
         )
     else:
         sys.exit(__doc__)
+    evidence.fault_band, evidence.CAGE_HARMONICS = separation.fault_band, (1, 2)

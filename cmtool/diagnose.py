@@ -6,10 +6,9 @@ The rule-based detector always runs:
    signal (a loaded bearing's varying compliance, shaft harmonics, mains, gears) is removed; a
    local fault's impacts, whose timing jitters (slip), stay;
 2. band selection (``features.separation.fault_band``): of the kurtogram tree's bands at
-   least ``features.table.MIN_BAND_FACTOR`` times the fastest fault rate wide, the one whose
-   envelope spectrum shows a fault rate highest above its floor, the cage rate counted in
-   bands from 3 x the fastest fault rate up (a ball pit strikes in bursts, once per cage
-   turn);
+   least ``features.table.MIN_BAND_FACTOR`` times the fastest fault rate wide and starting at
+   3 x it, the one whose envelope spectrum shows a fault rate or the cage rate (a ball pit
+   strikes in bursts, once per cage turn) highest above its floor;
 3. for each fault (outer race: BPFO, inner race: BPFI, ball: 2 x BSF) the height of its
    fundamental above the local noise floor (median of the envelope spectrum within +/- 10 %
    of the line), its harmonics and sidebands (the ball's also the cage rate and its second

@@ -163,9 +163,9 @@ def envelope_spectrum(
         Demodulation band [Hz]. ``None`` with ``fault_frequencies``: the band ``cmtool
         diagnose`` uses (periodic parts and discrete lines removed by
         :func:`features.separate_discrete`, then :func:`features.select_band` for the rates
-        ``bpfo``, ``bpfi``, ``two_bsf`` given, at least 3 x the fastest wide, and the cage
-        rate, scored from 3 x the fastest rate up: ``features.separation.fault_band``; the
-        cage rate is ``ftf`` or, without it, shaft x BPFO / (BPFO + BPFI));
+        ``bpfo``, ``bpfi``, ``two_bsf`` given and the cage rate, bands at least 3 x the
+        fastest rate wide and from 3 x it up: ``features.separation.fault_band``; the cage
+        rate is ``ftf`` or, without it, shaft x BPFO / (BPFO + BPFI));
         ``None`` without: the band of largest spectral kurtosis (:func:`kurtogram`).
     method : {"hilbert", "squared"}
         Envelope |z| or squared envelope |z|^2.

@@ -3,8 +3,8 @@
 The random part of the signal (:func:`features.separate_discrete`, the shaft's and the ball
 pass's harmonics removed), demodulated in the band where a fault rate shows most clearly
 (:func:`features.select_band` through :func:`features.separation.fault_band`: the fault
-rates and the cage rate, the latter only in bands from 3 x the fastest fault rate up); then
-for each fault (``bpfo``, ``bpfi``, ``two_bsf``):
+rates and the cage rate, in bands from 3 x the fastest fault rate up); then for each fault
+(``bpfo``, ``bpfi``, ``two_bsf``):
 
 * ``evidence_<fault>_h<k>_snr`` [dB], k = 1, 2, 3: the envelope line at k x the rate,
   searched from ``SLIP_SEARCH[0]`` below to ``SLIP_SEARCH[1]`` above it (real bearings slip:

@@ -627,8 +627,8 @@ def select_band(
         Depth of the band tree.
     min_frequency : float
         Lowest frequency a band may hold [Hz]: bands starting below start there (default 0,
-        the whole tree; 3 x the fastest rate, the highest envelope line weighed, was measured
-        and not made the default: docs/diagnosis.md, "Bands from 0 Hz").
+        the whole tree; the rule's :func:`fault_band` starts at 3 x the fastest rate, the
+        highest envelope line weighed: docs/diagnosis.md, "Bands from 0 Hz").
     floors : mapping of str to float, optional
         Per rate, the lowest band start [Hz] at which that rate is scored (its score in lower
         bands is not counted; ``scores_db`` holds -inf there). For a slow rate whose line
@@ -683,11 +683,12 @@ def select_band(
     )
 
 
-#: The cage rate is scored for the band only in bands that start at this many times the
-#: fastest fault rate or higher (the highest envelope line weighed): a band from 0 Hz holds
-#: the machine's low-frequency lines, whose beats can fall on it (docs/diagnosis.md, "The
-#: cage rate chooses the ball's band").
-CAGE_BAND_FLOOR = 3.0
+#: The rule's bands start at this many times the fastest fault rate or higher (the highest
+#: envelope line weighed): a band that holds the fault rates themselves has no carrier, its
+#: "envelope" mixes the machine's low-frequency lines, whose beats can fall on a fault rate
+#: or on the cage rate (docs/diagnosis.md, "Bands from 0 Hz" and "The cage rate chooses the
+#: ball's band").
+BAND_FLOOR_FACTOR = 3.0
 
 
 def fault_band(
@@ -697,14 +698,16 @@ def fault_band(
     cage_rate: float | None = None,
     *,
     nlevel: int = 6,
+    min_frequency: float | None = None,
 ) -> BandSelection:
     """The band ``cmtool diagnose`` and :func:`features.fault_evidence` demodulate.
 
     :func:`select_band` over the fault ``rates`` and, when ``cage_rate`` is given, the cage
     rate as one more: a ball pit strikes only while its ball crosses the load zone, once per
     cage revolution, so its impacts come in bursts whose cage-rate line can stand where the
-    slip-smeared 2 x BSF does not (Randall and Antoni 2011). The cage rate is scored only in
-    bands from ``CAGE_BAND_FLOOR`` x the fastest fault rate up.
+    slip-smeared 2 x BSF does not (Randall and Antoni 2011). Every band starts at
+    ``BAND_FLOOR_FACTOR`` x the fastest fault rate or higher, and the cage rate is scored
+    only there whatever ``min_frequency`` says.
 
     Parameters
     ----------
@@ -718,15 +721,24 @@ def fault_band(
         The cage rate (FTF) [Hz].
     nlevel : int
         Depth of the band tree.
+    min_frequency : float, optional
+        Lowest frequency a band may hold [Hz] (:func:`select_band`); default
+        ``BAND_FLOOR_FACTOR`` x the fastest fault rate (0: the whole tree, as before stop 44).
 
     Returns
     -------
     BandSelection
         As :func:`select_band`; with ``cage_rate``, ``rates`` ends with ``"ftf"``.
     """
+    floor = BAND_FLOOR_FACTOR * max(float(v) for v in rates.values())
+    min_frequency = floor if min_frequency is None else min_frequency
     if cage_rate is None:
-        return select_band(random_part, fs, rates, nlevel=nlevel)
-    floor = CAGE_BAND_FLOOR * max(float(v) for v in rates.values())
+        return select_band(random_part, fs, rates, nlevel=nlevel, min_frequency=min_frequency)
     return select_band(
-        random_part, fs, {**rates, "ftf": cage_rate}, nlevel=nlevel, floors={"ftf": floor}
+        random_part,
+        fs,
+        {**rates, "ftf": cage_rate},
+        nlevel=nlevel,
+        min_frequency=min_frequency,
+        floors={"ftf": floor},
     )

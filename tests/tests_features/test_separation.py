@@ -270,9 +270,15 @@ def test_select_band_scores_a_rate_only_from_its_floor(rng):
     assert np.all(np.isneginf(floored.scores_db[low, 3]))
     assert np.all(np.isfinite(floored.scores_db[:, :3]))
     assert np.array_equal(floored.scores_db[~low], free.scores_db[~low])
-    # the library's function of the command's choice: the cage rate from 3 x the fastest rate
-    chosen = features.separation.fault_band(x, FS, {k: rates[k] for k in rates if k != "ftf"}, FTF)
-    assert chosen.band == floored.band and chosen.rates[-1] == "ftf"
+    # the command's choice (features.separation.fault_band): the cage rate from 3 x the
+    # fastest rate and, since B15, every band from there too; on the whole tree it is the
+    # floored selection above
+    faults = {k: rates[k] for k in rates if k != "ftf"}
+    whole = features.separation.fault_band(x, FS, faults, FTF, min_frequency=0.0)
+    assert whole.band == floored.band and whole.rates[-1] == "ftf"
+    chosen = features.separation.fault_band(x, FS, faults, FTF)
+    assert all(lo >= floor for lo, _ in chosen.bands) and len(chosen.bands) < len(free.bands)
+    assert chosen.rate == "ftf" and chosen.band[0] <= 3000.0 <= chosen.band[1]
     with pytest.raises(features.FeatureError, match="floors names 'cage'"):
         select_band(x, FS, rates, floors={"cage": floor})
     with pytest.raises(features.FeatureError, match="leave no band"):
