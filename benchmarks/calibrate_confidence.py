@@ -74,10 +74,14 @@ def _verdicts(margins: np.ndarray, healthy: tuple[float, float], fault: tuple[fl
     return verdict, np.where(detected, c_fault, c_healthy)
 
 
-def _fit(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
-    """(scale, offset) [dB] of P(y) = 1 / (1 + exp(-(x - offset) / scale))."""
+def _fit(x: np.ndarray, y: np.ndarray) -> tuple[float, float] | None:
+    """(scale, offset) [dB] of P(y) = 1 / (1 + exp(-(x - offset) / scale)); None when y is
+    all one value (no logistic to fit: since stop 44 every fault verdict of the calibration
+    set is right)."""
     from sklearn.linear_model import LogisticRegression
 
+    if len(np.unique(y)) < 2:
+        return None
     fit = LogisticRegression(C=1e6).fit(x.reshape(-1, 1), y)
     slope, intercept = float(fit.coef_[0, 0]), float(fit.intercept_[0])
     return 1.0 / slope, -intercept / slope
@@ -99,10 +103,16 @@ def main() -> None:
     fault = _fit(top[detected], (called == labels)[detected])
     healthy = _fit(top[~detected], (labels != "healthy")[~detected])
     print(f"calibration set {calibration.name}: {len(labels)} signals")
+
+    def _say(name: str, fitted, n: int) -> str:
+        if fitted is None:
+            return f"{name}: all {n} alike, nothing to fit (rule of three: errors below 3/{n})"
+        return f"{name} ({fitted[0]:.2f}, {fitted[1]:.2f}) dB"
+
     print(
-        f"fitted: line (scale, offset) = ({line[0]:.2f}, {line[1]:.2f}) dB; fault verdicts "
-        f"({fault[0]:.2f}, {fault[1]:.2f}) dB; healthy verdicts ({healthy[0]:.2f}, "
-        f"{healthy[1]:.2f}) dB"
+        f"fitted: {_say('line (scale, offset) =', line, margins.size)}; "
+        f"{_say('fault verdicts', fault, int(detected.sum()))}; "
+        f"{_say('healthy verdicts', healthy, int((~detected).sum()))}"
     )
     test_labels, test_margins = _margins(_dataset(benchmark, seed=None, half=False))
     before = (D.CONFIDENCE_SCALE_DB, D.CONFIDENCE_OFFSET_DB)
@@ -112,6 +122,9 @@ def main() -> None:
         ("fitted now", healthy, fault),
     )
     for name, h, f in in_use:
+        if h is None or f is None:
+            print(f"{name}: not scored (nothing was fitted)")
+            continue
         verdict, confidence = _verdicts(test_margins, h, f)
         correct = verdict == test_labels
         ece = expected_calibration_error(confidence, correct)
@@ -119,6 +132,14 @@ def main() -> None:
             f"{name} on {benchmark.name} ({len(test_labels)} signals): accuracy "
             f"{correct.mean():.3f}, mean confidence {confidence.mean():.3f}, ECE {ece:.3f}"
         )
+        fault_verdict = verdict != "healthy"
+        for part, sel in (("fault verdicts", fault_verdict), ("healthy verdicts", ~fault_verdict)):
+            if sel.any():
+                print(
+                    f"  {part}: {int(sel.sum())}, right {correct[sel].mean():.3f}, mean "
+                    f"confidence {confidence[sel].mean():.3f}, ECE "
+                    f"{expected_calibration_error(confidence[sel], correct[sel]):.3f}"
+                )
     del before
 
 
