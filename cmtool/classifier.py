@@ -320,20 +320,45 @@ def _grouped_cv(X, y, groups, estimator, n_splits: int) -> tuple[float, np.ndarr
     return float(balanced_accuracy_score(y, pred)), pred
 
 
+#: The share of the training signals held out at each end of the speed and load ranges to score
+#: how a model extrapolates. A grid recipe's extreme level holds more (the small recipe: a
+#: quarter of the speeds, a third of the loads) and is held out whole; a randomised recipe's
+#: extreme value is one signal, which would score 0 or 1.
+EXTRAPOLATION_SHARE = 0.1
+
+
+def extreme_masks(values: np.ndarray, share: float = EXTRAPOLATION_SHARE):
+    """The signals at the top and at the bottom of one operating variable.
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        The variable per signal (shaft speed [rpm] or radial load [N]).
+    share : float
+        The least share held out at each end: every signal at or above the ``1 - share``
+        quantile, and at or below the ``share`` quantile (a grid's whole extreme level).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Boolean masks (top, bottom).
+    """
+    values = np.asarray(values, dtype=float)
+    top = values >= np.quantile(values, 1.0 - share) - 1e-9
+    bottom = values <= np.quantile(values, share) + 1e-9
+    return top, bottom
+
+
 def _extrapolation(X, y, frame, estimator) -> dict[str, float]:
+    """Accuracy on each end of the speed and load ranges of a model trained without it."""
     out = {}
     for col in ("rpm", "radial_load_n"):
-        values = frame[col].to_numpy()
-        top = values.max()
-        test = values >= top - 1e-9
-        if test.all() or not test.any():
-            continue
-        est = clone(estimator).fit(X[~test], y[~test])
-        out[f"{col}_above_training"] = float(accuracy_score(y[test], est.predict(X[test])))
-        low = values <= values.min() + 1e-9
-        if not low.all():
-            est = clone(estimator).fit(X[~low], y[~low])
-            out[f"{col}_below_training"] = float(accuracy_score(y[low], est.predict(X[low])))
+        masks = extreme_masks(frame[col].to_numpy())
+        for side, test in zip(("above", "below"), masks, strict=True):
+            if test.all() or not test.any():
+                continue
+            est = clone(estimator).fit(X[~test], y[~test])
+            out[f"{col}_{side}_training"] = float(accuracy_score(y[test], est.predict(X[test])))
     return out
 
 
@@ -505,8 +530,10 @@ def train(
         The model bundle: ``pipeline`` (FeatureExtractor + scaler + best classifier, fitted on
         all data), ``classes``, ``feature_names``, ``scores`` (grouped-CV balanced accuracy,
         the mean of the per-class recalls, of every candidate), ``best`` (the one kept),
-        ``extrapolation``, ``recipe``, ``versions``, ``pooled_calibration``
-        (:func:`pooled_calibration`) and ``class_kinds`` (:func:`class_kinds`).
+        ``extrapolation`` (accuracy of the kept classifier at each end of the speed and load
+        ranges, trained without it: :func:`extreme_masks`), ``recipe``, ``versions``,
+        ``pooled_calibration`` (:func:`pooled_calibration`) and ``class_kinds``
+        (:func:`class_kinds`).
     """
     kept = visible_faults(frame, min_fault_snr_db)
     left_out = int((~kept).sum())

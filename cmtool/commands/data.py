@@ -110,6 +110,11 @@ def cmd_train(args: argparse.Namespace) -> int:
         f"{label} {np.mean(predicted[truth == label] == label):.2f}" for label in bundle["classes"]
     )
     print(f"  recall per class of the kept model (out of fold): {recalls}")
+    if bundle["extrapolation"]:
+        print(
+            "  accuracy at each end of the speed and load ranges, trained without it (the "
+            "extreme tenth or grid level):"
+        )
     for key, value in bundle["extrapolation"].items():
         print(f"  extrapolation {key:<28s} {value:.3f}")
     print(f"wrote {save_model(bundle, args.out)}")

@@ -78,6 +78,23 @@ def test_training_reports_grouped_scores_and_keeps_the_best(bundle):
     assert bundle["classes"] == ["ball", "healthy", "inner", "outer"]
 
 
+def test_extrapolation_holds_out_a_tenth_of_a_random_range_and_a_grids_extreme_level(small):
+    """A randomised recipe's extreme speed is one signal (an accuracy of 0 or 1, as `cmtool
+    train` printed on datasets/universal until stop 45); the small recipe's grid keeps its
+    extreme level whole (a quarter of the speeds, a third of the loads)."""
+    from cmtool.classifier import extreme_masks
+
+    speeds = np.random.default_rng(0).uniform(600.0, 3000.0, 500)
+    top, bottom = extreme_masks(speeds)
+    assert 0.09 <= top.mean() <= 0.12 and 0.09 <= bottom.mean() <= 0.12
+    assert speeds[top].min() > speeds[~top].max() and speeds[bottom].max() < speeds[~bottom].min()
+    for column, share in (("rpm", 1 / 4), ("radial_load_n", 1 / 3)):
+        values = small[column].to_numpy()
+        top, bottom = extreme_masks(values)
+        assert (top == (values == values.max())).all() and top.mean() == pytest.approx(share)
+        assert (bottom == (values == values.min())).all()
+
+
 def test_model_round_trip_and_version_check(bundle, small, tmp_path):
     import skops.io as sio
 
@@ -187,6 +204,7 @@ def test_cli_train_evaluate(tmp_path, capsys, light_forests):
     assert main(["train", str(SMALL), "--out", str(model), "--feature-set", "envelope"]) == 0
     out = capsys.readouterr().out
     assert "grouped" in out and "<- kept" in out
+    assert "at each end of the speed and load ranges" in out and "extrapolation rpm_above" in out
     assert load_model(model)["feature_set"] == "envelope"  # --feature-set reached the bundle
     # scoring a model on its own training signals is refused ...
     assert main(["evaluate", str(model), str(SMALL)]) == 2
