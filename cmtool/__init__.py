@@ -6,7 +6,7 @@ user needs, plus the application layer (I/O, plots, command line).
 
 from typing import TYPE_CHECKING
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 from generators import (  # noqa: E402
     BEARINGS,
