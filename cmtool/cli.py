@@ -239,6 +239,12 @@ def build_parser() -> argparse.ArgumentParser:
         help="radial load [N] of the healthy model that waviness lines are judged against "
         "without --baseline (default 500 N, stated as assumed)",
     )
+    p.add_argument(
+        "--allow-clipping",
+        action="store_true",
+        help="diagnose a record (or baseline) with 3 %% or more of its samples at full scale "
+        "instead of refusing it (its verdict then carries a warning)",
+    )
     p.add_argument("--json", action="store_true", help="print the verdict as JSON")
     p.set_defaults(func=cmd_diagnose)
 

@@ -20,13 +20,15 @@ logger = logging.getLogger("cmtool")
 
 def cmd_diagnose(args: argparse.Namespace) -> int:
     """Diagnose a recording: verdict, evidence, optional report and JSON."""
-    from ..diagnose import diagnose_signal, explained_lines, write_report
+    from ..diagnose import check_clipping, diagnose_signal, explained_lines, write_report
     from ..io import read_recording
     from ..waviness import comparison_text
 
     if args.report and Path(args.report).exists() and not Path(args.report).is_dir():
         raise CliError(f"--report {args.report!r} is a file; give a folder for report.md")
     x, meta = read_recording(args.recording, variable=args.variable, channel=args.channel)
+    if not args.allow_clipping:
+        check_clipping(x, args.recording)
     warnings = []
     fs = args.fs if args.fs is not None else meta.get("fs_hz")
     if fs is None:
@@ -57,6 +59,8 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
             args.baseline, variable=args.variable, channel=args.channel
         )
         baseline_fs = base_meta.get("fs_hz", float(fs))
+        if not args.allow_clipping:
+            check_clipping(baseline, f"--baseline {args.baseline}")
     diagnosis = diagnose_signal(
         x,
         float(fs),

@@ -66,6 +66,29 @@ def test_inputs_that_cannot_be_diagnosed_are_errors(outer_race_csv, tmp_path, ca
     assert report.read_text() == "mine"
 
 
+def test_a_clipped_record_is_refused_unless_allowed(outer_race_csv, tmp_path, capsys):
+    """From 3 % of the samples at full scale the rule's verdict changes for more than 5 % of
+    simulated records (docs/diagnosis.md, "Clipping"): diagnose refuses, --allow-clipping
+    overrides; 1 % is diagnosed with a warning. The baseline is held to the same."""
+    x = np.loadtxt(outer_race_csv, delimiter=",")[:, 1]
+    paths = {}
+    for share in (0.01, 0.05):
+        level = np.quantile(np.abs(x), 1.0 - share)
+        paths[share] = tmp_path / f"clipped-{share}.npy"
+        np.save(paths[share], np.clip(x, -level, level))
+    base = ["--rpm", "1797", "--bearing", "6205", "--fs", "12000"]
+    assert main(["diagnose", str(paths[0.05]), *base]) == 2
+    err = _one_line_error(capsys)
+    assert "is clipped: 5.0% of its samples" in err and "--allow-clipping" in err
+    assert main(["diagnose", str(paths[0.05]), *base, "--allow-clipping"]) == 0
+    assert "signal looks clipped: 1200 samples (5.00%)" in capsys.readouterr().out
+    assert main(["diagnose", str(paths[0.01]), *base]) == 0
+    assert "signal looks clipped: 240 samples (1.00%)" in capsys.readouterr().out
+    argv = ["diagnose", str(outer_race_csv), *base, "--baseline", str(paths[0.05])]
+    assert main(argv) == 2
+    assert "--baseline" in _one_line_error(capsys)
+
+
 def test_cmtool_parquet_carries_rate_speed_and_bearing(tmp_path, capsys):
     signal = tmp_path / "sig.parquet"
     argv = ["simulate", "--bearing", "6203", "--rpm", "2400", "--duration", "0.5", "--fs"]

@@ -408,6 +408,17 @@ def test_measured_recordings_get_their_labelled_fault(shared_data, name, bearing
     assert d.assumptions["record_s"] == pytest.approx(x.size / float(row.sampling_rate_hz))
 
 
+@pytest.mark.realdata
+def test_no_measured_recording_is_refused_as_clipped(shared_data):
+    """`cmtool diagnose` refuses records with 3 % or more of their samples at full scale (a
+    threshold from simulation); none of the measured recordings is one."""
+    from cmtool.diagnose import check_clipping
+
+    for name in pd.read_csv(shared_data / "MANIFEST.csv")["file"]:
+        x, _ = read_recording(shared_data / name)
+        check_clipping(x, name)
+
+
 def test_demo_runs_end_to_end(tmp_path, capsys):
     assert main(["demo", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
