@@ -87,6 +87,10 @@ def test_a_clipped_record_is_refused_unless_allowed(outer_race_csv, tmp_path, ca
     argv = ["diagnose", str(outer_race_csv), *base, "--baseline", str(paths[0.05])]
     assert main(argv) == 2
     assert "--baseline" in _one_line_error(capsys)
+    constant = tmp_path / "constant.npy"
+    np.save(constant, np.ones(24000))  # every sample at full scale, but no signal at all
+    assert main(["diagnose", str(constant), *base]) == 2
+    assert "signal is constant" in _one_line_error(capsys)
 
 
 def test_cmtool_parquet_carries_rate_speed_and_bearing(tmp_path, capsys):
