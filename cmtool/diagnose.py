@@ -163,7 +163,7 @@ class Diagnosis:
         return out
 
 
-#: Share of a record's samples at its full-scale value from which ``cmtool diagnose`` refuses
+#: Share of a record's samples at its full-scale values from which ``cmtool diagnose`` refuses
 #: it (``--allow-clipping`` overrides). Measured on simulation (the CWRU-rig recipe's seed-777
 #: draw, its 269 healthy and visible-fault signals; ``benchmarks/clipping.py``): with 0.1, 0.3
 #: and 1 % of the samples clipped the rule's verdict changes for 1.5, 3.0 and 4.8 % of them,
@@ -173,7 +173,10 @@ CLIPPING_ERROR_SHARE = 0.03
 
 
 def clipped_share(x: np.ndarray) -> float:
-    """Share of the samples at the record's full-scale value (|x| within 1e-6 of its peak).
+    """Share of the samples at the record's largest or smallest value (within 1e-6 of its range).
+
+    The two ends are counted apart, so a converter whose range is not symmetric (a 16-bit one
+    reads -32768 to 32767) or a record with an offset is judged on both.
 
     Parameters
     ----------
@@ -183,13 +186,15 @@ def clipped_share(x: np.ndarray) -> float:
     Returns
     -------
     float
-        The share [-], 0 for a constant zero record.
+        The share [-], 0 for a constant record.
     """
     x = np.asarray(x, dtype=float)
-    peak = float(np.max(np.abs(x)))
-    if peak == 0.0:
+    top, bottom = float(np.max(x)), float(np.min(x))
+    tolerance = 1e-6 * (top - bottom)
+    if tolerance == 0.0:
         return 0.0
-    return float(np.count_nonzero(np.abs(np.abs(x) - peak) <= 1e-6 * peak)) / x.size
+    at_ends = np.count_nonzero(x >= top - tolerance) + np.count_nonzero(x <= bottom + tolerance)
+    return float(at_ends) / x.size
 
 
 def check_clipping(x: np.ndarray, name: str = "signal") -> None:
@@ -205,16 +210,18 @@ def check_clipping(x: np.ndarray, name: str = "signal") -> None:
     Raises
     ------
     ValueError
-        When at least ``CLIPPING_ERROR_SHARE`` of the samples sit at the full-scale value.
+        When at least ``CLIPPING_ERROR_SHARE`` of the samples sit at the record's largest or
+        smallest value (:func:`clipped_share`).
     """
     share = clipped_share(x)
     if share < CLIPPING_ERROR_SHARE or float(np.ptp(x)) == 0.0:
         return  # a constant record is not clipped: diagnose_signal says what it is
     raise ValueError(
-        f"{name} is clipped: {share:.1%} of its samples sit at the full-scale value "
-        f"{float(np.max(np.abs(x))):.4g}, over the {CLIPPING_ERROR_SHARE:.0%} allowed (from "
-        "there the rule's verdict changes for more than 5 % of simulated records); record "
-        "again with more headroom, or pass --allow-clipping to diagnose it anyway"
+        f"{name} is clipped: {share:.1%} of its samples sit at its largest or smallest value "
+        f"({float(np.max(x)):.4g}, {float(np.min(x)):.4g}), over the {CLIPPING_ERROR_SHARE:.0%} "
+        "allowed (from there the rule's verdict changes for more than 5 % of simulated "
+        "records); record again with more headroom, or pass --allow-clipping to diagnose it "
+        "anyway"
     )
 
 
@@ -227,8 +234,8 @@ def check_signal_quality(x: np.ndarray) -> list[str]:
     count = round(clipped_share(x) * x.size)
     if count > max(3, 1e-4 * x.size):
         warnings.append(
-            f"signal looks clipped: {count} samples ({count / x.size:.2%}) at the full-scale "
-            f"value {peak:.4g}"
+            f"signal looks clipped: {count} samples ({count / x.size:.2%}) at its largest or "
+            f"smallest value ({float(np.max(x)):.4g}, {float(np.min(x)):.4g})"
         )
     return warnings
 

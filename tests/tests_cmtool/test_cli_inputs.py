@@ -87,6 +87,12 @@ def test_a_clipped_record_is_refused_unless_allowed(outer_race_csv, tmp_path, ca
     argv = ["diagnose", str(outer_race_csv), *base, "--baseline", str(paths[0.05])]
     assert main(argv) == 2
     assert "--baseline" in _one_line_error(capsys)
+    # a 16-bit converter clips at -32768 and 32767: both ends count (about 2.5 % each)
+    counts = np.round(x / np.quantile(np.abs(x), 0.95) * 32767.5 - 0.5)
+    int16 = tmp_path / "int16.npy"
+    np.save(int16, np.clip(counts, -32768, 32767).astype(np.int16))
+    assert main(["diagnose", str(int16), *base]) == 2
+    assert "(3.277e+04, -3.277e+04)" in _one_line_error(capsys)
     constant = tmp_path / "constant.npy"
     np.save(constant, np.ones(24000))  # every sample at full scale, but no signal at all
     assert main(["diagnose", str(constant), *base]) == 2
