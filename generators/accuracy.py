@@ -283,7 +283,7 @@ def error_bound_step(prep, bound: float, oversample: int) -> tuple[float, float]
         if any(r is None for r in runs):
             step *= 0.5
             continue
-        estimates, stalled = [], []
+        estimates, halves, stalled = [], [], []
         for index, measure in enumerate(measures):
             first, second = measure(runs[1], runs[0]), measure(runs[2], runs[1])
             if index == 1 and not levels and first > bound and second > NOT_CONVERGING * first:
@@ -298,8 +298,14 @@ def error_bound_step(prep, bound: float, oversample: int) -> tuple[float, float]
             if second > 0.0 and first > 0.0:
                 p = min(4.5, max(1.0, math.log2(first / second)))
             estimates.append((first * 2.0**p / (2.0**p - 1.0), p))  # Richardson at this step
+            halves.append(second * 2.0**p / (2.0**p - 1.0))  # and at half of it, same order
         error, order = max(estimates)
         if error <= bound:
+            break
+        if max(halves) <= bound and not any(stalled):
+            # the same pilots say half the step meets the bound: the longest grid step below
+            # this one, which a rescaled step could overshoot
+            step, error = step / 2.0, max(halves)
             break
         blocking = [x for x in stalled if x is not None]
         if (blocking and all(blocking)) or step / 2.0 < shortest:

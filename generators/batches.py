@@ -12,7 +12,7 @@ import numpy as np
 from . import _kernels as K
 from . import _lanes
 from ._validate import ParameterError, SimulationDivergedError
-from .decimation import CHANNEL_COLUMNS, decimate_rows
+from .decimation import CHANNEL_COLUMNS, VELOCITY_OF, decimate_rows, source_column
 from .prepared import Plan, Prepared, diverged_error, plan_run
 
 
@@ -89,7 +89,6 @@ def simulate_lanes(
     """
     if channel not in CHANNEL_COLUMNS:
         raise ParameterError(f"channel = {channel!r} is not one of {sorted(CHANNEL_COLUMNS)}")
-    which, column = CHANNEL_COLUMNS[channel]
     groups: dict[tuple, list[tuple[int, Prepared, Plan]]] = {}
     for i, prep in enumerate(preps):
         if not lanes_supported(prep):
@@ -107,6 +106,9 @@ def simulate_lanes(
     for (code, ehl, *_), members in groups.items():
         kernel = _lanes.RK4[(code, int(ehl))]
         plan = members[0][2]
+        # an acceleration is recorded as its velocity and differentiated by the decimation
+        which, column = source_column(channel, plan.oversample)
+        derivative_dt = plan.record_dt if plan.oversample > 1 and channel in VELOCITY_OF else None
         for start in range(0, len(members), lanes):
             block = members[start : start + lanes]
             # no padding: a lane's bytes are the same in the vector body of the lane loops
@@ -127,7 +129,7 @@ def simulate_lanes(
                 0.0,
                 plan.dt,
                 plan.n_steps,
-                plan.t_first,
+                plan.record_start,
                 plan.record_dt,
                 plan.n_record,
                 which,
@@ -138,7 +140,8 @@ def simulate_lanes(
             )
             records = out[:, : plan.n_record]
             if plan.oversample > 1:
-                records = decimate_rows(records, plan.oversample)
+                records = decimate_rows(records, plan.oversample, derivative_dt)
+            records = records[:, plan.output_slice()]  # without the filter's lead and tail
             for b, (i, prep, _) in enumerate(block):
                 if status[b] != K.STATUS_OK:
                     results[i] = diverged_error(prep, int(status[b]), float(t_status[b]))

@@ -1,4 +1,16 @@
-"""The integration record's channels and their anti-alias decimation to the output rate."""
+"""The integration record's channels and their anti-alias decimation to the output rate.
+
+An acceleration channel decimated from a record (``factor`` > 1) is the band-limited
+derivative of the record's velocity column, not its acceleration column low-passed. The record
+point-samples the run, and a local defect's impacts make the run's acceleration ring to tens
+of kHz: what lies near a multiple of the record rate folds onto the band's low frequencies
+before any filter can remove it (a pit's line at its own rate, 80 dB under its strongest
+harmonic, came out 28 times too strong at 12 kHz, recorded at 48 kHz). The velocity holds the
+same ringing divided by its frequency, so its folded part, differentiated at the line's
+frequency, is smaller by that frequency over the ringing's (-53 dB for a 107 Hz line and
+48 kHz records); in the band the derivative filter is exact to 0.2 % (docs/performance.md,
+"Accelerations from the velocity record").
+"""
 
 from __future__ import annotations
 
@@ -28,32 +40,92 @@ CHANNEL_COLUMNS = {
 }
 
 
-def record_columns(channels: Sequence[str]) -> np.ndarray:
-    """Flags of the record's columns (states, then accelerations) that ``channels`` read."""
+#: Acceleration channel -> the velocity channel it is the derivative of.
+VELOCITY_OF = {
+    "housing_acceleration_x": "housing_velocity_x",
+    "housing_acceleration_y": "housing_velocity_y",
+    "shaft_acceleration_x": "shaft_velocity_x",
+    "shaft_acceleration_y": "shaft_velocity_y",
+}
+
+#: Half-length of the differentiator convolved with the anti-alias FIR, per decimation factor
+#: [records], and its Kaiser window's beta: the pair's response is j omega times the FIR's to
+#: 0.06-0.23 % over 0-0.9 of the output band for factors 2-16 (:func:`fir_design`).
+DIFFERENTIATOR_HALF_LENGTH = 5
+DIFFERENTIATOR_BETA = 8.0
+
+
+def filter_reach(factor: int) -> int:
+    """Records on each side of an output sample that its decimation filter reads (0 at 1).
+
+    ``resample_poly``'s half-length, 10 ``factor``, plus the accelerations' differentiator,
+    ``DIFFERENTIATOR_HALF_LENGTH * factor``: a run records this many more before its first
+    and after its last output sample (where its settling allows), so that no output sample
+    is filtered from the line extension of the record's ends.
+    """
+    return 0 if factor <= 1 else (10 + DIFFERENTIATOR_HALF_LENGTH) * factor
+
+
+def source_column(name: str, factor: int) -> tuple[int, int]:
+    """Record array (0 state, 1 acceleration) and column a channel is decimated from.
+
+    An acceleration channel reads its velocity's column when ``factor`` > 1 (differentiated by
+    the decimation filter), its own acceleration column at ``factor`` 1 (no filter).
+    """
+    if factor > 1 and name in VELOCITY_OF:
+        return CHANNEL_COLUMNS[VELOCITY_OF[name]]
+    return CHANNEL_COLUMNS[name]
+
+
+def record_columns(channels: Sequence[str], factor: int = 1) -> np.ndarray:
+    """Flags of the record's columns (states, then accelerations) that ``channels`` read.
+
+    ``factor``: the decimation factor the record is made for (:func:`source_column`).
+    """
     wanted = np.zeros(N_OUT_STATE + N_OUT_ACCEL, dtype=np.int64)
     for name in channels:
-        which, column = CHANNEL_COLUMNS[name]
+        which, column = source_column(name, factor)
         wanted[N_OUT_STATE * which + column] = 1
     return wanted
 
 
 def decimate(
-    out_state: np.ndarray, out_accel: np.ndarray, factor: int, channels: Sequence[str]
+    out_state: np.ndarray,
+    out_accel: np.ndarray,
+    factor: int,
+    channels: Sequence[str],
+    record_dt: float | None = None,
 ) -> dict[str, np.ndarray]:
     """Anti-alias filter and downsample the integration record to the output rate.
 
     ``scipy.signal.resample_poly(record, 1, factor, padtype="line")`` of every requested
-    channel, computed by :func:`decimate_rows`'s kernel straight from the record's columns
-    (one pass over the record): each output channel is a contiguous row of one block.
+    displacement and velocity channel, computed by :func:`decimate_rows`'s kernel straight
+    from the record's columns (one pass over the record): each output channel is a contiguous
+    row of one block. An acceleration channel is its velocity column through the same FIR
+    convolved with a differentiator, divided by ``record_dt`` (the record interval [s],
+    required then); at ``factor`` 1 the record's columns are returned as they are.
     """
     records = (out_state, out_accel)
     if factor > 1 and out_state.shape[0] >= 2:
-        columns = np.array([CHANNEL_COLUMNS[name] for name in channels], dtype=np.int64)
-        taps, first, n_out = fir_design(factor, out_state.shape[0])
-        block = _filters.fir_decimate_columns(
-            out_state, out_accel, columns.reshape(-1, 2), taps, factor, first, n_out
-        )
-        return {name: block[c] for c, name in enumerate(channels)}
+        result: dict[str, np.ndarray] = {}
+        for derivative in (False, True):
+            names = [name for name in channels if (name in VELOCITY_OF) == derivative]
+            if not names:
+                continue
+            if derivative and not (record_dt is not None and record_dt > 0):
+                raise ValueError(
+                    f"record_dt = {record_dt!r}: acceleration channels decimated by {factor} "
+                    "need the record interval (> 0 s)"
+                )
+            columns = np.array([source_column(name, factor) for name in names], dtype=np.int64)
+            taps, first, n_out = fir_design(factor, out_state.shape[0], derivative)
+            block = _filters.fir_decimate_columns(
+                out_state, out_accel, columns.reshape(-1, 2), taps, factor, first, n_out
+            )
+            if derivative:
+                block /= record_dt
+            result.update({name: block[c] for c, name in enumerate(names)})
+        return {name: result[name] for name in channels}
     block = np.empty((len(channels), out_state.shape[0]))
     for c, name in enumerate(channels):
         which, column = CHANNEL_COLUMNS[name]
@@ -63,7 +135,9 @@ def decimate(
     return {name: block[c] for c, name in enumerate(channels)}
 
 
-def decimate_rows(records: np.ndarray, factor: int) -> np.ndarray:
+def decimate_rows(
+    records: np.ndarray, factor: int, derivative_dt: float | None = None
+) -> np.ndarray:
     """Each row of ``records`` (records, n) anti-alias filtered and downsampled by ``factor``.
 
     The same bits as ``scipy.signal.resample_poly(records, 1, factor, axis=1,
@@ -71,24 +145,55 @@ def decimate_rows(records: np.ndarray, factor: int) -> np.ndarray:
     taps, cut-off at the output's Nyquist frequency), its delay compensated, the record
     extended on the line through its end samples; the kernel sums the same products in the
     same order, two to three times faster (``tests/tests_generators/test_decimation.py``).
+    With ``derivative_dt`` (the record interval [s]) the rows are velocities and the result
+    their band-limited derivative, the accelerations (:func:`fir_design`).
     """
     if factor <= 1:
         return records
     if records.shape[1] < 2:
+        if derivative_dt is not None:
+            raise ValueError(f"records of {records.shape[1]} sample(s) have no derivative")
         return sp_signal.resample_poly(records, 1, factor, axis=1, padtype="line")
-    taps, first, n_out = fir_design(factor, records.shape[1])
-    return _filters.fir_decimate_rows(records, taps, factor, first, n_out)
+    derivative = derivative_dt is not None
+    taps, first, n_out = fir_design(factor, records.shape[1], derivative)
+    out = _filters.fir_decimate_rows(records, taps, factor, first, n_out)
+    if derivative:
+        out /= derivative_dt
+    return out
+
+
+def decimation_taps(factor: int, derivative: bool = False) -> np.ndarray:
+    """The decimation filter's taps, centred (odd length), before scipy's padding.
+
+    ``resample_poly(x, 1, factor)``'s low-pass: ``firwin(20 factor + 1, 1 / factor)``, Kaiser
+    window, beta 5. With ``derivative`` that FIR convolved with an ideal differentiator
+    (``cos(pi k) / k``, k != 0) over ``DIFFERENTIATOR_HALF_LENGTH * factor`` records each side
+    under a Kaiser window (``DIFFERENTIATOR_BETA``), scaled to a unit slope at 0 Hz: applied
+    to a record, the derivative per record interval, centred as the FIR's output is.
+    """
+    taps = sp_signal.firwin(20 * factor + 1, 1.0 / factor, window=("kaiser", 5.0))
+    if not derivative:
+        return taps
+    reach = DIFFERENTIATOR_HALF_LENGTH * factor
+    k = np.arange(-reach, reach + 1, dtype=float)
+    k[reach] = 1.0  # the centre tap is 0: keep the division finite
+    window = sp_signal.windows.kaiser(2 * reach + 1, DIFFERENTIATOR_BETA)
+    differentiator = np.cos(np.pi * k) / k * window
+    differentiator[reach] = 0.0
+    differentiator /= -np.sum(np.arange(-reach, reach + 1) * differentiator)
+    return np.convolve(taps, differentiator)
 
 
 @functools.lru_cache(maxsize=32)
-def fir_design(factor: int, n: int) -> tuple[np.ndarray, int, int]:
-    """The anti-alias filter of ``resample_poly(x, 1, factor)`` for records of ``n`` samples.
+def fir_design(factor: int, n: int, derivative: bool = False) -> tuple[np.ndarray, int, int]:
+    """The decimation filter as ``resample_poly(x, 1, factor)`` applies it to ``n`` samples.
 
-    Returns the taps as scipy applies them (zero-padded so that the kept outputs are centred,
-    then reversed), the number of leading outputs scipy drops, and the output length.
+    Returns the taps of :func:`decimation_taps` as scipy applies them (zero-padded so that
+    the kept outputs are centred, then reversed), the number of leading outputs scipy drops,
+    and the output length.
     """
-    half_len = 10 * factor
-    taps = sp_signal.firwin(2 * half_len + 1, 1.0 / factor, window=("kaiser", 5.0))
+    taps = decimation_taps(factor, derivative)
+    half_len = (taps.shape[0] - 1) // 2
     pre = factor - half_len % factor
     first = (half_len + pre) // factor
     n_out = n // factor + bool(n % factor)

@@ -241,7 +241,7 @@ def _run_rk4(prep: Prepared, plan: Plan, record: _Record) -> tuple[int, float, d
         0.0,
         plan.dt,
         plan.n_steps,
-        plan.t_first,
+        plan.record_start,
         plan.record_dt,
         plan.n_record,
         record.state,
@@ -249,7 +249,7 @@ def _run_rk4(prep: Prepared, plan: Plan, record: _Record) -> tuple[int, float, d
         record.loads,
         record.with_loads,
         plan.fine_steps,
-        record_columns(prep.settings.channels or CHANNELS),
+        record_columns(prep.settings.channels or CHANNELS, plan.oversample),
     )
     stats = {"step_s": plan.dt, "steps": plan.n_steps}
     if plan.fine_steps > 1:
@@ -270,7 +270,8 @@ def _run_dopri5(prep: Prepared, plan: Plan, record: _Record) -> tuple[int, float
     stats = np.zeros(4)
     # never step over a local defect: at most half a passage per step
     h_max = min(plan.record_dt * 4, 0.5 * DEFECT_STEPS * defect_step(prep.p, prep.wav))
-    max_steps = int(settings.max_steps_per_second * (plan.t_first + settings.duration)) + 1000
+    span = plan.record_start + plan.n_record * plan.record_dt
+    max_steps = int(settings.max_steps_per_second * span) + 1000
     status, t_fail, _ = _integrators._dopri5(
         prep.scene_code,
         int(prep.ehl),
@@ -278,7 +279,7 @@ def _run_dopri5(prep: Prepared, plan: Plan, record: _Record) -> tuple[int, float
         prep.p,
         prep.wav,
         0.0,
-        plan.t_first,
+        plan.record_start,
         plan.record_dt,
         plan.n_record,
         settings.rtol,
@@ -308,9 +309,15 @@ def _result(prep: Prepared, plan: Plan, record: _Record, stats: dict) -> Simulat
     """Decimated signals, contact loads and the parameter record of an integrated run."""
     settings = prep.settings
     oversample = plan.oversample
-    signals = decimate(record.state, record.accel, oversample, settings.channels or CHANNELS)
+    signals = decimate(
+        record.state, record.accel, oversample, settings.channels or CHANNELS, plan.record_dt
+    )
+    kept = plan.output_slice()  # the output samples, without the filter's lead and tail
+    signals = {name: np.ascontiguousarray(x[kept]) for name, x in signals.items()}
     time = np.arange(plan.n_out) / settings.fs
-    loads = record.loads[::oversample].copy() if record.with_loads else None
+    loads = None
+    if record.with_loads:
+        loads = record.loads[plan.lead :: oversample][: plan.n_out].copy()
     extra = {
         "integrator_stats": stats,
         "oversample": oversample,

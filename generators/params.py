@@ -575,8 +575,9 @@ class SimulationSettings:
         Absolute tolerance of dopri5 on displacements [m] (velocities use it times 1e3 1/s).
     oversample : int or None
         Record samples per output sample (the record is decimated by a zero-phase anti-alias
-        FIR); ``None``: RK4 records at 2-4 x fs and at least 96 kHz
-        (:func:`generators.steps.default_oversample`), DOPRI5 and error-bound runs at 4 x fs.
+        FIR; an acceleration is the velocity record's derivative through it); ``None``: RK4
+        records at 2-4 x fs, toward 96 kHz (:func:`generators.steps.default_oversample`: 4 x fs
+        up to 25.6 kHz, 2 x fs from 48 kHz), DOPRI5 and error-bound runs at 4 x fs.
     record_contact_loads : bool
         Also return the per-ball contact loads at the output samples.
     max_displacement : float or None

@@ -16,6 +16,7 @@ import numpy as np
 
 from . import _kernels as K
 from ._validate import ParameterError, SimulationDivergedError
+from .decimation import filter_reach
 from .defects import defect_path
 from .kinematics import BearingFrequencies, characteristic_frequencies
 from .packing import (
@@ -300,6 +301,18 @@ class Plan:
     t_first: float
     error_estimate: float = math.nan  # relative line error at dt, when chosen for a bound
     fine_steps: int = 1  # steps near a local defect split into this many (1: none)
+    lead: int = 0  # records before the first output sample's (the decimation filter's reach)
+    tail: int = 0  # records after the last output sample's
+
+    @property
+    def record_start(self) -> float:
+        """Time of the first record [s]: ``lead`` records before the first output sample."""
+        return self.t_first - self.lead * self.record_dt
+
+    def output_slice(self) -> slice:
+        """The output samples of the decimated record (without its lead and tail)."""
+        first = self.lead // self.oversample
+        return slice(first, first + self.n_out)
 
 
 def plan_run(prep: Prepared) -> Plan:
@@ -330,14 +343,23 @@ def plan_run(prep: Prepared) -> Plan:
     oversample = oversample or DEFAULT_OVERSAMPLE
     record_dt = 1.0 / (settings.fs * oversample)
     n_out = int(round(settings.duration * settings.fs))
-    n_record = n_out * oversample
+    # records beyond both ends as far as the decimation filter reads (before the first
+    # output sample only as far as the settling goes, in whole output intervals)
+    tail = filter_reach(oversample)
+    lead = min(tail, oversample * int(settings.settle_time * settings.fs * (1 + 1e-12)))
+    n_record = n_out * oversample + lead + tail
+    t_first = settings.settle_time
     if step is None:
-        return Plan(oversample, record_dt, n_out, n_record, math.nan, 0, settings.settle_time)
-    dt, n_steps, t_first = rk4_schedule(
-        step, record_dt, settings.settle_time, n_record, oversample, longest
+        return Plan(
+            oversample, record_dt, n_out, n_record, math.nan, 0, t_first, lead=lead, tail=tail
+        )
+    dt, n_steps, _ = rk4_schedule(
+        step, record_dt, t_first - lead * record_dt, n_record, oversample, longest
     )
     fine = defect_substeps(dt, prep.p, prep.wav) if refine else 1
-    return Plan(oversample, record_dt, n_out, n_record, dt, n_steps, t_first, error, fine)
+    return Plan(
+        oversample, record_dt, n_out, n_record, dt, n_steps, t_first, error, fine, lead, tail
+    )
 
 
 def diverged_error(prep: Prepared, status: int, t_fail: float) -> SimulationDivergedError:

@@ -219,12 +219,15 @@ def default_oversample(fs: float) -> int:
 
     The record point-samples the run, so what the run holds above half the record rate
     aliases before the anti-alias FIR can remove it; a pit's impacts ring to tens of kHz. The
-    record is therefore at least ``MIN_RECORD_RATE`` and at least twice the output rate (at
-    the output rate itself nothing filters at all), up to ``DEFAULT_OVERSAMPLE`` times it:
-    4 at 6.4-25.6 kHz, 2 from 48 kHz. A 0.3 mm pit at 25.6 kHz recorded at fs, 2 fs and 4 fs
-    differs from a record at 8 fs by 5.4, 2.0 and 1.2 % RMS, at 48 kHz at fs and 2 fs by 3.1
-    and 1.4 %; a clean healthy bearing run at 4e-5 s and recorded at fs reads as an
-    outer-race fault (docs/performance.md, "Records at 96 kHz or more, on the step grid").
+    record is therefore at least twice the output rate (at the output rate itself nothing
+    filters at all) and ``MIN_RECORD_RATE`` where ``DEFAULT_OVERSAMPLE`` times the output rate
+    reaches it: 4 at 6.4-25.6 kHz (48 kHz records at 12 kHz), 2 from 48 kHz. Since stop 46 an
+    acceleration is the velocity record's derivative (:mod:`generators.decimation`), whose
+    folded part is smaller by the line's frequency over the folded content's. Before that, a
+    0.3 mm pit at 25.6 kHz recorded at fs, 2 fs and 4 fs differed from a record at 8 fs by
+    5.4, 2.0 and 1.2 % RMS, at 48 kHz at fs and 2 fs by 3.1 and 1.4 %; a clean healthy
+    bearing run at 4e-5 s and recorded at fs reads as an outer-race fault
+    (docs/performance.md, "Records at 96 kHz or more, on the step grid").
     Until stop 36 a step longer than a quarter of the output interval lowered the record rate
     to about one record per step, down to the output rate.
     """

@@ -5,9 +5,10 @@ twelve columns) and the decimated channels in memory: about 0.2 kB per output sa
 10-minute run at 51.2 kHz needs several GB. :func:`simulate_stream` integrates the same run
 block after block, continuing the RK4 integration from the state the kernel returns, and
 decimates each block with a margin of integration records on both sides that covers the
-anti-alias filter (``resample_poly``'s half-length, ten records per decimation factor), so
-that the output is the in-memory one: the same step grid, the same filter; the samples agree
-to rounding except within ten output samples of either end of the record, where the filter's
+anti-alias filter (``resample_poly``'s half-length, ten records per decimation factor, and
+five more for the accelerations' differentiator), so that the output is the in-memory one:
+the same step grid, the same filter; the samples agree to rounding except within fifteen
+output samples of either end of the record, where the filter's
 edge extension (a line through the first and last records of what it is given) sees a
 different stretch (measured: interior samples within 1e-11 of the signal's RMS, the edge
 samples within 2e-4 of it; ``tests/tests_generators/test_stream.py``).
@@ -27,7 +28,7 @@ import numpy as np
 from . import _integrators
 from . import _kernels as K
 from ._validate import ParameterError
-from .decimation import decimate, record_columns
+from .decimation import DIFFERENTIATOR_HALF_LENGTH, decimate, record_columns
 from .kinematics import BearingFrequencies
 from .params import CHANNELS, BearingGeometry, OperatingCondition, Rig, Scene, SimulationSettings
 from .prepared import Prepared, diverged_error, params_record, plan_run, prepare
@@ -133,7 +134,8 @@ class SignalStream:
     def _blocks(self) -> Iterator[SignalBlock]:
         prep, plan = self._prep, self.plan_run
         q, n_out, n_record = plan.oversample, plan.n_out, plan.n_record
-        record_dt, dt, t_first = plan.record_dt, plan.dt, plan.t_first
+        record_dt, dt, t_first = plan.record_dt, plan.dt, plan.record_start
+        lead = plan.lead  # output sample i is record lead + i q
         margin = _margin_records(q)
         z = prep.geometry.ball_count
         record_loads = bool(prep.settings.record_contact_loads)
@@ -144,7 +146,7 @@ class SignalStream:
         carry: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         for i0 in range(0, n_out, self.block_samples):
             i1 = min(n_out, i0 + self.block_samples)
-            need = n_record if i1 == n_out else min(n_record, i1 * q + margin)
+            need = n_record if i1 == n_out else min(n_record, lead + i1 * q + margin)
             while need < n_record and _step_of(need, t_first, record_dt, dt) == _step_of(
                 need - 1, t_first, record_dt, dt
             ):
@@ -161,14 +163,16 @@ class SignalStream:
                         loads = np.concatenate([carry[2], loads])
             else:  # pragma: no cover - every block needs records past the previous one
                 raise AssertionError("streamed block made no progress")
-            signals = decimate(state, accel, q, self.channels)
-            first = i0 - carry_start // q  # the block's first sample in the decimated chunk
+            signals = decimate(state, accel, q, self.channels, record_dt)
+            # the block's first sample in the decimated chunk (which starts at carry_start)
+            first = i0 + (lead - carry_start) // q
             block_signals = {name: v[first : first + i1 - i0].copy() for name, v in signals.items()}
             block_loads = None
             if record_loads:
-                block_loads = loads[(i0 * q - carry_start) : (i1 * q - carry_start) : q].copy()
+                start = lead + i0 * q - carry_start
+                block_loads = loads[start : start + (i1 - i0) * q : q].copy()
             yield SignalBlock(i0, np.arange(i0, i1) / self.fs, block_signals, block_loads)
-            keep_from = max(0, i1 * q - margin)
+            keep_from = max(0, lead + i1 * q - margin)
             carry = (
                 state[keep_from - carry_start :],
                 accel[keep_from - carry_start :],
@@ -207,7 +211,7 @@ class SignalStream:
             out_loads,
             record_loads,
             self.plan_run.fine_steps,
-            record_columns(self.channels),
+            record_columns(self.channels, self.plan_run.oversample),
         )
         if status != K.STATUS_OK:
             raise diverged_error(prep, int(status), float(t_end))
@@ -221,7 +225,9 @@ def _step_of(record: int, t_first: float, record_dt: float, dt: float) -> int:
 
 def _margin_records(q: int) -> int:
     """Integration records on each side of a block that cover the anti-alias filter."""
-    return 12 * q  # resample_poly's half-length is 10 q; a multiple of q keeps the phase
+    # resample_poly's half-length is 10 q, 15 q with the accelerations' differentiator
+    # (DIFFERENTIATOR_HALF_LENGTH); a multiple of q keeps the phase
+    return (12 + DIFFERENTIATOR_HALF_LENGTH) * q
 
 
 def simulate_stream(

@@ -110,11 +110,14 @@ def test_the_default_step_grows_onto_the_grid_only_within_the_stability_step(
     assert dt == pytest.approx(expected_dt) and dt <= limit * (1 + 1e-12)
 
 
-def test_the_default_step_at_12_khz_is_on_the_record_grid_and_closer_to_the_truth():
+def test_the_default_step_at_12_khz_is_on_the_record_grid_and_as_close_to_the_truth():
     """At 12 kHz (records at 48 kHz) the default step grows from 2e-5 s to 1/48,000 s, one step
-    per record. Against a 2.5 us run the acceleration above 3 kHz is 7 times closer than at
-    the off-grid 2e-5 s (the records' interpolation images, docs/performance.md); a requested
-    2e-5 s is kept."""
+    per record; a requested 2e-5 s is kept. Against a 2.5 us run the acceleration above 3 kHz
+    is within 0.15 % at either step, the grown one within RK4's (1.042)^4 = 1.18 of the other
+    (measured 1.12e-3 and 1.02e-3). Until stop 46, when the acceleration was the record's own
+    column low-passed, the off-grid step was 7 times further off (the interpolant's images at
+    the step rate); the velocity's derivative has none in the band (docs/performance.md,
+    "Accelerations from the velocity record")."""
     op = OperatingCondition.from_rpm(1797, 500.0)
     channel = "housing_acceleration_y"
 
@@ -135,7 +138,8 @@ def test_the_default_step_at_12_khz_is_on_the_record_grid_and_closer_to_the_trut
         return np.linalg.norm(np.fft.rfft((x - reference) * window)[high]) / level
 
     on_grid, off_grid = high_band_error(default), high_band_error(requested)
-    assert on_grid < 0.25 * off_grid and on_grid < 1e-3
+    assert max(on_grid, off_grid) < 1.5e-3
+    assert on_grid < 1.25 * off_grid and off_grid < 1.25 * on_grid
 
 
 def test_runs_at_different_steps_are_not_shifted_in_time():
@@ -247,3 +251,58 @@ def test_a_channel_alone_is_recorded_as_with_every_other(level):
             velocity = every[f"{body}_velocity_{axis}"]
             slope = np.gradient(every[f"{body}_displacement_{axis}"], 1.0 / every.fs)
             assert np.corrcoef(velocity[5:-5], slope[5:-5])[0, 1] > 0.99, (body, axis)
+
+
+def test_a_pits_low_lines_do_not_depend_on_the_record_rate():
+    """A noise-free 0.53 x 0.28 mm outer-race pit (6205, 1797 rpm, 400 N, 12 kHz): its lines at
+    BPFO x 1 and x 2, 75-80 dB under its strongest harmonic, recorded at the default 48 kHz are
+    within 5 % of the same run recorded at 768 kHz (measured 1 and 0.3 %). Until stop 46 the
+    acceleration was its own record column low-passed: the record point-sampled the pit's
+    ringing and folded it onto these lines, 28 times too strong at x 1 and 43 % at x 2
+    (docs/performance.md, "Accelerations from the velocity record")."""
+    from generators import LocalizedDefect, characteristic_frequencies
+
+    op = OperatingCondition.from_rpm(1797, 400.0)
+    pit = LocalizedDefect(surface="outer", length=0.53e-3, depth=0.28e-3)
+    bpfo = characteristic_frequencies(G, 1797 / 60).bpfo
+    channel = "housing_acceleration_y"
+
+    def lines(oversample):
+        settings = SimulationSettings(
+            fs=12000.0, duration=1.0, channels=(channel,), oversample=oversample
+        )
+        x = simulate(G, op, pit, settings=settings, random_state=2)[channel]
+        t = np.arange(x.size) / 12000.0
+        window = np.hanning(x.size)
+        return np.array(
+            [abs(np.sum(x * window * np.exp(-2j * np.pi * k * bpfo * t))) for k in (1, 2)]
+        )
+
+    default, fine = lines(None), lines(64)
+    np.testing.assert_allclose(default, fine, rtol=0.05)
+
+
+def test_the_first_and_last_samples_are_those_of_a_longer_record():
+    """A run records as far before its first and after its last output sample as the
+    decimation filter reads, so its ends are the samples a run recording a longer span has
+    there (rounding only); until stop 46 the filter extended the record on a line through its
+    ends, and the first acceleration sample of a pit's run was a third of the RMS off."""
+    from generators import LocalizedDefect
+
+    op = OperatingCondition.from_rpm(1800, 500.0, random_slip=0.01)
+    pit = LocalizedDefect(surface="outer", length=0.53e-3, depth=0.28e-3)
+    channel = "housing_acceleration_y"
+    lead = 120  # output samples the longer run starts earlier and ends later
+
+    def run(settle, duration):
+        settings = SimulationSettings(
+            fs=12000.0, settle_time=settle, duration=duration, channels=(channel,)
+        )
+        return simulate(G, op, pit, settings=settings, random_state=3)[channel]
+
+    x = run(0.1, 0.1)
+    longer = run(0.1 - lead / 12000.0, 0.1 + 2 * lead / 12000.0)[lead : lead + x.size]
+    assert np.abs(x - longer).max() < 1e-9 * x.std()
+    # with no settling there is nothing to record before the first sample: the filter then
+    # extends the record's start (and only its start) as before
+    assert run(0.0, 0.01).size == 120
