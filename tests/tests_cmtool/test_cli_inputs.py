@@ -99,6 +99,29 @@ def test_a_clipped_record_is_refused_unless_allowed(outer_race_csv, tmp_path, ca
     assert "signal is constant" in _one_line_error(capsys)
 
 
+def test_a_quantised_tone_is_not_taken_for_clipping(tmp_path, capsys):
+    """A clipped end is a plateau: a calibrator's 159.2 Hz tone of 100 counts on a 16-bit
+    converter has 3.2 % of its samples at each extreme level but 2.3 % one count in, and is
+    not clipped (until stop 46 it was refused as 6.4 % clipped); the same tone clipped at 80
+    counts piles its peaks at the rail and is refused. A two-valued record is all plateau."""
+    from cmtool.diagnose import clipped_share
+
+    t = np.arange(24000) / 12000.0
+    tone = np.round(100.0 * np.sin(2 * np.pi * 159.2 * t + 0.1))
+    assert np.mean(tone == tone.max()) > 0.03  # what the old count refused
+    assert clipped_share(tone) == 0.0
+    assert clipped_share(np.clip(tone, -80, 80)) > 0.2
+    assert clipped_share(np.sign(np.sin(2 * np.pi * 50.0 * t + 0.1))) == 1.0
+    base = ["--rpm", "1797", "--bearing", "6205", "--fs", "12000"]
+    path = tmp_path / "tone.npy"
+    np.save(path, tone.astype(np.int16))
+    assert main(["diagnose", str(path), *base]) == 0
+    assert "looks clipped" not in capsys.readouterr().out
+    np.save(path, np.clip(tone, -80, 80).astype(np.int16))
+    assert main(["diagnose", str(path), *base]) == 2
+    assert "is clipped" in _one_line_error(capsys)
+
+
 def test_cmtool_parquet_carries_rate_speed_and_bearing(tmp_path, capsys):
     signal = tmp_path / "sig.parquet"
     argv = ["simulate", "--bearing", "6203", "--rpm", "2400", "--duration", "0.5", "--fs"]
