@@ -4,12 +4,14 @@ An acceleration channel decimated from a record (``factor`` > 1) is the band-lim
 derivative of the record's velocity column, not its acceleration column low-passed. The record
 point-samples the run, and a local defect's impacts make the run's acceleration ring to tens
 of kHz: what lies near a multiple of the record rate folds onto the band's low frequencies
-before any filter can remove it (a pit's line at its own rate, 80 dB under its strongest
+before any filter can remove it (a pit's line at its own rate, 110 dB under its strongest
 harmonic, came out 28 times too strong at 12 kHz, recorded at 48 kHz). The velocity holds the
 same ringing divided by its frequency, so its folded part, differentiated at the line's
 frequency, is smaller by that frequency over the ringing's (-53 dB for a 107 Hz line and
-48 kHz records); in the band the derivative filter is exact to 0.2 % (docs/performance.md,
-"Accelerations from the velocity record").
+48 kHz records); in the band the derivative filter is exact to 0.2 %. Between step starts the
+recorded velocity is the step's cubic interpolant, less exact than its derivative (the
+column's): where two records share a step and the band reaches 10-20 kHz (48 kHz) that part
+is further off than before (docs/performance.md, "Accelerations from the velocity record").
 """
 
 from __future__ import annotations
@@ -50,7 +52,7 @@ VELOCITY_OF = {
 
 #: Half-length of the differentiator convolved with the anti-alias FIR, per decimation factor
 #: [records], and its Kaiser window's beta: the pair's response is j omega times the FIR's to
-#: 0.06-0.23 % over 0-0.9 of the output band for factors 2-16 (:func:`fir_design`).
+#: 0.06-0.23 % over 0-0.9 of the output band for factors 2-16 (:func:`decimation_taps`).
 DIFFERENTIATOR_HALF_LENGTH = 5
 DIFFERENTIATOR_BETA = 8.0
 
