@@ -36,7 +36,7 @@ import pyarrow.parquet as pq
 
 from generators.cases import CASE_COLUMNS, Case, case_count, column_kind, iter_cases
 from generators.recipe import validate_recipe
-from generators.synthesis import bound_steps, generate_cases
+from generators.synthesis import GENERATOR_REVISION, bound_steps, generate_cases
 
 from . import __version__
 from .io import atomic_write, to_jsonable
@@ -130,6 +130,7 @@ def _file_metadata(recipe_text: str) -> dict[bytes, bytes]:
     return {
         b"cmtool_version": __version__.encode(),
         b"schema_version": str(DATASET_SCHEMA_VERSION).encode(),
+        b"generator_revision": str(GENERATOR_REVISION).encode(),
         b"recipe": recipe_text.encode(),
     }
 
@@ -175,13 +176,17 @@ def _remove_stale_temporaries(out: Path) -> None:
                 tmp.unlink(missing_ok=True)
 
 
-def _written_schema_version(out: Path) -> int | None:
-    """The dataset schema version of the first data file in ``out`` (None: no file yet)."""
+def _written_versions(out: Path) -> tuple[int, int] | None:
+    """Dataset schema version and generator revision of the first data file in ``out``.
+
+    None when there is no file yet; a file without a generator revision is of revision 1
+    (written before stop 46).
+    """
     first = next(iter(sorted((out / "data").glob("[!.]*.parquet"))), None)
     if first is None:
         return None
     meta = pq.read_schema(first).metadata or {}
-    return int(meta.get(b"schema_version", b"0"))
+    return int(meta.get(b"schema_version", b"0")), int(meta.get(b"generator_revision", b"1"))
 
 
 def _recipe_hash(recipe: dict) -> str:
@@ -235,12 +240,19 @@ def generate_dataset(
                 raise DatasetError(
                     f"out = {str(out)!r} was made from a different recipe; cannot resume"
                 )
-        written_by = _written_schema_version(out)
-        if written_by not in (None, DATASET_SCHEMA_VERSION):
+        written = _written_versions(out)
+        if written is not None and written[0] != DATASET_SCHEMA_VERSION:
             raise DatasetError(
-                f"out = {str(out)!r} holds files of dataset schema version {written_by} and "
+                f"out = {str(out)!r} holds files of dataset schema version {written[0]} and "
                 f"this cmtool writes version {DATASET_SCHEMA_VERSION} (other columns); cannot "
                 "resume: generate into a new folder"
+            )
+        if written is not None and written[1] != GENERATOR_REVISION:
+            raise DatasetError(
+                f"out = {str(out)!r} holds signals of generator revision {written[1]} and this "
+                f"cmtool generates revision {GENERATOR_REVISION} (the same cases give other "
+                "signals; generators.synthesis.GENERATOR_REVISION); cannot resume: generate "
+                "into a new folder"
             )
     out.mkdir(parents=True, exist_ok=True)
     if resume:
@@ -277,6 +289,7 @@ def generate_dataset(
         "recipe_sha256": digest,
         "cmtool_version": __version__,
         "schema_version": DATASET_SCHEMA_VERSION,
+        "generator_revision": GENERATOR_REVISION,
         "chunks": feed.chunks,
         **({"error_bound_steps": steps} if steps else {}),
     }

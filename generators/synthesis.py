@@ -57,8 +57,15 @@ __all__ = [
     "generate_cases",
     "bound_steps",
     "step_group",
+    "GENERATOR_REVISION",
     "MAX_FAULT_GAIN",
 ]
+
+#: Raised whenever the same case gives other signals (a dataset's files record it, and
+#: ``cmtool generate --resume`` refuses to top up files of another revision: the signals
+#: would mix two generators). 1: until stop 46 (no record in the files). 2: accelerations
+#: are the velocity record's derivative and runs record beyond their ends (stop 46).
+GENERATOR_REVISION = 2
 
 
 def _resonance(x: np.ndarray, fs: float, f0: float, zeta: float) -> np.ndarray:

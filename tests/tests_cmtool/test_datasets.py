@@ -205,6 +205,17 @@ def test_refuses_to_overwrite_and_resume_checks_recipe(tiny, tmp_path):
     pq.write_table(table.replace_schema_metadata(old), first)
     with pytest.raises(DatasetError, match=f"schema version {DATASET_SCHEMA_VERSION - 1}"):
         generate_dataset(tiny, out, resume=True)
+    # nor files of another generator revision (the same cases give other signals): a file
+    # written before the revision was recorded is revision 1
+    from generators.synthesis import GENERATOR_REVISION
+
+    assert table.schema.metadata[b"generator_revision"] == str(GENERATOR_REVISION).encode()
+    before = {k: v for k, v in table.schema.metadata.items() if k != b"generator_revision"}
+    pq.write_table(table.replace_schema_metadata(before), first)
+    with pytest.raises(DatasetError, match="generator revision 1 and this cmtool generates"):
+        generate_dataset(tiny, out, resume=True)
+    pq.write_table(table, first)  # as written: it resumes
+    assert generate_dataset(tiny, out, resume=True)["generator_revision"] == GENERATOR_REVISION
 
 
 def test_resume_removes_what_a_killed_write_left(tiny, tmp_path):
