@@ -233,8 +233,8 @@ def check_clipping(x: np.ndarray, name: str = "signal") -> None:
     Raises
     ------
     ValueError
-        When at least ``CLIPPING_ERROR_SHARE`` of the samples sit at the record's largest or
-        smallest value (:func:`clipped_share`).
+        When at least ``CLIPPING_ERROR_SHARE`` of the samples sit on a plateau at the record's
+        largest or smallest value (:func:`clipped_share`).
     """
     share = clipped_share(x)  # 0 for a constant record: diagnose_signal says what that is
     if share < CLIPPING_ERROR_SHARE:

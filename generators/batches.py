@@ -12,7 +12,7 @@ import numpy as np
 from . import _kernels as K
 from . import _lanes
 from ._validate import ParameterError, SimulationDivergedError
-from .decimation import CHANNEL_COLUMNS, VELOCITY_OF, decimate_rows, source_column
+from .decimation import CHANNEL_COLUMNS, decimate_rows, differentiated, source_column
 from .prepared import Plan, Prepared, diverged_error, plan_run
 
 
@@ -108,7 +108,7 @@ def simulate_lanes(
         plan = members[0][2]
         # an acceleration is recorded as its velocity and differentiated by the decimation
         which, column = source_column(channel, plan.oversample)
-        derivative_dt = plan.record_dt if plan.oversample > 1 and channel in VELOCITY_OF else None
+        derivative_dt = plan.record_dt if differentiated(channel, plan.oversample) else None
         for start in range(0, len(members), lanes):
             block = members[start : start + lanes]
             # no padding: a lane's bytes are the same in the vector body of the lane loops

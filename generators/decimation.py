@@ -68,13 +68,21 @@ def filter_reach(factor: int) -> int:
     return 0 if factor <= 1 else (10 + DIFFERENTIATOR_HALF_LENGTH) * factor
 
 
+def differentiated(name: str, factor: int) -> bool:
+    """Whether a channel is its velocity's derivative when decimated by ``factor``.
+
+    An acceleration channel is when ``factor`` > 1; at ``factor`` 1 (no filter) it is its own
+    acceleration column.
+    """
+    return factor > 1 and name in VELOCITY_OF
+
+
 def source_column(name: str, factor: int) -> tuple[int, int]:
     """Record array (0 state, 1 acceleration) and column a channel is decimated from.
 
-    An acceleration channel reads its velocity's column when ``factor`` > 1 (differentiated by
-    the decimation filter), its own acceleration column at ``factor`` 1 (no filter).
+    The velocity's column where the channel is :func:`differentiated`.
     """
-    if factor > 1 and name in VELOCITY_OF:
+    if differentiated(name, factor):
         return CHANNEL_COLUMNS[VELOCITY_OF[name]]
     return CHANNEL_COLUMNS[name]
 
@@ -111,7 +119,7 @@ def decimate(
     if factor > 1 and out_state.shape[0] >= 2:
         result: dict[str, np.ndarray] = {}
         for derivative in (False, True):
-            names = [name for name in channels if (name in VELOCITY_OF) == derivative]
+            names = [name for name in channels if differentiated(name, factor) == derivative]
             if not names:
                 continue
             if derivative and not (record_dt is not None and record_dt > 0):
