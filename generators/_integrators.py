@@ -1,6 +1,6 @@
 """The time integrators of the dynamic model and their compiled entry points.
 
-Classical RK4 with a fixed step and cubic Hermite dense output, Dormand-Prince 5(4) with
+Classical RK4 with a fixed step and quintic Hermite dense output, Dormand-Prince 5(4) with
 Hairer's dense output, and the one-evaluation right-hand side, each compiled per (scene, film)
 pair from one factory (:func:`_rk4_entry`, :func:`_dopri5_entry`, :func:`_rhs_entry`).
 The right-hand sides they integrate are in :mod:`generators._kernels`. Only numpy, numba, math
@@ -55,49 +55,85 @@ from generators._kernels import (
 
 
 @numba.njit(**_JIT_INLINE)
-def _hermite_weights(theta, dt, derivative):
-    """Weights of (y0, f0, y1, f1) in the cubic Hermite interpolant over a step ``dt`` [s].
+def _hermite_weights(theta, dt, order):
+    """Weights of (x0, v0, a0, x1, v1, a1) in the quintic Hermite interpolant of a position.
 
-    At fraction ``theta`` of the step; ``derivative``: the weights of its time derivative
-    (f the right-hand side at the step's ends).
+    x a position, v = dx/dt and a = dv/dt its velocity and acceleration at the two ends of a
+    step ``dt`` [s]; the weights give, at fraction ``theta`` of the step, the interpolant
+    (``order`` 0), its first (1: the velocity) or its second time derivative (2: the
+    acceleration). The errors at mid-step are O(dt^6), O(dt^5) and O(dt^4) (a line of angular
+    frequency w: velocity 3e-6 of its amplitude at w dt = 1, 8.6e-4 at w dt = 2.6, where the
+    cubic interpolant of the velocity alone is 2.6e-3 and 0.10 off). At theta = 0 the weights
+    are those of x0, v0 and a0 exactly.
     """
-    th2 = theta * theta
-    th3 = th2 * theta
-    if derivative:
+    t = theta
+    t2 = t * t
+    t3 = t2 * t
+    if order == 0:
+        t4 = t3 * t
+        t5 = t4 * t
         return (
-            (6.0 * th2 - 6.0 * theta) / dt,
-            3.0 * th2 - 4.0 * theta + 1.0,
-            (-6.0 * th2 + 6.0 * theta) / dt,
-            3.0 * th2 - 2.0 * theta,
+            1.0 - 10.0 * t3 + 15.0 * t4 - 6.0 * t5,
+            (t - 6.0 * t3 + 8.0 * t4 - 3.0 * t5) * dt,
+            0.5 * (t2 - 3.0 * t3 + 3.0 * t4 - t5) * dt * dt,
+            10.0 * t3 - 15.0 * t4 + 6.0 * t5,
+            (-4.0 * t3 + 7.0 * t4 - 3.0 * t5) * dt,
+            0.5 * (t3 - 2.0 * t4 + t5) * dt * dt,
+        )
+    if order == 1:
+        t4 = t3 * t
+        return (
+            (-30.0 * t2 + 60.0 * t3 - 30.0 * t4) / dt,
+            1.0 - 18.0 * t2 + 32.0 * t3 - 15.0 * t4,
+            (t - 4.5 * t2 + 6.0 * t3 - 2.5 * t4) * dt,
+            (30.0 * t2 - 60.0 * t3 + 30.0 * t4) / dt,
+            -12.0 * t2 + 28.0 * t3 - 15.0 * t4,
+            (1.5 * t2 - 4.0 * t3 + 2.5 * t4) * dt,
         )
     return (
-        2.0 * th3 - 3.0 * th2 + 1.0,
-        (th3 - 2.0 * th2 + theta) * dt,
-        -2.0 * th3 + 3.0 * th2,
-        (th3 - th2) * dt,
+        (-60.0 * t + 180.0 * t2 - 120.0 * t3) / (dt * dt),
+        (-36.0 * t + 96.0 * t2 - 60.0 * t3) / dt,
+        1.0 - 9.0 * t + 18.0 * t2 - 10.0 * t3,
+        (60.0 * t - 180.0 * t2 + 120.0 * t3) / (dt * dt),
+        (-24.0 * t + 84.0 * t2 - 60.0 * t3) / dt,
+        3.0 * t - 12.0 * t2 + 10.0 * t3,
     )
 
 
 @numba.njit(**_JIT_INLINE)
 def _hermite_record(y0, f0, y1, f1, dt, theta, nd, k, out_state, out_accel, wanted):
-    """Record the cubic Hermite interpolant between two RK4 steps at fraction ``theta``.
+    """Record the quintic Hermite interpolant between two RK4 steps at fraction ``theta``.
 
-    Positions and velocities are O(dt^4) accurate (values and derivatives at both ends);
-    accelerations are the derivative of the velocity interpolant, O(dt^3). At theta = 0 the
-    record is exactly the step-start state and its right-hand side. ``wanted``
-    (``N_OUT_STATE + N_OUT_ACCEL`` flags, the columns of :func:`generators._kernels._record`):
-    only those columns are written (a call that decimates one channel interpolates one).
+    Each recorded body coordinate is interpolated from its position, velocity and acceleration
+    at both ends of the step (:func:`_hermite_weights`): positions O(dt^6), velocities (its
+    derivative) O(dt^5), accelerations (its second derivative) O(dt^4) between the step's
+    ends; RK4's own error at the ends is O(dt^4). At theta = 0 the record is exactly the
+    step-start state and its right-hand side. ``wanted`` (``N_OUT_STATE + N_OUT_ACCEL``
+    flags, the columns of :func:`generators._kernels._record`): only those columns are
+    written (a call that decimates one channel interpolates one).
     """
-    h00, h10, h01, h11 = _hermite_weights(theta, dt, False)
-    for c in range(N_OUT_STATE):
-        if wanted[c]:
-            i = c if c < 4 else nd + c - 4
-            out_state[k, c] = h00 * y0[i] + h10 * f0[i] + h01 * y1[i] + h11 * f1[i]
-    d00, d10, d01, d11 = _hermite_weights(theta, dt, True)
-    for c in range(N_OUT_ACCEL):
-        if wanted[N_OUT_STATE + c]:
-            i = nd + c
-            out_accel[k, c] = d00 * y0[i] + d10 * f0[i] + d01 * y1[i] + d11 * f1[i]
+    for c in range(N_OUT_STATE + N_OUT_ACCEL):
+        if not wanted[c]:
+            continue
+        if c < N_OUT_STATE:
+            order = 0 if c < 4 else 1
+            j = c % 4
+        else:
+            order = 2
+            j = c - N_OUT_STATE
+        w0, w1, w2, w3, w4, w5 = _hermite_weights(theta, dt, order)
+        value = (
+            w0 * y0[j]
+            + w1 * y0[nd + j]
+            + w2 * f0[nd + j]
+            + w3 * y1[j]
+            + w4 * y1[nd + j]
+            + w5 * f1[nd + j]
+        )
+        if c < N_OUT_STATE:
+            out_state[k, c] = value
+        else:
+            out_accel[k, j] = value
 
 
 @numba.njit(**_JIT_INLINE)
@@ -132,7 +168,7 @@ def _rk4_impl(
     fine_steps,
     wanted,
 ):
-    """Classical RK4 with a fixed step and cubic Hermite dense output.
+    """Classical RK4 with a fixed step and quintic Hermite dense output.
 
     Records at ``t_first + k * record_dt`` (k < n_record), interpolating inside the step that
     contains each record time, so the step may be longer or shorter than the record interval.

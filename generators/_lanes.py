@@ -25,7 +25,7 @@ parameter vectors; ``wav`` (rows, W_SIZE, L) the waviness tables (row layout sha
 and ball of each row are read from lane 0). Only waviness rows (``SURF_OUTER``,
 ``SURF_INNER``, ``SURF_BALL``) are allowed; local defects run on :mod:`generators._kernels`.
 One output column per call: ``which`` 0 a state column (``N_OUT_STATE`` order), 1 an
-acceleration (``N_OUT_ACCEL`` order), recorded at ``t_first + k * record_dt`` by the same cubic
+acceleration (``N_OUT_ACCEL`` order), recorded at ``t_first + k * record_dt`` by the same quintic
 Hermite dense output as the one-signal RK4.
 Only numpy, numba, math, :mod:`generators._kernels` and :mod:`generators._integrators` are
 imported here (import-linter).
@@ -604,7 +604,7 @@ def _rk4_impl(
     status,
     t_status,
 ):
-    """Classical RK4 (fixed step) of ``y0.shape[1]`` lanes with cubic Hermite dense output.
+    """Classical RK4 (fixed step) of ``y0.shape[1]`` lanes with quintic Hermite dense output.
 
     The same schedule, stage order, phase rotation (exact every ``PHASE_ANCHOR`` steps) and
     dense output as the one-signal ``generators._integrators._rk4_impl``. Writes ``out[b, k]``
@@ -659,7 +659,10 @@ def _rk4_impl(
     _phases(t0, p, wav, trig, nl)
     _time_terms(c, wav, trig, z, tt, rot, nl)
     _rhs(scene, ehl, y, c, tab, nodes, tt, z, pitch, f, k1, nl)
-    col = column if which == 0 else 4 + column
+    # the recorded coordinate j (x_s, y_s, x_h, y_h) and its derivative order: position,
+    # velocity or acceleration of the one quintic interpolant (_hermite_weights)
+    j = column % 4
+    order = 2 if which != 0 else (0 if column < 4 else 1)
     next_rec = 0
     t = t0
     for step in range(n_steps):
@@ -679,10 +682,15 @@ def _rk4_impl(
                 break
             if theta < 0.0:
                 theta = 0.0
-            h00, h10, h01, h11 = _hermite_weights(theta, dt, which != 0)
+            w0, w1, w2, w3, w4, w5 = _hermite_weights(theta, dt, order)
             for b in range(nl):
                 out[b, next_rec] = (
-                    h00 * y[col, b] + h10 * k1[col, b] + h01 * y1[col, b] + h11 * f1[col, b]
+                    w0 * y[j, b]
+                    + w1 * y[4 + j, b]
+                    + w2 * k1[4 + j, b]
+                    + w3 * y1[j, b]
+                    + w4 * y1[4 + j, b]
+                    + w5 * f1[4 + j, b]
                 )
             next_rec += 1
         for i in range(N_STATE):

@@ -233,8 +233,8 @@ def on_record_grid(step: float, record_dt: float, oversample: int) -> float:
 
     On that grid a pilot's step and its halves all record on the same pattern of their step
     grids (:func:`generators.steps.rk4_schedule` keeps them): a record between steps samples
-    the cubic interpolant, whose error, unlike RK4's, does not fall as the step's fourth power,
-    and pilots recorded partly on and partly off the grid gave Richardson's estimate 3-6 times
+    the step's interpolant (cubic until stop 47, quintic since), whose error does not fall as
+    RK4's does with the step, and pilots recorded partly on and partly off the grid gave Richardson's estimate 3-6 times
     under the true error (stop 36: the bound missed in 3 of the 9 cases of
     ``benchmarks/bench_error_bound.py``).
     """

@@ -8,10 +8,12 @@ before any filter can remove it (a pit's line at its own rate, 110 dB under its 
 harmonic, came out 28 times too strong at 12 kHz, recorded at 48 kHz). The velocity holds the
 same ringing divided by its frequency, so its folded part, differentiated at the line's
 frequency, is smaller by that frequency over the ringing's (-53 dB for a 107 Hz line and
-48 kHz records); in the band the derivative filter is exact to 0.2 %. Between step starts the
-recorded velocity is the step's cubic interpolant, less exact than its derivative (the
-column's): where two records share a step and the band reaches 10-20 kHz (48 kHz) that part
-is further off than before (docs/performance.md, "Accelerations from the velocity record").
+48 kHz records); in the band the derivative filter is exact to 0.2 %. What is further off
+than the column was is the top of a 48 kHz band (3 kHz-0.45 fs about 3e-3 against 1.6e-3):
+the velocity is RK4's quadrature of the force, whose content at 10-20 kHz a 20.83 us step
+integrates less exactly than the column, which evaluates the force at the state, sees it
+(1.2e-3 against 2.8e-4 at step starts alone; docs/performance.md, "Accelerations from the
+velocity record").
 """
 
 from __future__ import annotations

@@ -258,7 +258,7 @@ def rk4_schedule(
     run) fall on a fixed pattern of the step grid when shortening the step to it costs at
     most ``1 / ALIGN_SHORTEST`` times the steps: a whole number of steps per record, or one
     step per k records, k <= ``oversample`` (the step rate a whole fraction of the record
-    rate r and at least fs). The records between step starts sample the step's cubic Hermite
+    rate r and at least fs). The records between step starts sample the step's quintic Hermite
     interpolant, whose images lie at multiples of the step rate; on such a pattern they all
     fall between fs / 2 and r - fs / 2, where the FIR removes them; at any other step rate they
     fall into the band, shifted by the difference of the step and record rates

@@ -64,8 +64,10 @@ __all__ = [
 #: Raised whenever the same case gives other signals (a dataset's files record it, and
 #: ``cmtool generate --resume`` refuses to top up files of another revision: the signals
 #: would mix two generators). 1: until stop 46 (no record in the files). 2: accelerations
-#: are the velocity record's derivative and runs record beyond their ends (stop 46).
-GENERATOR_REVISION = 2
+#: are the velocity record's derivative and runs record beyond their ends (stop 46). 3: records
+#: between step starts are the quintic Hermite interpolant through position, velocity and
+#: acceleration (stop 47).
+GENERATOR_REVISION = 3
 
 
 def _resonance(x: np.ndarray, fs: float, f0: float, zeta: float) -> np.ndarray:

@@ -306,3 +306,40 @@ def test_the_first_and_last_samples_are_those_of_a_longer_record():
     # with no settling there is nothing to record before the first sample: the filter then
     # extends the record's start (and only its start) as before
     assert run(0.0, 0.01).size == 120
+
+
+@pytest.mark.parametrize(("order", "at_unit_wh"), [(0, 3e-5), (1, 1e-4), (2, 7e-4)])
+def test_records_between_step_starts_are_the_quintic_through_position_velocity_and_acceleration(
+    order, at_unit_wh
+):
+    """Between step starts a record is the quintic Hermite interpolant of each coordinate
+    through its position, velocity and acceleration at both ends, or its first or second
+    derivative. On x = sin(t) (w = 1) the largest error over the step's fractions converges
+    as h^(6 - order) (halving the step divides it by 64, 32, 16: measured 62.7, 31.4, 15.7)
+    and at w h = 1 is 2.1e-5, 7.1e-5 and 4.9e-4 of the amplitude. The velocity used to be the
+    cubic through the velocity and acceleration alone: 2.5e-3 off at w h = 1, converging as
+    h^4; the acceleration its derivative, as h^3."""
+    from generators._integrators import _hermite_weights
+
+    weights = _hermite_weights.py_func
+    thetas = np.linspace(0.0, 1.0, 41)[1:-1]
+
+    def worst(h):
+        err = 0.0
+        for phase in np.linspace(0.0, 2.0 * math.pi, 9):
+            ends = [
+                (math.sin(t + phase), math.cos(t + phase), -math.sin(t + phase)) for t in (0, h)
+            ]
+            values = (*ends[0], *ends[1])
+            for theta in thetas:
+                got = sum(c * v for c, v in zip(weights(theta, h, order), values, strict=True))
+                arg = theta * h + phase
+                exact = (math.sin(arg), math.cos(arg), -math.sin(arg))[order]
+                err = max(err, abs(got - exact))
+        return err
+
+    assert worst(1.0) < at_unit_wh
+    ratio = worst(0.5) / worst(0.25)
+    assert 0.85 * 2 ** (6 - order) < ratio < 1.15 * 2 ** (6 - order)
+    # at theta = 0 the record is the step start's state exactly
+    assert weights(0.0, 0.5, order) == tuple(float(k == order) for k in range(6))
