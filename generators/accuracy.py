@@ -234,9 +234,9 @@ def on_record_grid(step: float, record_dt: float, oversample: int) -> float:
     On that grid a pilot's step and its halves all record on the same pattern of their step
     grids (:func:`generators.steps.rk4_schedule` keeps them): a record between steps samples
     the step's interpolant (cubic until stop 47, quintic since), whose error does not fall as
-    RK4's does with the step, and pilots recorded partly on and partly off the grid gave Richardson's estimate 3-6 times
-    under the true error (stop 36: the bound missed in 3 of the 9 cases of
-    ``benchmarks/bench_error_bound.py``).
+    RK4's does with the step, and pilots recorded partly on and partly off the grid gave
+    Richardson's estimate 3-6 times under the true error (stop 36: the bound missed in 3 of
+    the 9 cases of ``benchmarks/bench_error_bound.py``).
     """
     top = math.floor(math.log2(oversample) + 1e-9)
     power = min(top, math.floor(math.log2(step / record_dt) + 1e-9))
