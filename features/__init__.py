@@ -27,6 +27,7 @@ from .separation import (
     BandSelection,
     candidate_bands,
     detection_threshold_db,
+    discrete_over_random_db,
     select_band,
     separate_discrete,
 )
@@ -67,6 +68,7 @@ __all__ = [
     "detection_threshold_db",
     "select_band",
     "separate_discrete",
+    "discrete_over_random_db",
     "CONTEXT_COLUMNS",
     "DEFAULT_FAULTS",
     "FeatureError",

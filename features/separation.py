@@ -39,6 +39,7 @@ from ._validate import FeatureError, check_fs, check_positive, check_signal
 __all__ = [
     "remove_harmonics",
     "separate_discrete",
+    "discrete_over_random_db",
     "select_band",
     "BandSelection",
     "candidate_bands",
@@ -314,6 +315,62 @@ def _line_editing(
         lines[:-1] |= lines[1:].copy()
     lines[0] = True  # the mean
     return spec, lines
+
+
+def discrete_over_random_db(
+    x: np.ndarray,
+    fs: float,
+    band: tuple[float, float],
+    fundamentals: Sequence[float] = (),
+    *,
+    line_db: float = LINE_DB,
+    window_hz: float = LINE_WINDOW_HZ,
+) -> float:
+    """How discrete a band is: the lines :func:`separate_discrete` edits out over what it leaves.
+
+    After the harmonic series of ``fundamentals`` are fitted and removed (they count for
+    neither side), the power in ``band`` of the bins the line editing takes (lines over
+    ``line_db`` above their local median, with their neighbours) over the power of the rest,
+    the random part the envelope analysis reads.
+
+    Parameters
+    ----------
+    x : ndarray
+        Signal [U].
+    fs : float
+        Sample rate [Hz].
+    band : (float, float)
+        Band [Hz].
+    fundamentals : sequence of float
+        Fundamentals [Hz] whose harmonic series are removed first.
+    line_db, window_hz : float
+        As :func:`separate_discrete` [dB], [Hz].
+
+    Returns
+    -------
+    float
+        10 log10(P_lines / P_random) [dB]; inf when nothing random is left in the band.
+
+    Examples
+    --------
+    >>> t = np.arange(12000) / 12000.0
+    >>> noise = np.random.default_rng(0).normal(0.0, 0.1, t.size)
+    >>> x = noise + sum(np.sin(2 * np.pi * f * t) for f in (1013.0, 1171.0, 1329.0))
+    >>> round(discrete_over_random_db(x, 12000.0, (1000.0, 1400.0)), 1) > 20  # lines
+    True
+    >>> round(discrete_over_random_db(noise, 12000.0, (1000.0, 1400.0)), 1) < -10  # noise
+    True
+    """
+    low, high = (float(b) for b in band)
+    if not 0.0 <= low < high:
+        raise FeatureError(f"band = {band!r}: need 0 <= low < high [Hz]")
+    spec, lines = _line_editing(x, fs, fundamentals, line_db, window_hz)
+    f = np.fft.rfftfreq(np.asarray(x).size, 1.0 / fs)
+    inside = (f >= low) & (f <= high)
+    inside[0] = False
+    power = np.abs(spec) ** 2
+    taken, left = float(np.sum(power[inside & lines])), float(np.sum(power[inside & ~lines]))
+    return math.inf if left <= 0.0 else 10.0 * math.log10(max(taken, 1e-300) / left)
 
 
 def candidate_bands(
