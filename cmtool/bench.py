@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import importlib
 import math
+import re
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -62,6 +63,9 @@ __all__ = [
     "summarise",
     "score_summary",
     "by_factor",
+    "confusion_tables",
+    "confusion_frame",
+    "CLASS_ORDER",
     "wilson_interval",
     "threshold_at_pfa",
     "plot_roc",
@@ -232,7 +236,12 @@ def _records(path: Path, bearing_default: str, allow_incomplete: bool = False):
                 if isinstance(row.get("bearing"), str)
                 else MANIFEST_BEARINGS.get(str(row.get("dataset")), bearing_default)
             )
-            meta = {"bearing": brg, "fs_hz": float(row["sampling_rate_hz"])}
+            rig = row.get("dataset")
+            meta = {
+                "bearing": brg,
+                "fs_hz": float(row["sampling_rate_hz"]),
+                "rig": rig if isinstance(rig, str) else brg,
+            }
             yield (
                 str(row["file"]),
                 x,
@@ -248,6 +257,7 @@ def _records(path: Path, bearing_default: str, allow_incomplete: bool = False):
     frame = read_dataset(path, allow_incomplete=allow_incomplete)
     for _, row in frame.iterrows():
         meta = {c: row[c] for c in FACTORS if c in row and pd.notna(row[c])}
+        meta["rig"] = row["bearing"]
         if pd.notna(row.get("load_angle_rad", math.nan)) and row.get("direction") in ("x", "y"):
             meta["load_from_sensor_deg"] = load_from_sensor_deg(
                 float(row["load_angle_rad"]), row["direction"]
@@ -543,6 +553,86 @@ def _rates(group: pd.DataFrame) -> pd.Series:
     )
 
 
+#: Order of the classes in confusion tables; a label or verdict outside it (``unknown``: a
+#: manifest's fault location cmtool does not know) follows.
+CLASS_ORDER = ("healthy", "outer race", "inner race", "ball")
+
+
+def confusion_tables(results: pd.DataFrame) -> pd.DataFrame:
+    """Each detector's own labels against the true classes: counts, overall and per rig.
+
+    Parameters
+    ----------
+    results : DataFrame
+        :func:`run_bench`'s rows: ``detector``, ``label`` (true class), ``verdict`` and
+        ``rig`` (a manifest's ``dataset`` column, else the bearing).
+
+    Returns
+    -------
+    DataFrame
+        Long form, one row per detector, rig, true class and verdict: ``detector``, ``rig``
+        (``all``, then each rig when the signals come from several), ``label``, ``verdict``,
+        ``count``; every true class present against those and every verdict the detector
+        gave (one that only tells faulty from healthy says ``fault``), zeros included.
+
+    Examples
+    --------
+    >>> r = pd.DataFrame({"detector": "envelope", "label": ["healthy", "ball", "ball"],
+    ...                   "verdict": ["healthy", "ball", "outer race"], "rig": "CWRU"})
+    >>> confusion_frame(confusion_tables(r), "envelope")  # doctest: +NORMALIZE_WHITESPACE
+    verdict  healthy  outer race  ball
+    label
+    healthy        1           0     0
+    ball           0           1     1
+    """
+
+    def ordered(names: set) -> list[str]:
+        return [c for c in CLASS_ORDER if c in names] + sorted(names - set(CLASS_ORDER))
+
+    truth = ordered(set(results["label"]))
+    rigs = results["rig"] if "rig" in results else pd.Series("all", index=results.index)
+    groups = [("all", results)]
+    if rigs.nunique() > 1:
+        groups += [(str(rig), part) for rig, part in results.groupby(rigs, sort=True)]
+    rows = []
+    for detector in results["detector"].unique():
+        said = results.loc[results["detector"] == detector, "verdict"]
+        classes = ordered(set(truth) | set(said))
+        for rig, part in groups:
+            mine = part[part["detector"] == detector]
+            counts = mine.groupby(["label", "verdict"]).size()
+            rows += [
+                {
+                    "detector": detector,
+                    "rig": rig,
+                    "label": label,
+                    "verdict": verdict,
+                    "count": int(counts.get((label, verdict), 0)),
+                }
+                for label in truth
+                for verdict in classes
+            ]
+    return pd.DataFrame(rows, columns=["detector", "rig", "label", "verdict", "count"])
+
+
+def confusion_plot_name(detector: str, rig: str = "all") -> str:
+    """File name of a detector's confusion plot (``confusion_<detector>[_<rig>].png``)."""
+    slug = re.sub(r"[^A-Za-z0-9]+", "_", detector if rig == "all" else f"{detector}_{rig}")
+    return f"confusion_{slug.strip('_')}.png"
+
+
+def confusion_frame(tables: pd.DataFrame, detector: str, rig: str = "all") -> pd.DataFrame:
+    """One detector's confusion matrix from :func:`confusion_tables`.
+
+    Rows: the true classes; columns: the verdicts; both in :data:`CLASS_ORDER`.
+    """
+    part = tables[(tables["detector"] == detector) & (tables["rig"] == rig)]
+    frame = part.pivot(index="label", columns="verdict", values="count")
+    return frame.reindex(
+        index=list(dict.fromkeys(part["label"])), columns=list(dict.fromkeys(part["verdict"]))
+    )
+
+
 def summarise(results: pd.DataFrame) -> dict[str, pd.DataFrame]:
     """The detectors' own labels: rates per detector (``overall``) and by each factor."""
     out = {"overall": results.groupby("detector", sort=False)[["label", "verdict"]].apply(_rates)}
@@ -672,8 +762,14 @@ def write_report(
     factors: dict[str, pd.DataFrame],
     *,
     in_sample: float = 0.0,
+    confusion: pd.DataFrame | None = None,
 ) -> Path:
-    """``report.md``: the tables, the plots, and what the figures rest on."""
+    """``report.md``: the tables, the plots, and what the figures rest on.
+
+    ``confusion`` (:func:`confusion_tables`) adds each detector's labels by class, over all
+    signals and per rig, with the plots the CLI writes beside the report
+    (:func:`confusion_plot_name`).
+    """
     healthy = int(summary["healthy_signals"].max()) if len(summary) else 0
     lines = [f"# Detector benchmark: {dataset}", ""]
     if in_sample:
@@ -706,6 +802,26 @@ def write_report(
             "![Pd against SNR](pd_vs_snr.png)",
             "",
         ]
+    if confusion is not None and len(confusion):
+        lines += [
+            "## By class: each detector's own labels",
+            "",
+            "Rows: the true class; columns: the detector's verdict (counts of signals); over all "
+            "signals, then per rig when they come from several.",
+            "",
+        ]
+        pairs = dict.fromkeys(zip(confusion["detector"], confusion["rig"], strict=True))
+        for detector, rig in pairs:
+            heading = detector if rig == "all" else f"{detector}, {rig}"
+            frame = confusion_frame(confusion, detector, rig)
+            lines += [
+                f"### {heading}",
+                "",
+                _markdown(frame.rename_axis(index="true class").reset_index()),
+                "",
+                f"![{heading}]({confusion_plot_name(detector, rig)})",
+                "",
+            ]
     for column, table in factors.items():
         name, unit, _ = FACTORS[column]
         lines += [f"## By {name}", "", _pivot(table, "bin", "value"), ""]

@@ -139,15 +139,21 @@ def plot_kurtogram(result, path: str | Path, *, title: str = "kurtogram") -> Pat
     return path
 
 
-def plot_confusion(matrix, labels, path: str | Path, *, title: str) -> Path:
-    """Confusion matrix (rows: true label, columns: predicted) with counts in the cells."""
+def plot_confusion(
+    matrix, labels, path: str | Path, *, title: str, columns: list[str] | None = None
+) -> Path:
+    """Confusion matrix (rows: true label, columns: predicted) with counts in the cells.
+
+    ``columns``: the predicted labels when they differ from the true ones (``labels``).
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     m = np.asarray(matrix)
+    columns = list(labels) if columns is None else list(columns)
     fig, ax = plt.subplots(figsize=(5.5, 4.8), dpi=110)
     ax.imshow(m, cmap="Blues")
-    ax.set_xticks(range(len(labels)))
-    ax.set_xticklabels(labels, rotation=30, ha="right")
+    ax.set_xticks(range(len(columns)))
+    ax.set_xticklabels(columns, rotation=30, ha="right")
     ax.set_yticks(range(len(labels)))
     ax.set_yticklabels(labels)
     for i in range(m.shape[0]):

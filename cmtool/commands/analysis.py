@@ -178,6 +178,7 @@ def cmd_bench(args: argparse.Namespace) -> int:
     import pandas as pd
 
     from .. import bench
+    from ..plots import plot_confusion
 
     out = Path(args.out) if args.out else None
     if out is not None and out.exists() and not out.is_dir():
@@ -259,6 +260,12 @@ def cmd_bench(args: argparse.Namespace) -> int:
     labels = bench.summarise(results)["overall"]
     print(f"== the detectors' own labels{tag}")
     print(labels.to_string(float_format=lambda v: f"{v:.3f}"))
+    confusion = bench.confusion_tables(results)
+    pairs = list(dict.fromkeys(zip(confusion["detector"], confusion["rig"], strict=True)))
+    print(f"== the detectors' own labels by class (rows: true class, columns: verdict){tag}")
+    for detector, rig in pairs:
+        print(f"-- {detector}" + ("" if rig == "all" else f", {rig}"))
+        print(bench.confusion_frame(confusion, detector, rig).to_string())
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)
         if in_sample:
@@ -267,6 +274,9 @@ def cmd_bench(args: argparse.Namespace) -> int:
         results.to_csv(out / "results.csv", index=False)
         summary.to_csv(out / "summary.csv", index=False)
         labels.to_csv(out / "labels.csv")
+        confusion.assign(**({"in_sample": True} if in_sample else {})).to_csv(
+            out / "confusion.csv", index=False
+        )
         if by_snr is not None:
             if in_sample:
                 by_snr = by_snr.assign(in_sample=True)
@@ -277,6 +287,20 @@ def cmd_bench(args: argparse.Namespace) -> int:
             table.to_csv(out / "by_factor.csv", index=False)
         title = f"{Path(args.dataset).name}{tag}"
         written = [bench.plot_roc(curves, out / "roc.png", title=f"ROC: {title}")]
+        confusion_plots = {}
+        for detector, rig in pairs:
+            frame = bench.confusion_frame(confusion, detector, rig)
+            name = bench.confusion_plot_name(detector, rig)
+            confusion_plots[detector, rig] = name
+            written.append(
+                plot_confusion(
+                    frame.to_numpy(),
+                    list(frame.index),
+                    out / name,
+                    columns=list(frame.columns),
+                    title=f"{detector}" + ("" if rig == "all" else f", {rig}") + f": {title}",
+                )
+            )
         if by_snr is not None:
             written.append(
                 bench.plot_pd_vs_snr(
@@ -291,6 +315,7 @@ def cmd_bench(args: argparse.Namespace) -> int:
                 by_snr if by_snr is not None else summary.iloc[0:0],
                 factors,
                 in_sample=in_sample,
+                confusion=confusion,
             )
         )
         for path in written:

@@ -10,6 +10,8 @@ import pytest
 from cmtool.bench import (
     BUILTIN_DETECTORS,
     by_factor,
+    confusion_frame,
+    confusion_tables,
     load_callable,
     run_bench,
     score_summary,
@@ -170,7 +172,45 @@ def test_cli_bench_writes_the_named_outputs(tmp_path, capsys):
         assert (out / name).stat().st_size > 10000
     report = (out / "report.md").read_text()
     assert "Healthy signals: 48" in report and "![ROC](roc.png)" in report
+    # per class: each detector's labels against the true classes, counts, table and plot
+    confusion = pd.read_csv(out / "confusion.csv")
+    assert list(confusion.columns) == ["detector", "rig", "label", "verdict", "count"]
+    assert set(confusion["rig"]) == {"all"}  # one bearing: no rig breakdown
+    assert (confusion.groupby("detector")["count"].sum() == 192).all()
+    rule = confusion_frame(confusion, "envelope")
+    assert list(rule.index) == ["healthy", "outer race", "inner race", "ball"]
+    assert rule.loc["healthy"].tolist() == [48, 0, 0, 0]  # every healthy signal healthy
+    assert "-- envelope\n" in printed and "rows: true class, columns: verdict" in printed
+    assert (out / "confusion_envelope.png").stat().st_size > 10000
+    assert "## By class" in report and "![envelope](confusion_envelope.png)" in report
     assert main(["bench", str(SMALL), "--detector", "nosuch:module"]) == 2
+
+
+def test_confusion_tables_count_every_class_overall_and_per_rig():
+    results = pd.DataFrame(
+        {
+            "detector": ["rule"] * 5 + ["kurtosis"] * 5,
+            "label": ["healthy", "ball", "outer race", "healthy", "ball"] * 2,
+            "verdict": ["healthy", "outer race", "outer race", "ball", "ball"]
+            + ["healthy", "fault", "fault", "fault", "healthy"],
+            "rig": ["CWRU", "CWRU", "CWRU", "MFPT", "MFPT"] * 2,
+        }
+    )
+    tables = confusion_tables(results)
+    assert list(dict.fromkeys(tables["rig"])) == ["all", "CWRU", "MFPT"]
+    rule = confusion_frame(tables, "rule")
+    assert list(rule.index) == ["healthy", "outer race", "ball"]
+    assert rule.to_numpy().tolist() == [[1, 0, 1], [0, 1, 0], [0, 1, 1]]
+    assert confusion_frame(tables, "rule", "MFPT").to_numpy().tolist() == [
+        [0, 0, 1],
+        [0, 0, 0],
+        [0, 0, 1],
+    ]
+    kurtosis = confusion_frame(tables, "kurtosis")
+    assert list(kurtosis.columns) == ["healthy", "outer race", "ball", "fault"]
+    assert kurtosis["fault"].tolist() == [1, 1, 1]
+    sums = tables.groupby(["detector", "rig"], sort=False)["count"].sum()
+    assert sums.tolist() == [5, 3, 2, 5, 3, 2]
 
 
 @pytest.mark.realdata
@@ -185,6 +225,14 @@ def test_bench_on_measured_recordings(shared_data):
     scores, _ = score_summary(results)
     # one healthy record: every AUC is measured against it; no false-alarm rate can be
     assert scores["healthy_signals"].eq(1).all() and scores["pd_at_pfa_0.01"].isna().all()
+    # by class and per rig (the manifest's dataset column): the rule's labels all right
+    confusion = confusion_tables(results)
+    rigs = set(pd.read_csv(Path(shared_data) / "MANIFEST.csv")["dataset"])
+    assert set(confusion["rig"]) == {"all", *rigs}
+    for rig in ("all", *rigs):
+        frame = confusion_frame(confusion, "envelope", rig)
+        right = sum(int(frame.loc[c, c]) for c in frame.index if c in frame.columns)
+        assert right == int(frame.to_numpy().sum()) > 0
 
 
 def test_the_benchmark_recipe_can_set_a_1e3_threshold_and_sweeps_the_snr():
