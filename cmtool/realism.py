@@ -26,7 +26,7 @@ import pandas as pd
 from generators import bearing as catalog_bearing
 from generators import characteristic_frequencies
 
-from .bench import MANIFEST_BEARINGS
+from .bench import CANONICAL, MANIFEST_BEARINGS
 from .io import read_recording
 
 __all__ = [
@@ -80,9 +80,11 @@ def recording_segments(folder: str | Path, duration_s: float) -> pd.DataFrame:
     Returns
     -------
     DataFrame
-        One row per segment: ``signal``, ``group`` (the file), and the context columns of the
-        feature extractor (``fs_hz``, ``shaft_frequency_hz``, ``ftf_hz``, ``bpfo_hz``,
-        ``bpfi_hz``, ``bsf_hz``, ``two_bsf_hz``).
+        One row per segment: ``signal``, ``group`` (the file), ``rig`` (the manifest's
+        ``dataset`` column, else the bearing), ``label`` (its ``fault_location`` as a verdict
+        name, ``unknown`` without one), and the context columns of the feature extractor
+        (``fs_hz``, ``shaft_frequency_hz``, ``ftf_hz``, ``bpfo_hz``, ``bpfi_hz``, ``bsf_hz``,
+        ``two_bsf_hz``).
     """
     folder = Path(folder)
     manifest = folder / "MANIFEST.csv"
@@ -97,12 +99,23 @@ def recording_segments(folder: str | Path, duration_s: float) -> pd.DataFrame:
         name = entry.get("bearing")
         if not isinstance(name, str):
             name = MANIFEST_BEARINGS.get(str(entry.get("dataset")), "6205")
+        rig = entry.get("dataset")
+        rig = rig if isinstance(rig, str) else name
+        label = CANONICAL.get(str(entry.get("fault_location", "")).lower(), "unknown")
         f = characteristic_frequencies(catalog_bearing(name), float(entry["shaft_rpm"]) / 60)
         n = max(1, int(round(duration_s * fs)))
         count = max(1, x.size // n)
         for i in range(count):
             segment = x[i * n : (i + 1) * n] if x.size >= n else x
-            rows.append({"signal": segment, "group": str(entry["file"]), **context_columns(f, fs)})
+            rows.append(
+                {
+                    "signal": segment,
+                    "group": str(entry["file"]),
+                    "rig": rig,
+                    "label": label,
+                    **context_columns(f, fs),
+                }
+            )
     if not rows:
         raise ValueError(f"{manifest}: lists no recordings")
     return pd.DataFrame(rows)
@@ -138,8 +151,11 @@ def realism(
         true positive rates), ``features`` (name, importance) most telling first,
         ``differences`` (the same order: each feature's importance, unit and
         :func:`feature_difference`, which way measured and simulated differ),
-        ``context_left_out`` (features that only repeat the context, not used) and the
-        out-of-fold ``scores``.
+        ``context_left_out`` (features that only repeat the context, not used), the
+        out-of-fold ``scores`` and ``auc_by``: for each of the measured segments' ``rig`` and
+        ``label`` columns that takes several values, the AUC of the same out-of-fold scores
+        with only that value's segments against every simulated signal (issue 17: per rig and
+        per class), with its segment count.
     """
     from sklearn.ensemble import RandomForestClassifier
     from sklearn.metrics import roc_auc_score, roc_curve
@@ -175,6 +191,21 @@ def realism(
         scores[test] = forest.predict_proba(X[test])[:, 1]
     auc = float(roc_auc_score(y, scores))
     fpr, tpr, _ = roc_curve(y, scores)
+    auc_by: dict[str, dict[str, dict[str, float | int]]] = {}
+    simulated_scores = scores[: len(simulated)]
+    for column in ("rig", "label"):
+        if column not in measured or measured[column].nunique() < 2:
+            continue
+        values = measured[column].astype(str).to_numpy()
+        auc_by[column] = {}
+        for value in sorted(set(values)):
+            mine = scores[len(simulated) :][values == value]
+            both_scores = np.r_[simulated_scores, mine]
+            truth = np.r_[np.zeros(simulated_scores.size), np.ones(mine.size)]
+            auc_by[column][value] = {
+                "auc": float(roc_auc_score(truth, both_scores)),
+                "segments": int(mine.size),
+            }
     forest = RandomForestClassifier(
         n_estimators=300, class_weight="balanced", random_state=random_state, n_jobs=-1
     ).fit(X, y)
@@ -201,6 +232,7 @@ def realism(
         "features": [(name, float(value)) for name, value in ranked],
         "differences": differences,
         "scores": scores.tolist(),
+        "auc_by": auc_by,
     }
 
 

@@ -151,6 +151,9 @@ def cmd_realism(args: argparse.Namespace) -> int:
             else ""
         )
     )
+    for column, name in (("rig", "rig"), ("label", "class")):
+        for value, part in result["auc_by"].get(column, {}).items():
+            print(f"  {name} {value}: ROC AUC {part['auc']:.3f} ({part['segments']} segments)")
     print(
         "what gives the simulation away (random-forest importance; medians, measured against "
         "simulated; measured segments outside the simulated 1-99 % range):"

@@ -143,3 +143,39 @@ def test_gauge_says_which_way_a_telling_feature_differs(small, tmp_path, capsys)
     assert "spectrum_bpfi_h1_snr" in out and "measured higher" in out
     saved = json.loads((tmp_path / "out" / "realism.json").read_text())
     assert saved["differences"][0]["feature"] == saved["features"][0][0]
+
+
+def test_gauge_reports_the_auc_per_rig_and_per_class(small, tmp_path, capsys):
+    """Issue 17: per rig and per class, never only the total. Two "rigs" in one manifest:
+    held-out signals of the simulation itself (its own classes) and white noise (labelled
+    normal): the noise rig is recognised at once, the simulation's own is not."""
+    held = small.sample(30, random_state=1)
+    rest = small.drop(held.index)
+    folder = tmp_path / "two-rigs"
+    folder.mkdir()
+    rng = np.random.default_rng(4)
+    rows = []
+    for i, (_, row) in enumerate(held.iterrows()):
+        np.save(folder / f"sim{i}.npy", row["signal"])
+        rows.append(("SIM", f"sim{i}.npy", row["rpm"], row["label"]))
+    for i in range(6):
+        np.save(folder / f"noise{i}.npy", rng.standard_normal(6400))
+        rows.append(("NOISE", f"noise{i}.npy", 1800.0, "normal"))
+    manifest = pd.DataFrame(rows, columns=["dataset", "file", "shaft_rpm", "fault_location"])
+    manifest.assign(sampling_rate_hz=6400.0, bearing="6205").to_csv(
+        folder / "MANIFEST.csv", index=False
+    )
+    segments = recording_segments(folder, 1.0)
+    assert set(segments["rig"]) == {"SIM", "NOISE"}
+    assert set(segments["label"]) == {"healthy", "inner race", "outer race", "ball"}
+    result = realism(rest, segments)
+    by_rig = result["auc_by"]["rig"]
+    assert by_rig["NOISE"]["auc"] > 0.95 and by_rig["NOISE"]["segments"] == 6
+    assert by_rig["SIM"]["auc"] < 0.8 and by_rig["SIM"]["segments"] == 30
+    by_class = result["auc_by"]["label"]
+    assert by_class["healthy"]["segments"] == 6 + int((held["label"] == "healthy").sum())
+    assert sum(part["segments"] for part in by_class.values()) == 36
+    # the CLI prints them
+    assert main(["realism", str(SMALL), str(folder)]) == 0
+    printed = capsys.readouterr().out
+    assert "rig NOISE: ROC AUC" in printed and "class ball: ROC AUC" in printed
