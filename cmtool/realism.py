@@ -154,8 +154,11 @@ def realism(
         ``context_left_out`` (features that only repeat the context, not used), the
         out-of-fold ``scores`` and ``auc_by``: for each of the measured segments' ``rig`` and
         ``label`` columns that takes several values, the AUC of the same out-of-fold scores
-        with only that value's segments against every simulated signal (issue 17: per rig and
-        per class), with its segment count.
+        with only that value's segments against every simulated signal, or for a class
+        against the simulated signals of the same class when there are any (like with like:
+        real healthy bearings against simulated healthy ones), with the counts and what they
+        were compared with (``against``: ``all`` or ``same class``; issue 17: per rig and per
+        class).
     """
     from sklearn.ensemble import RandomForestClassifier
     from sklearn.metrics import roc_auc_score, roc_curve
@@ -191,8 +194,13 @@ def realism(
         scores[test] = forest.predict_proba(X[test])[:, 1]
     auc = float(roc_auc_score(y, scores))
     fpr, tpr, _ = roc_curve(y, scores)
-    auc_by: dict[str, dict[str, dict[str, float | int]]] = {}
+    auc_by: dict[str, dict[str, dict[str, Any]]] = {}
     simulated_scores = scores[: len(simulated)]
+    simulated_labels = (
+        simulated["label"].astype(str).map(lambda v: CANONICAL.get(v, v)).to_numpy()
+        if "label" in simulated
+        else np.full(len(simulated), "")
+    )
     for column in ("rig", "label"):
         if column not in measured or measured[column].nunique() < 2:
             continue
@@ -200,11 +208,18 @@ def realism(
         auc_by[column] = {}
         for value in sorted(set(values)):
             mine = scores[len(simulated) :][values == value]
-            both_scores = np.r_[simulated_scores, mine]
-            truth = np.r_[np.zeros(simulated_scores.size), np.ones(mine.size)]
+            same = simulated_labels == value
+            against = "same class" if column == "label" and same.any() else "all"
+            theirs = simulated_scores[same] if against == "same class" else simulated_scores
             auc_by[column][value] = {
-                "auc": float(roc_auc_score(truth, both_scores)),
+                "auc": float(
+                    roc_auc_score(
+                        np.r_[np.zeros(theirs.size), np.ones(mine.size)], np.r_[theirs, mine]
+                    )
+                ),
                 "segments": int(mine.size),
+                "simulated": int(theirs.size),
+                "against": against,
             }
     forest = RandomForestClassifier(
         n_estimators=300, class_weight="balanced", random_state=random_state, n_jobs=-1

@@ -153,7 +153,11 @@ def cmd_realism(args: argparse.Namespace) -> int:
     )
     for column, name in (("rig", "rig"), ("label", "class")):
         for value, part in result["auc_by"].get(column, {}).items():
-            print(f"  {name} {value}: ROC AUC {part['auc']:.3f} ({part['segments']} segments)")
+            against = "simulated" if part["against"] == "all" else f"simulated {value}"
+            print(
+                f"  {name} {value}: ROC AUC {part['auc']:.3f} ({part['segments']} segments "
+                f"against {part['simulated']} {against})"
+            )
     print(
         "what gives the simulation away (random-forest importance; medians, measured against "
         "simulated; measured segments outside the simulated 1-99 % range):"

@@ -148,7 +148,8 @@ def test_gauge_says_which_way_a_telling_feature_differs(small, tmp_path, capsys)
 def test_gauge_reports_the_auc_per_rig_and_per_class(small, tmp_path, capsys):
     """Issue 17: per rig and per class, never only the total. Two "rigs" in one manifest:
     held-out signals of the simulation itself (its own classes) and white noise (labelled
-    normal): the noise rig is recognised at once, the simulation's own is not."""
+    normal): the noise rig is recognised at once, the simulation's own is not; a class is
+    compared with the simulated signals of the same class (like with like)."""
     held = small.sample(30, random_state=1)
     rest = small.drop(held.index)
     folder = tmp_path / "two-rigs"
@@ -175,6 +176,12 @@ def test_gauge_reports_the_auc_per_rig_and_per_class(small, tmp_path, capsys):
     by_class = result["auc_by"]["label"]
     assert by_class["healthy"]["segments"] == 6 + int((held["label"] == "healthy").sum())
     assert sum(part["segments"] for part in by_class.values()) == 36
+    for name, label in (("healthy", "healthy"), ("inner race", "inner"), ("ball", "ball")):
+        assert by_class[name]["against"] == "same class"
+        assert by_class[name]["simulated"] == int((rest["label"] == label).sum())
+    # the simulation's own classes pass (0.27-0.39), the healthy one, half of it noise, not (0.80)
+    others = [by_class[c]["auc"] for c in ("inner race", "outer race", "ball")]
+    assert max(others) < 0.6 and by_class["healthy"]["auc"] > max(others) + 0.3
     # the CLI prints them
     assert main(["realism", str(SMALL), str(folder)]) == 0
     printed = capsys.readouterr().out
