@@ -65,6 +65,7 @@ __all__ = [
     "by_factor",
     "confusion_tables",
     "confusion_frame",
+    "confusion_plot_name",
     "CLASS_ORDER",
     "wilson_interval",
     "threshold_at_pfa",

@@ -294,16 +294,13 @@ def cmd_bench(args: argparse.Namespace) -> int:
             table.to_csv(out / "by_factor.csv", index=False)
         title = f"{Path(args.dataset).name}{tag}"
         written = [bench.plot_roc(curves, out / "roc.png", title=f"ROC: {title}")]
-        confusion_plots = {}
         for detector, rig in pairs:
             frame = bench.confusion_frame(confusion, detector, rig)
-            name = bench.confusion_plot_name(detector, rig)
-            confusion_plots[detector, rig] = name
             written.append(
                 plot_confusion(
                     frame.to_numpy(),
                     list(frame.index),
-                    out / name,
+                    out / bench.confusion_plot_name(detector, rig),
                     columns=list(frame.columns),
                     title=f"{detector}" + ("" if rig == "all" else f", {rig}") + f": {title}",
                 )
