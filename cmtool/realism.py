@@ -158,7 +158,9 @@ def realism(
         against the simulated signals of the same class when there are any (like with like:
         real healthy bearings against simulated healthy ones), with the counts and what they
         were compared with (``against``: ``all`` or ``same class``; issue 17: per rig and per
-        class).
+        class) and, per class, ``differences``: the ``CLASS_DIFFERENCES`` features whose
+        values tell that class's measured segments from its simulated signals best (each
+        feature's own ROC AUC farthest from 0.5; :func:`feature_difference`).
     """
     from sklearn.ensemble import RandomForestClassifier
     from sklearn.metrics import roc_auc_score, roc_curve
@@ -207,7 +209,8 @@ def realism(
         values = measured[column].astype(str).to_numpy()
         auc_by[column] = {}
         for value in sorted(set(values)):
-            mine = scores[len(simulated) :][values == value]
+            rows = values == value
+            mine = scores[len(simulated) :][rows]
             same = simulated_labels == value
             against = "same class" if column == "label" and same.any() else "all"
             theirs = simulated_scores[same] if against == "same class" else simulated_scores
@@ -221,6 +224,19 @@ def realism(
                 "simulated": int(theirs.size),
                 "against": against,
             }
+            if column == "label":
+                sim_rows = same if against == "same class" else np.ones(same.size, dtype=bool)
+                measured_rows = X[len(simulated) :][rows]
+                telling = [
+                    {
+                        "feature": name,
+                        **feature_difference(X[: len(simulated)][sim_rows, j], measured_rows[:, j]),
+                        "unit": units.get(name, ""),
+                    }
+                    for j, name in enumerate(names)
+                ]
+                telling.sort(key=lambda d: -abs(d["auc"] - 0.5))
+                auc_by[column][value]["differences"] = telling[:CLASS_DIFFERENCES]
     forest = RandomForestClassifier(
         n_estimators=300, class_weight="balanced", random_state=random_state, n_jobs=-1
     ).fit(X, y)
@@ -250,6 +266,10 @@ def realism(
         "auc_by": auc_by,
     }
 
+
+#: Features listed per class in ``auc_by`` (those that tell the class's measured segments
+#: from its simulated signals best).
+CLASS_DIFFERENCES = 5
 
 #: Quantiles [-] of the simulated values that bound "the simulated range" of a feature.
 SIMULATED_RANGE = (0.01, 0.99)

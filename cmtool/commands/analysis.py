@@ -158,6 +158,11 @@ def cmd_realism(args: argparse.Namespace) -> int:
                 f"  {name} {value}: ROC AUC {part['auc']:.3f} ({part['segments']} segments "
                 f"against {part['simulated']} {against})"
             )
+            for d in part.get("differences", [])[:3]:
+                print(
+                    f"      {d['feature']:<36s} {d['direction']:<15s} {d['measured_median']:.3g} "
+                    f"against {d['simulated_median']:.3g} (its AUC {d['auc']:.2f})"
+                )
     print(
         "what gives the simulation away (random-forest importance; medians, measured against "
         "simulated; measured segments outside the simulated 1-99 % range):"

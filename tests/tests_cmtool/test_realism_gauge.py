@@ -182,7 +182,13 @@ def test_gauge_reports_the_auc_per_rig_and_per_class(small, tmp_path, capsys):
     # the simulation's own classes pass (0.27-0.39), the healthy one, half of it noise, not (0.80)
     others = [by_class[c]["auc"] for c in ("inner race", "outer race", "ball")]
     assert max(others) < 0.6 and by_class["healthy"]["auc"] > max(others) + 0.3
+    # and what tells each class apart most: the healthy class's top features separate (the
+    # noise half of it), the simulation's own classes' hardly
+    telling = [abs(d["auc"] - 0.5) for d in by_class["healthy"]["differences"]]
+    assert len(telling) == 5 and telling == sorted(telling, reverse=True)
+    assert telling[0] > 0.2 and by_class["healthy"]["differences"][0]["direction"] != "alike"
     # the CLI prints them
     assert main(["realism", str(SMALL), str(folder)]) == 0
     printed = capsys.readouterr().out
     assert "rig NOISE: ROC AUC" in printed and "class ball: ROC AUC" in printed
+    assert by_class["healthy"]["differences"][0]["feature"] in printed
