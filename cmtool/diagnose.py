@@ -95,10 +95,10 @@ FAULT_NAMES = {key: name for name, key in FAULTS.items()}
 #: Why a detected fault's size is not given (docs/diagnosis.md "Severity"): said in the text,
 #: the JSON and the report of every fault verdict, so that nobody reads an absence as "small".
 SEVERITY_NOT_ESTIMATED = (
-    "not estimated: a pit's size is not in what this detector reads (random forests trained "
-    "on simulated pits of known size do no better than answering the median size, R^2 -0.3 "
-    "to 0.2 within a simulated rig; docs/diagnosis.md, Severity); trend the evidence and the "
-    "ISO 15242 velocity bands against a baseline instead"
+    "not estimated: a pit's size is not in what this detector reads on a machine it was not "
+    "calibrated on (estimators trained on simulated pits of known size do worse than "
+    "answering the median size on another simulated rig; docs/diagnosis.md, Severity); trend "
+    "the evidence and the ISO 15242 velocity bands against a baseline instead"
 )
 
 #: What the rule assumes of a local fault's impacts (docs/diagnosis.md, "What the rule needs"):
