@@ -25,6 +25,8 @@ from __future__ import annotations
 
 import functools
 import math
+import threading
+from collections import OrderedDict
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -92,6 +94,11 @@ RIDGE = 1e-4
 #: The joint fit has settled when a refinement pass moved it by less than this fraction of the
 #: record's Hann-weighted RMS (far below the instrument floor of ``separate_discrete``).
 SETTLED = 1e-6
+#: Bytes of harmonic-family transforms kept for the next record of the same length, rate and
+#: fundamental (a dataset's operating points repeat, and setting a family's transforms up costs
+#: about four times as much as the passes that use them; one holds about 80 bytes a sample:
+#: 4 MB for 1 s at 48 kHz).
+TRANSFORM_CACHE_BYTES = 64 * 2**20
 #: Sample rate over the highest frequency analysed (the analyser convention fs = 2.56 f_max).
 ANALYSER_RATIO = 2.56
 #: Median of a Rayleigh variable over its scale.
@@ -146,7 +153,7 @@ def remove_harmonics(x: np.ndarray, fs: float, fundamentals: Sequence[float]) ->
         return y
     weights = np.hanning(n)
     weights = weights / weights.sum()
-    transforms = [_HarmonicTransforms(n, f0, count, fs) for f0, count in families]
+    transforms = [_harmonic_transforms(n, f0, count, fs) for f0, count in families]
     lines = np.concatenate([f0 * np.arange(1, count + 1) for f0, count in families])
     solve = sparse_linalg.splu(_hann_gram(lines / fs, n)).solve
     splits = np.cumsum([count for _, count in families])[:-1]
@@ -220,7 +227,8 @@ class _HarmonicTransforms:
     :meth:`synthesise` a series' sum in time: the analysis evaluates the weighted signal's
     transform at k f0 (k = 1 .. count), the synthesis the harmonic series at every sample, each in
     O((n + count) log(n + count)). Setting a transform up (its chirp and the filter's FFT)
-    costs as much as applying it, so the passes of :func:`remove_harmonics` share them.
+    costs as much as applying it, so the passes of :func:`remove_harmonics` share them, and so
+    do records of the same length, rate and fundamental (:func:`_harmonic_transforms`).
     """
 
     def __init__(self, n: int, f0: float, count: int, fs: float) -> None:
@@ -229,6 +237,15 @@ class _HarmonicTransforms:
         self.synthesis = sp_signal.CZT(count, m=n, w=step, a=1.0)
         self.ramp = step ** np.arange(n)
 
+    @property
+    def nbytes(self) -> int:
+        """Memory held by the two transforms and the ramp [bytes]."""
+        arrays = [self.ramp]
+        for transform in (self.analysis, self.synthesis):
+            held = getattr(transform, "__dict__", {}).values()
+            arrays += [v for v in held if isinstance(v, np.ndarray)]
+        return sum(a.nbytes for a in arrays)
+
     def analyse(self, y: np.ndarray, weights: np.ndarray) -> np.ndarray:
         """Hann-weighted projections of ``y`` on harmonics 1 .. count (``weights``: unit sum)."""
         return self.analysis(weights * y)
@@ -236,6 +253,30 @@ class _HarmonicTransforms:
     def synthesise(self, amplitudes: np.ndarray) -> np.ndarray:
         """The real series sum of Re(a_k exp(2 pi i k f0 t)) at every sample."""
         return np.real(self.synthesis(amplitudes) * self.ramp)
+
+
+_transform_cache: OrderedDict[tuple[int, float, int, float], _HarmonicTransforms] = OrderedDict()
+_transform_cache_lock = threading.Lock()
+
+
+def _harmonic_transforms(n: int, f0: float, count: int, fs: float) -> _HarmonicTransforms:
+    """:class:`_HarmonicTransforms` of one family, kept for the next record alike.
+
+    The least recently used are dropped once the kept ones hold more than
+    ``TRANSFORM_CACHE_BYTES``. The same transforms as made anew: the results are the same bits.
+    """
+    key = (n, f0, count, fs)
+    with _transform_cache_lock:
+        if key in _transform_cache:
+            _transform_cache.move_to_end(key)
+            return _transform_cache[key]
+    transforms = _HarmonicTransforms(n, f0, count, fs)
+    with _transform_cache_lock:
+        _transform_cache[key] = transforms
+        held = sum(t.nbytes for t in _transform_cache.values())
+        while held > TRANSFORM_CACHE_BYTES and len(_transform_cache) > 1:
+            held -= _transform_cache.popitem(last=False)[1].nbytes
+    return transforms
 
 
 def separate_discrete(

@@ -50,6 +50,38 @@ def test_remove_harmonics_takes_out_exactly_periodic_parts_even_close_ones(rng):
     assert np.std(rest) < 1.05 * floor * np.std(periodic)  # the instrument floor, nothing more
 
 
+def test_kept_transforms_give_the_same_bits_for_each_records_own_family(rng, monkeypatch):
+    """remove_harmonics keeps each family's transforms for the next record alike: a record's
+    result is the same with them as made anew, a family of another fundamental or length gets
+    its own, and what is kept stays within TRANSFORM_CACHE_BYTES."""
+    sep = features.separation
+    monkeypatch.setattr(sep, "_transform_cache", type(sep._transform_cache)())
+    n = 6000
+    t = np.arange(n) / FS
+    signals = {
+        f0: sum(np.cos(2 * np.pi * k * f0 * t + k) / k for k in range(1, 20))
+        + 0.1 * rng.standard_normal(n)
+        for f0 in (29.90, 29.92)  # the same number of harmonics below fs/2
+    }
+    fresh = {}
+    for f0, x in signals.items():
+        sep._transform_cache.clear()
+        fresh[f0] = remove_harmonics(x, FS, (f0,))
+    sep._transform_cache.clear()
+    for _ in range(2):  # the second round from what the first kept
+        for f0, x in signals.items():
+            np.testing.assert_array_equal(remove_harmonics(x, FS, (f0,)), fresh[f0])
+            shorter = remove_harmonics(x[:-500], FS, (f0,))
+            assert shorter.size == n - 500
+    assert len(sep._transform_cache) == 4
+    one = next(iter(sep._transform_cache.values())).nbytes
+    assert one > 16 * n  # the ramp and the two transforms' chirps
+    monkeypatch.setattr(sep, "TRANSFORM_CACHE_BYTES", int(2.5 * one))
+    remove_harmonics(signals[29.90], FS, (29.8,))
+    assert len(sep._transform_cache) == 2
+    assert sum(v.nbytes for v in sep._transform_cache.values()) <= 2.5 * one
+
+
 def test_a_strong_line_beside_an_empty_family_goes_whole():
     """A simulated healthy bearing: a strong ball-pass line half a bin from a shaft harmonic.
 
