@@ -22,7 +22,9 @@ shaft, 118.88 Hz, is 1.1 bins from 120 Hz in a 1 s record, and the mains line wa
 inner-race waviness of order 8).
 
 Thresholds, fixed before any recording was read: a line must stand ``WAVINESS_SNR_DB`` over its
-local floor (the rule detector's one-band threshold) and ``MODEL_EXCESS_DB`` over the model's
+local floor (the rule detector's one-band threshold), so high that Gaussian noise makes one of
+the candidates as high in at most ``WAVINESS_FALSE_ALARM`` of records (stop 48), and
+``MODEL_EXCESS_DB`` over the model's
 healthy prediction (a factor of about three for what the model leaves out: the structure,
 the clearance, the film).
 """
@@ -43,6 +45,7 @@ __all__ = [
     "MAINS_HZ",
     "MODEL_EXCESS_DB",
     "WAVINESS_SNR_DB",
+    "WAVINESS_FALSE_ALARM",
     "DEFAULT_LOAD_N",
     "ASSUMED_LOAD_FACTORS",
     "GIVEN_LOAD_FACTORS",
@@ -50,12 +53,17 @@ __all__ = [
     "candidate_lines",
     "comparison_text",
     "healthy_model_spectrum",
+    "line_false_alarm",
     "mains_harmonic_near",
     "race_waviness",
 ]
 
 #: A waviness line stands this far over its local floor [dB].
 WAVINESS_SNR_DB = 12.0
+#: ... with at most this probability per record that Gaussian noise makes a candidate as high
+#: (each line's own probability times the number of candidates; 12 dB alone let 3-5 % of 1 s
+#: noise records through: benchmarks/waviness_noise.py).
+WAVINESS_FALSE_ALARM = 1e-3
 #: ... and this far over the healthy model's prediction of its ratio to the ball-pass lines [dB].
 MODEL_EXCESS_DB = 10.0
 #: Radial load of the healthy prediction when none is given [N] (docs/model.md 6.3 scene).
@@ -105,11 +113,35 @@ def candidate_lines(freqs: BearingFrequencies, ball_count: int) -> list[Waviness
     return out
 
 
+#: The guard of a line's floor, in half widths of its search band (features.line_snr).
+_GUARD = 3.0
+
+
+def _half_width(df: float, line: float) -> float:
+    """Half width of a waviness line's search band [Hz]: 1.5 bins or 0.3 % of the line."""
+    return max(1.5 * df, 0.003 * line)
+
+
 def _line(f: np.ndarray, a: np.ndarray, line: float) -> tuple[float, float]:
     """(SNR over the local floor [dB], peak [U]) of a line of a plain spectrum."""
     df = f[1] - f[0]
-    snr, peak, _ = features.line_snr(f, a, line, half_width=max(1.5 * df, 0.003 * line), guard=3.0)
+    snr, peak, _ = features.line_snr(f, a, line, half_width=_half_width(df, line), guard=_GUARD)
     return snr, peak
+
+
+def line_false_alarm(f: np.ndarray, line: float, snr_db: float) -> float:
+    """Probability that Gaussian noise alone makes a candidate line ``snr_db`` over its floor.
+
+    :func:`features.separation.plain_line_false_alarm` with the bins :func:`features.line_snr`
+    searches and takes the floor from for this line (``f``: the spectrum's frequencies [Hz]).
+    """
+    df = float(f[1] - f[0])
+    hw = max(_half_width(df, line), df)
+    reach = max(features.bands.FLOOR_WINDOW * line, 10.0 * df)
+    near = np.abs(np.asarray(f, dtype=float) - line)
+    searched = int(np.count_nonzero(near <= hw))
+    floor = int(np.count_nonzero((near <= reach) & ~(near <= _GUARD * hw)))
+    return features.separation.plain_line_false_alarm(snr_db, searched, floor)
 
 
 def _peak_frequency(f: np.ndarray, a: np.ndarray, line: float) -> float:
@@ -215,9 +247,10 @@ def race_waviness(
     """
     flagged = []
     resolution = float(f[1] - f[0])
-    for line in candidate_lines(freqs, geometry.ball_count):
-        if line.frequency >= f[-1] or line.frequency <= 0:
-            continue
+    lines = [
+        line for line in candidate_lines(freqs, geometry.ball_count) if 0 < line.frequency < f[-1]
+    ]
+    for line in lines:
         mains = mains_harmonic_near(line.frequency, resolution)
         if mains is not None:
             peak = _peak_frequency(f, a, line.frequency)
@@ -226,6 +259,8 @@ def race_waviness(
         snr, _ = _line(f, a, line.frequency)
         if snr < WAVINESS_SNR_DB:
             continue
+        if line_false_alarm(f, line.frequency, snr) * len(lines) > WAVINESS_FALSE_ALARM:
+            continue  # noise makes a line this high among this many candidates too often
         excess = None
         if model is not None:
             predicted = max(_ratio_db(mf, ma, line, freqs) for mf, ma in model)
