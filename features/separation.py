@@ -626,7 +626,7 @@ def plain_line_false_alarm(ratio_db: float, searched_bins: int, floor_bins: int)
     bound), its floor the median of ``floor_bins`` others, half of them independent (the
     window's neighbouring bins are correlated), and the ratio is taken as it is measured (the
     envelope's model, :func:`line_false_alarm`, carries a calibration of its own). On white
-    noise (6205 candidates at 12 kHz, 1 and 10 s records) the rate measured was 0.33-0.88 of
+    noise (6205 candidates at 12 kHz, 1 and 10 s records) the rate measured was 0.36-0.88 of
     this probability from 1e-1 to 1e-3 (``benchmarks/waviness_noise.py``).
 
     Parameters

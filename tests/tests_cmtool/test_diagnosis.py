@@ -730,7 +730,7 @@ def test_race_waviness_without_a_baseline_is_judged_against_the_models_healthy_l
 def test_plain_line_false_alarm_bounds_what_noise_makes_in_a_plain_spectrum():
     """A Hann-windowed amplitude spectrum of white noise: the lines it makes at a 6205's race
     waviness candidates (cmtool.waviness' bins) stand at least as high as a probability of
-    1e-2 or 1e-3 says at most about as often as that (measured 0.33-0.88 of it), in 1 s and in
+    1e-2 or 1e-3 says at most about as often as that (measured 0.36-0.88 of it), in 1 s and in
     10 s records (the envelope's calibrated model undercounts the 10 s ones by 1.6x at 1e-2)."""
     import features
     from cmtool.waviness import _line, candidate_lines, line_false_alarm
