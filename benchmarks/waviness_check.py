@@ -22,7 +22,8 @@ rig recipes' 1,400 signals changed; not shipped either: in the measured-data tes
 the CWRU OR007@6 outer-race record healthy (docs/diagnosis.md, "Waviness read as a local
 fault").
 
-Run: .venv/bin/python benchmarks/waviness_check.py [--no-mains] [--no-floor] [DATASET ...]
+Run: .venv/bin/python benchmarks/waviness_check.py [--no-mains] [--no-floor] [--cross-family]
+     [DATASET ...]
 (for example after ``cmtool generate datasets/cwru-rig.toml --out data/cwru-rig``)
 """
 
