@@ -3,7 +3,7 @@
 The recipes carry the model's housing acceleration to the sensor through
 ``generators.measurement.transfer_path``: a sum of second-order band-passes of unit peak gain,
 which pass nothing at 0 Hz and, at a 6205's BPFI (162 Hz), 2 zeta f / f_n of a mode at f_n
-(-40 to -60 dB for modes at 0.8-10 kHz with 1-8 % damping). Between two points of one
+(-30 to -70 dB for modes at 0.8-10 kHz with 1-8 % damping). Between two points of one
 structure the path is a transmissibility: unity below the first flexible mode (the sensor
 moves with the housing), resonant at each mode, falling above. This generates a recipe with
 each mode's band-pass replaced by (2 zeta w s + w^2) / (s^2 + 2 zeta w s + w^2), weighted by
