@@ -25,9 +25,9 @@ import features
 from cmtool.waviness import (
     WAVINESS_FALSE_ALARM,
     WAVINESS_SNR_DB,
-    _half_width,
     _line,
     candidate_lines,
+    line_bins,
     line_false_alarm,
 )
 from generators import bearing
@@ -38,12 +38,7 @@ FS = 12000.0
 
 def envelope_model_false_alarm(f: np.ndarray, line: float, snr_db: float) -> float:
     """The envelope's model of a line ``snr_db`` over its floor, with cmtool.waviness's bins."""
-    df = float(f[1] - f[0])
-    half_width = max(_half_width(df, line), df)
-    reach = max(features.bands.FLOOR_WINDOW * line, 10.0 * df)
-    near = np.abs(f - line)
-    searched = int(np.count_nonzero(near <= half_width))
-    floor = int(np.count_nonzero((near <= reach) & ~(near <= 3.0 * half_width)))
+    searched, floor = line_bins(f, line)
     return features.separation.line_false_alarm(snr_db, max(1, searched), max(3, floor))
 
 

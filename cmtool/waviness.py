@@ -53,6 +53,7 @@ __all__ = [
     "candidate_lines",
     "comparison_text",
     "healthy_model_spectrum",
+    "line_bins",
     "line_false_alarm",
     "mains_harmonic_near",
     "race_waviness",
@@ -135,13 +136,21 @@ def line_false_alarm(f: np.ndarray, line: float, snr_db: float) -> float:
     :func:`features.separation.plain_line_false_alarm` with the bins :func:`features.line_snr`
     searches and takes the floor from for this line (``f``: the spectrum's frequencies [Hz]).
     """
+    return features.separation.plain_line_false_alarm(snr_db, *line_bins(f, line))
+
+
+def line_bins(f: np.ndarray, line: float) -> tuple[int, int]:
+    """Bins :func:`features.line_snr` searches for a candidate line, and bins of its floor.
+
+    ``f``: the spectrum's frequencies [Hz]; ``line`` [Hz].
+    """
     df = float(f[1] - f[0])
     hw = max(_half_width(df, line), df)
     reach = max(features.bands.FLOOR_WINDOW * line, 10.0 * df)
     near = np.abs(np.asarray(f, dtype=float) - line)
     searched = int(np.count_nonzero(near <= hw))
     floor = int(np.count_nonzero((near <= reach) & ~(near <= _GUARD * hw)))
-    return features.separation.plain_line_false_alarm(snr_db, searched, floor)
+    return searched, floor
 
 
 def _peak_frequency(f: np.ndarray, a: np.ndarray, line: float) -> float:

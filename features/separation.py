@@ -612,8 +612,15 @@ def line_false_alarm(ratio_db: float, searched_bins: int, floor_bins: int) -> fl
     if ratio_db <= 0.0:
         return 1.0
     k = 10.0 ** ((ratio_db - CALIBRATION_DB) / 20.0) * _RAYLEIGH_MEDIAN
-    # evaluated directly (a curve per bin count would be built for every harmonic and
-    # sideband, each searched over its own number of bins)
+    return _exceedance_clipped(k, searched_bins, floor_bins)
+
+
+def _exceedance_clipped(k: float, searched_bins: int, floor_bins: int) -> float:
+    """:func:`_exceedance` of a line k x its floor's median, clipped to [``_SMALLEST_P``, 1].
+
+    Half the floor's bins count as independent. Evaluated directly: a curve per bin count
+    would be built for every harmonic and sideband, each searched over its own number of bins.
+    """
     p = _exceedance(k, max(1, int(searched_bins)), _independent_floor_bins(floor_bins))
     return float(min(1.0, max(p, _SMALLEST_P)))
 
@@ -648,9 +655,7 @@ def plain_line_false_alarm(ratio_db: float, searched_bins: int, floor_bins: int)
     """
     if ratio_db <= 0.0:
         return 1.0
-    k = 10.0 ** (ratio_db / 20.0)
-    p = _exceedance(k, max(1, int(searched_bins)), _independent_floor_bins(floor_bins))
-    return float(min(1.0, max(p, _SMALLEST_P)))
+    return _exceedance_clipped(10.0 ** (ratio_db / 20.0), searched_bins, floor_bins)
 
 
 def ratio_for_false_alarm(

@@ -274,10 +274,11 @@ def cmd_bench(args: argparse.Namespace) -> int:
     print(labels.to_string(float_format=lambda v: f"{v:.3f}"))
     confusion = bench.confusion_tables(results)
     pairs = list(dict.fromkeys(zip(confusion["detector"], confusion["rig"], strict=True)))
+    frames = {pair: bench.confusion_frame(confusion, *pair) for pair in pairs}
     print(f"== the detectors' own labels by class (rows: true class, columns: verdict){tag}")
-    for detector, rig in pairs:
+    for (detector, rig), frame in frames.items():
         print(f"-- {detector}" + ("" if rig == "all" else f", {rig}"))
-        print(bench.confusion_frame(confusion, detector, rig).to_string())
+        print(frame.to_string())
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)
         if in_sample:
@@ -299,8 +300,7 @@ def cmd_bench(args: argparse.Namespace) -> int:
             table.to_csv(out / "by_factor.csv", index=False)
         title = f"{Path(args.dataset).name}{tag}"
         written = [bench.plot_roc(curves, out / "roc.png", title=f"ROC: {title}")]
-        for detector, rig in pairs:
-            frame = bench.confusion_frame(confusion, detector, rig)
+        for (detector, rig), frame in frames.items():
             written.append(
                 plot_confusion(
                     frame.to_numpy(),
