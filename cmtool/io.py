@@ -285,6 +285,25 @@ def _pick(count: int, channel: str | int | None, path: Path) -> int:
     return index
 
 
+def _one_channel(x: np.ndarray, channel: str | int | None, path: Path) -> np.ndarray:
+    """The asked channel of an array: its samples along the longer axis (default channel 0).
+
+    A 2-D array holds its channels along its shorter axis (a record is longer than it is
+    wide): a column each (samples x channels) or a row each (channels x samples).
+    """
+    squeezed = np.squeeze(x) if x.ndim > 2 else x
+    if squeezed.ndim > 2:
+        raise RecordingError(
+            f"{path}: an array of shape {x.shape}; give one record (1-D) or channels x samples"
+        )
+    if squeezed.ndim == 2 and min(squeezed.shape) > 1:
+        index = _pick(min(squeezed.shape), channel, path)
+        rows_are_samples = squeezed.shape[0] >= squeezed.shape[1]
+        return squeezed[:, index] if rows_are_samples else squeezed[index]
+    _pick(1, channel, path)  # one channel: only 0 (or none) can be asked for
+    return squeezed.ravel()
+
+
 def _is_number(text: object) -> bool:
     try:
         float(str(text))
@@ -345,7 +364,8 @@ def read_recording(
         Variable of a .mat/.npz file (default: the drive-end channel of CWRU files, the
         ``bearing`` struct of MFPT files, or the only numeric array).
     channel : str or int, optional
-        Column of a CSV/parquet file or a multi-channel WAV/array (default: the first).
+        Column of a CSV/parquet file or a multi-channel WAV/array (default: the first); an
+        array's channels lie along its shorter axis (samples x channels or channels x samples).
 
     Returns
     -------
@@ -391,13 +411,7 @@ def read_recording(
             meta["unit"] = "g"
             meta["bearing"] = "mfpt"  # the MFPT layout: struct bearing.gs/sr/rate
         else:
-            x = np.asarray(value, dtype=float)
-            if x.ndim == 2 and min(x.shape) > 1:
-                col = _pick(min(x.shape), channel, path)
-                x = x[:, col] if x.shape[0] > x.shape[1] else x[col]
-            else:
-                _pick(1, channel, path)  # one channel: only 0 (or none) can be asked for
-            x = x.ravel()
+            x = _one_channel(np.asarray(value, dtype=float), channel, path)
             prefix = variable.split("_")[0]
             rpm_key = f"{prefix}RPM"
             if rpm_key in data:
@@ -431,14 +445,13 @@ def read_recording(
                 raise RecordingError(f"{path}: choose a variable with --variable; it holds {keys}")
             loaded = loaded[key]
             meta["variable"] = key
-        x = np.asarray(loaded, dtype=float)
-        if x.ndim == 2:
-            x = x[:, _pick(x.shape[1], channel, path)]
-        else:
-            _pick(1, channel, path)
+        x = _one_channel(np.asarray(loaded, dtype=float), channel, path)
     elif suffix in (".csv", ".parquet"):
         if suffix == ".csv":
-            frame = pd.read_csv(path)
+            try:
+                frame = pd.read_csv(path)
+            except pd.errors.EmptyDataError:
+                raise RecordingError(f"{path}: the file holds no data") from None
             if all(_is_number(c) for c in frame.columns):  # no header: the first row is data
                 frame = pd.read_csv(path, header=None)
                 frame.columns = [f"column {i}" for i in range(frame.shape[1])]

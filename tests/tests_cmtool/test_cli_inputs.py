@@ -317,6 +317,16 @@ def test_recording_readers_wav_npy_npz_parquet(tmp_path):
         channel = 5 if name == "a.npy" else 1
         with pytest.raises(RecordingError, match=f"channel {channel} is outside"):
             read_recording(tmp_path / name, channel=channel)
+    # channels x samples, as numpy and MATLAB users often store them: the shorter axis
+    np.save(tmp_path / "rows.npy", stereo.T)
+    np.testing.assert_array_equal(read_recording(tmp_path / "rows.npy", channel=1)[0], stereo[:, 1])
+    np.testing.assert_array_equal(read_recording(tmp_path / "rows.npy")[0], stereo[:, 0])
+    np.save(tmp_path / "cube.npy", stereo.reshape(2, 2000, 2))
+    with pytest.raises(RecordingError, match=r"shape \(2, 2000, 2\)"):
+        read_recording(tmp_path / "cube.npy")
+    (tmp_path / "empty.csv").write_text("")
+    with pytest.raises(RecordingError, match="empty.csv: the file holds no data"):
+        read_recording(tmp_path / "empty.csv")
 
 
 def test_diagnose_reads_the_asked_variable_of_an_npz(outer_race_csv, tmp_path, capsys):
