@@ -51,6 +51,7 @@ from generators import characteristic_frequencies
 
 from .diagnose import CANONICAL, FAULTS, diagnose_signal
 from .io import read_recording
+from .manifest import read_manifest
 
 __all__ = [
     "BUILTIN_DETECTORS",
@@ -74,7 +75,6 @@ __all__ = [
     "write_report",
 ]
 
-MANIFEST_BEARINGS = {"CWRU": "6205", "MFPT": "mfpt"}
 #: The faults every detector scores, in the order of the outputs.
 FAULT_CLASSES = tuple(FAULTS)  # outer race, inner race, ball
 #: Built-in detectors, in the order of the outputs.
@@ -225,33 +225,11 @@ def builtin_outputs(
 
 def _records(path: Path, bearing_default: str, allow_incomplete: bool = False):
     """Yield (id, x, fs, rpm, bearing, label, metadata) for every signal of a dataset."""
-    manifest = path / "MANIFEST.csv"
-    if manifest.is_file():
-        rows = pd.read_csv(manifest)
-        for _, row in rows.iterrows():
-            var = row.get("channel_variable")
-            variable = var if isinstance(var, str) and "." not in var else None
-            x, _ = read_recording(path / row["file"], variable=variable)
-            brg = (
-                row.get("bearing")
-                if isinstance(row.get("bearing"), str)
-                else MANIFEST_BEARINGS.get(str(row.get("dataset")), bearing_default)
-            )
-            rig = row.get("dataset")
-            meta = {
-                "bearing": brg,
-                "fs_hz": float(row["sampling_rate_hz"]),
-                "rig": rig if isinstance(rig, str) else brg,
-            }
-            yield (
-                str(row["file"]),
-                x,
-                float(row["sampling_rate_hz"]),
-                float(row["shaft_rpm"]),
-                brg,
-                CANONICAL.get(str(row["fault_location"]).lower(), "unknown"),
-                meta,
-            )
+    if (path / "MANIFEST.csv").is_file():
+        for entry in read_manifest(path, labelled=True, bearing_default=bearing_default):
+            x, _ = read_recording(entry.path, variable=entry.variable)
+            meta = {"bearing": entry.bearing, "fs_hz": entry.fs_hz, "rig": entry.rig}
+            yield (entry.file, x, entry.fs_hz, entry.rpm, entry.bearing, entry.label, meta)
         return
     from .datasets import read_dataset
 

@@ -26,8 +26,9 @@ import pandas as pd
 from generators import bearing as catalog_bearing
 from generators import characteristic_frequencies
 
-from .bench import CANONICAL, MANIFEST_BEARINGS
+from .bench import CANONICAL
 from .io import read_recording
+from .manifest import read_manifest
 
 __all__ = [
     "realism",
@@ -86,23 +87,11 @@ def recording_segments(folder: str | Path, duration_s: float) -> pd.DataFrame:
         (``fs_hz``, ``shaft_frequency_hz``, ``ftf_hz``, ``bpfo_hz``, ``bpfi_hz``, ``bsf_hz``,
         ``two_bsf_hz``).
     """
-    folder = Path(folder)
-    manifest = folder / "MANIFEST.csv"
-    if not manifest.is_file():
-        raise FileNotFoundError(f"{folder}: no MANIFEST.csv (a folder of recordings needs one)")
     rows = []
-    for _, entry in pd.read_csv(manifest).iterrows():
-        variable = entry.get("channel_variable")
-        variable = variable if isinstance(variable, str) and "." not in variable else None
-        x, _ = read_recording(folder / entry["file"], variable=variable)
-        fs = float(entry["sampling_rate_hz"])
-        name = entry.get("bearing")
-        if not isinstance(name, str):
-            name = MANIFEST_BEARINGS.get(str(entry.get("dataset")), "6205")
-        rig = entry.get("dataset")
-        rig = rig if isinstance(rig, str) else name
-        label = CANONICAL.get(str(entry.get("fault_location", "")).lower(), "unknown")
-        f = characteristic_frequencies(catalog_bearing(name), float(entry["shaft_rpm"]) / 60)
+    for entry in read_manifest(folder):
+        x, _ = read_recording(entry.path, variable=entry.variable)
+        fs = entry.fs_hz
+        f = characteristic_frequencies(catalog_bearing(entry.bearing), entry.rpm / 60)
         n = max(1, int(round(duration_s * fs)))
         count = max(1, x.size // n)
         for i in range(count):
@@ -110,14 +99,12 @@ def recording_segments(folder: str | Path, duration_s: float) -> pd.DataFrame:
             rows.append(
                 {
                     "signal": segment,
-                    "group": str(entry["file"]),
-                    "rig": rig,
-                    "label": label,
+                    "group": entry.file,
+                    "rig": entry.rig,
+                    "label": entry.label,
                     **context_columns(f, fs),
                 }
             )
-    if not rows:
-        raise ValueError(f"{manifest}: lists no recordings")
     return pd.DataFrame(rows)
 
 

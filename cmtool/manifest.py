@@ -1,0 +1,181 @@
+"""A folder of measured recordings described by its ``MANIFEST.csv``, read and checked once.
+
+``cmtool bench`` and ``cmtool realism`` take such a folder (the layout of ``../shared/data``):
+a row per recording with its ``file`` (relative to the folder), ``sampling_rate_hz``,
+``shaft_rpm`` and, for a labelled benchmark, ``fault_location``; optional ``bearing`` (a catalog
+name), ``dataset`` (the rig: ``CWRU`` and ``MFPT`` also name their bearing) and
+``channel_variable`` (the variable of a ``.mat``/``.npz`` file). A row that cannot be used is
+an error naming the manifest, its line, the column, the value and what is allowed, before any
+recording is read.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import pandas as pd
+
+from generators import BEARINGS
+
+from .diagnose import CANONICAL
+from .io import RecordingError
+
+__all__ = ["MANIFEST_BEARINGS", "ManifestEntry", "read_manifest"]
+
+#: Bearings of the rigs a manifest's ``dataset`` column may name.
+MANIFEST_BEARINGS = {"CWRU": "6205", "MFPT": "mfpt"}
+
+#: Shaft speeds a manifest may give [rpm] (the range of every cmtool command).
+_RPM_RANGE = (0.0, 120000.0)
+
+
+@dataclass(frozen=True)
+class ManifestEntry:
+    """One recording of a manifest.
+
+    Attributes
+    ----------
+    file : str
+        As the manifest lists it.
+    path : Path
+        The file.
+    fs_hz : float
+        Sample rate [Hz].
+    rpm : float
+        Shaft speed [rev/min].
+    bearing : str
+        Catalog name of the bearing.
+    rig : str
+        The ``dataset`` column, else the bearing.
+    label : str
+        ``fault_location`` as a verdict name (``healthy``, ``outer race``, ``inner race``,
+        ``ball``), ``unknown`` where the manifest gives none.
+    variable : str or None
+        The variable to read (``channel_variable``; None for a struct field such as
+        ``bearing.gs``, which the reader finds itself).
+    """
+
+    file: str
+    path: Path
+    fs_hz: float
+    rpm: float
+    bearing: str
+    rig: str
+    label: str
+    variable: str | None
+
+
+def _text(value: object) -> str | None:
+    """A cell as stripped text, None where it is empty."""
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return None
+    text = str(value).strip()
+    return text or None
+
+
+def _number(where: str, column: str, value: object, low: float, high: float, unit: str) -> float:
+    """A cell as a number in (low, high], or an error naming the row, column and range."""
+    try:
+        number = float(str(value).strip())
+    except ValueError:
+        raise RecordingError(f"{where}: {column} = {value!r} is not a number [{unit}]") from None
+    if not (math.isfinite(number) and low < number <= high):
+        raise RecordingError(
+            f"{where}: {column} = {number:g} {unit} is outside the allowed range "
+            f"({low:g}, {high:g}] {unit}"
+        )
+    return number
+
+
+def read_manifest(
+    folder: str | Path, *, labelled: bool = False, bearing_default: str = "6205"
+) -> list[ManifestEntry]:
+    """The recordings a folder's ``MANIFEST.csv`` lists, every row checked.
+
+    Parameters
+    ----------
+    folder : str or Path
+        Holds ``MANIFEST.csv`` and the files it lists.
+    labelled : bool
+        Every row must give ``fault_location`` (a benchmark scores against it).
+    bearing_default : str
+        Bearing of rows that name none (no ``bearing``, no known ``dataset``).
+
+    Returns
+    -------
+    list of ManifestEntry
+        In the manifest's order.
+
+    Raises
+    ------
+    FileNotFoundError
+        No ``MANIFEST.csv``, or a file it lists is missing.
+    cmtool.io.RecordingError
+        A required column is missing, or a row's value cannot be used (the message names the
+        manifest's line, the column, the value and what is allowed).
+    """
+    folder = Path(folder)
+    manifest = folder / "MANIFEST.csv"
+    if not manifest.is_file():
+        raise FileNotFoundError(f"{folder}: no MANIFEST.csv (a folder of recordings needs one)")
+    try:
+        rows = pd.read_csv(manifest, dtype=str, keep_default_na=False)
+    except pd.errors.EmptyDataError:
+        raise RecordingError(f"{manifest}: the file holds no data") from None
+    required = ["file", "sampling_rate_hz", "shaft_rpm"] + (["fault_location"] if labelled else [])
+    missing = [c for c in required if c not in rows.columns]
+    if missing:
+        raise RecordingError(
+            f"{manifest}: no column {', '.join(repr(c) for c in missing)} "
+            f"(required: {', '.join(required)}; it has {', '.join(rows.columns)})"
+        )
+    if rows.empty:
+        raise RecordingError(f"{manifest}: lists no recordings")
+    labels = ", ".join(sorted(CANONICAL))
+    catalog = sorted(BEARINGS)
+    entries = []
+    for index, row in enumerate(rows.to_dict("records")):
+        where = f"{manifest}, line {index + 2}"
+        file = _text(row["file"])
+        if file is None:
+            raise RecordingError(f"{where}: file is empty")
+        where = f"{where} ({file})"
+        fs = _number(where, "sampling_rate_hz", row["sampling_rate_hz"], 0.0, 1e7, "Hz")
+        rpm = _number(where, "shaft_rpm", row["shaft_rpm"], *_RPM_RANGE, "rpm")
+        rig = _text(row.get("dataset"))
+        name = _text(row.get("bearing")) or MANIFEST_BEARINGS.get(rig or "", bearing_default)
+        if name not in catalog:
+            raise RecordingError(
+                f"{where}: bearing = {name!r} is not in the catalog ({', '.join(catalog)})"
+            )
+        location = _text(row.get("fault_location"))
+        if location is None:
+            if labelled:
+                raise RecordingError(f"{where}: fault_location is empty (one of {labels})")
+            label = "unknown"
+        elif location.lower() in CANONICAL:
+            label = CANONICAL[location.lower()]
+        else:
+            raise RecordingError(
+                f"{where}: fault_location = {location!r} is not one of {labels}"
+                + ("" if labelled else ", or empty")
+            )
+        variable = _text(row.get("channel_variable"))
+        path = folder / file
+        if not path.is_file():
+            raise FileNotFoundError(f"{where}: {path}: no such file")
+        entries.append(
+            ManifestEntry(
+                file=file,
+                path=path,
+                fs_hz=fs,
+                rpm=rpm,
+                bearing=name,
+                rig=rig or name,
+                label=label,
+                variable=variable if variable is not None and "." not in variable else None,
+            )
+        )
+    return entries
