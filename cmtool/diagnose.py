@@ -445,6 +445,10 @@ def diagnose_signal(
         warnings, and the model's verdict when a model is given.
     """
     geometry = bearing(geometry) if isinstance(geometry, str) else geometry
+    if load_n is not None:
+        from .waviness import check_load_n
+
+        load_n = check_load_n(load_n)
     x = np.asarray(x, dtype=float)
     rpm, freqs, ctx, warnings = rule_context(x, fs, rpm, geometry)
     fastest = max(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])

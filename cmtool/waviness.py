@@ -49,6 +49,7 @@ __all__ = [
     "DEFAULT_LOAD_N",
     "ASSUMED_LOAD_FACTORS",
     "GIVEN_LOAD_FACTORS",
+    "check_load_n",
     "WavinessLine",
     "candidate_lines",
     "comparison_text",
@@ -74,6 +75,33 @@ DEFAULT_LOAD_N = 500.0
 #: each line is judged against the largest ratio any of them predicts.
 ASSUMED_LOAD_FACTORS = (0.25, 0.5, 1.0, 2.0, 4.0)
 GIVEN_LOAD_FACTORS = (0.7, 1.0, 1.4)
+
+
+def check_load_n(load_n: object, name: str = "load_n") -> float:
+    """A given radial load [N], checked against (0, MAX_RADIAL_LOAD_N / 1.4] N.
+
+    The healthy model runs at up to ``GIVEN_LOAD_FACTORS`` times the load; ``name`` is the
+    parameter's name in the message.
+
+    Raises
+    ------
+    generators.ParameterError
+        Naming ``load_n``, its value and the allowed range.
+    """
+    from generators import ParameterError
+    from generators.params import MAX_RADIAL_LOAD_N
+
+    high = MAX_RADIAL_LOAD_N / max(GIVEN_LOAD_FACTORS)
+    try:
+        value = float(load_n)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        value = math.nan
+    if not (math.isfinite(value) and 0.0 < value <= high):
+        shown = f"{value:g}" if math.isfinite(value) else repr(load_n)
+        raise ParameterError(f"{name} = {shown} N is outside the allowed range (0, {high:g}] N")
+    return value
+
+
 #: Mains frequencies whose harmonics a machine's electrical components put into a record [Hz].
 MAINS_HZ = (50.0, 60.0)
 #: Ball-pass harmonics whose lines are the reference.

@@ -317,6 +317,8 @@ class Rig:
 #: Highest shaft speed every command, recipe and parameter object accepts [rpm]: a 2 kHz shaft
 #: rate, above the catalogue limiting speed of any bearing here.
 MAX_SHAFT_SPEED_RPM = 120000.0
+#: The largest radial load the model takes [N].
+MAX_RADIAL_LOAD_N = 1e7
 
 
 def check_shaft_speed_rpm(name: str, rpm: object, *, standing: bool = False) -> float:
@@ -374,7 +376,7 @@ class OperatingCondition:
             high=MAX_SHAFT_SPEED_RPM / 60.0,
             unit="Hz",
         )
-        check_real("radial_load", self.radial_load, low=0.0, high=1e7, unit="N")
+        check_real("radial_load", self.radial_load, low=0.0, high=MAX_RADIAL_LOAD_N, unit="N")
         check_real("load_angle", self.load_angle, low=-2 * math.pi, high=2 * math.pi, unit="rad")
         check_real("cage_slip", self.cage_slip, low=0.0, high=0.5)
         check_real("random_slip", self.random_slip, low=0.0, high=0.1)

@@ -22,10 +22,12 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     """Diagnose a recording: verdict, evidence, optional report and JSON."""
     from ..diagnose import check_clipping, diagnose_signal, explained_lines, write_report
     from ..io import read_recording
-    from ..waviness import comparison_text
+    from ..waviness import check_load_n, comparison_text
 
     if args.report and Path(args.report).exists() and not Path(args.report).is_dir():
         raise CliError(f"--report {args.report!r} is a file; give a folder for report.md")
+    if args.load is not None:
+        check_load_n(args.load, "--load")  # refused before any work
     x, meta = read_recording(args.recording, variable=args.variable, channel=args.channel)
     if not args.allow_clipping:
         check_clipping(x, args.recording)

@@ -59,6 +59,14 @@ def test_inputs_that_cannot_be_diagnosed_are_errors(outer_race_csv, tmp_path, ca
     assert "samples" in _one_line_error(capsys)
     assert main([*base, "--bearing", "6205", "--channel", "5"]) == 2
     assert "channel 5 is outside" in _one_line_error(capsys)
+    for load in ("-5", "0", "1e8", "nan"):  # the healthy model's load for waviness
+        assert main([*base, "--bearing", "6205", "--load", load]) == 2
+        assert "--load = " in _one_line_error(capsys)
+    from cmtool.diagnose import diagnose_signal
+    from generators import ParameterError
+
+    with pytest.raises(ParameterError, match=r"load_n = -5 N is outside the allowed range \(0, "):
+        diagnose_signal(np.ones(12000), 12000.0, 1797.0, "6205", load_n=-5.0)
     report = tmp_path / "report.md"
     report.write_text("mine")
     assert main([*base, "--bearing", "6205", "--report", str(report)]) == 2
