@@ -606,6 +606,10 @@ CANONICAL = {
 }
 
 
+#: The envelope plot's marker of each fault verdict.
+_VERDICT_MARKERS = {"outer race": "bpfo", "inner race": "bpfi", "ball": "two_bsf"}
+
+
 def _logistic(margin: float, scale: float, offset: float) -> float:
     """1 / (1 + exp(-(margin - offset) / scale)), margin and offset in dB."""
     return 1.0 / (1.0 + math.exp(-(margin - offset) / scale))
@@ -809,6 +813,8 @@ def write_report(
         ylabel="envelope amplitude",
         markers=markers,
         fmax=min(fs / 2, 5 * f["bpfi"]),
+        emphasis=_VERDICT_MARKERS.get(diagnosis.verdict),
+        sidebands={"inner race": f["shaft"], "ball": f["ftf"]}.get(diagnosis.verdict),
     )
     paths = [spec_png, env_png]
     if sp.kurtogram is not None:

@@ -39,6 +39,8 @@ def plot_spectrum(
     harmonics: int = 3,
     fmax: float | None = None,
     log: bool = True,
+    emphasis: str | None = None,
+    sidebands: float | None = None,
 ) -> Path:
     """Plot a spectrum with vertical markers at fault frequencies and their harmonics.
 
@@ -58,6 +60,11 @@ def plot_spectrum(
         Upper frequency limit [Hz]; default 10 times the largest marker or the Nyquist.
     log : bool
         Logarithmic amplitude axis.
+    emphasis : str, optional
+        The marker of the verdict: drawn solid and wider, "(verdict)" in the legend.
+    sidebands : float, optional
+        Spacing [Hz] of the first sidebands drawn dotted about each harmonic of ``emphasis``
+        (the shaft rate for an inner race, the cage rate for a ball).
 
     Returns
     -------
@@ -78,11 +85,27 @@ def plot_spectrum(
         if not f0 or f0 <= 0:
             continue
         color = _COLORS.get(name.split(":")[0], "tab:purple")
+        chosen = name == emphasis
+        style = (
+            {"ls": "-", "lw": 1.6, "alpha": 0.8}
+            if chosen
+            else {"ls": "--", "lw": 0.9, "alpha": 0.7}
+        )
+        label = f"{name} (verdict)" if chosen else name
         for h in range(1, harmonics + 1):
             if h * f0 <= fmax:
-                ax.axvline(
-                    h * f0, color=color, ls="--", lw=0.9, alpha=0.7, label=name if h == 1 else None
-                )
+                ax.axvline(h * f0, color=color, label=label if h == 1 else None, **style)
+            if chosen and sidebands:
+                for side in (h * f0 - sidebands, h * f0 + sidebands):
+                    if 0 < side <= fmax:
+                        ax.axvline(
+                            side,
+                            color=color,
+                            ls=":",
+                            lw=1.0,
+                            alpha=0.7,
+                            label="sidebands" if h == 1 and side < h * f0 else None,
+                        )
     ax.set_xlim(0, fmax)
     ax.set_xlabel("frequency [Hz]")
     ax.set_ylabel(ylabel)

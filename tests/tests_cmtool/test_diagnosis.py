@@ -467,7 +467,7 @@ def test_simulated_healthy_bearings_are_healthy_and_slipping_pits_are_found(smal
         assert d.verdict == verdict, (surface, d.candidates)
 
 
-def test_an_inner_race_pits_lines_are_not_read_as_a_ball_fault(tmp_path):
+def test_an_inner_race_pits_lines_are_not_read_as_a_ball_fault(tmp_path, monkeypatch):
     """A 0.3 mm inner-race pit with 1 % random slip (6205, 1797 rpm, 400 N, 12 kHz, 2 s): the
     ball's 3x and lower sideband searched within the slip find the pit's own lines (3 BPFI - 2
     f_s, BPFI - f_s); counted for the ball they make it a detected second fault. The report
@@ -503,8 +503,28 @@ def test_an_inner_race_pits_lines_are_not_read_as_a_ball_fault(tmp_path):
     bands = len(evidence.selection.bands)
     alone = explain_shared_lines({"two_bsf": family}, bands, family[0][1][2], floor, df)
     assert alone["two_bsf"]["evidence_db"] >= d.threshold_db > ball["evidence_db"]
+    import cmtool.plots
+
+    figures = []
+    close = cmtool.plots.plt.close
+    monkeypatch.setattr(cmtool.plots.plt, "close", lambda fig: figures.append(fig))
     report = write_report(d, tmp_path, title="inner race pit", x=x, fs=12000.0)
+    monkeypatch.setattr(cmtool.plots.plt, "close", close)
     assert "3x: inner race 3x" in report.read_text()
+    # the envelope plot marks the verdict's lines, solid, and their shaft-rate sidebands
+    envelope = next(f for f in figures if "envelope spectrum" in f.axes[0].get_title())
+    ax = envelope.axes[0]
+    assert [t.get_text() for t in ax.get_legend().get_texts()].count("bpfi (verdict)") == 1
+    lines = [line for line in ax.get_lines() if len(set(line.get_xdata())) == 1]
+    solid = sorted(line.get_xdata()[0] for line in lines if line.get_linestyle() == "-")
+    dotted = sorted(line.get_xdata()[0] for line in lines if line.get_linestyle() == ":")
+    bpfi, shaft = d.frequencies["bpfi"], d.frequencies["shaft"]
+    np.testing.assert_allclose(solid, [bpfi, 2 * bpfi, 3 * bpfi])
+    np.testing.assert_allclose(
+        dotted, sorted(h * bpfi + s * shaft for h in (1, 2, 3) for s in (-1, 1))
+    )
+    for fig in figures:
+        close(fig)
 
 
 @pytest.mark.validation
