@@ -63,6 +63,14 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message} (see --help)\n")
 
 
+#: Help of ``--geometry`` (diagnose, frequencies).
+GEOMETRY_HELP = (
+    "a bearing not in the catalog: NAME:balls=Z:ball_diameter=d:pitch_diameter=D"
+    "[:contact_angle_deg=A] (diameters [m], e.g. 6310:balls=8:ball_diameter=20.64e-3:"
+    "pitch_diameter=77.5e-3)"
+)
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of ``cmtool``."""
     parser = _Parser(prog="cmtool", description=(__doc__ or "").strip().split("\n")[0])
@@ -100,7 +108,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_simulate)
 
     p = sub.add_parser("frequencies", help="characteristic frequencies of a catalog bearing")
-    p.add_argument("--bearing", default="6205", choices=sorted(BEARINGS))
+    which = p.add_mutually_exclusive_group()
+    which.add_argument("--bearing", default="6205", choices=sorted(BEARINGS))
+    which.add_argument("--geometry", default=None, help=GEOMETRY_HELP)
     p.add_argument("--rpm", type=float, required=True, help="shaft speed [rev/min]")
     p.add_argument("--json", action="store_true")
     p.set_defaults(func=cmd_frequencies)
@@ -215,13 +225,15 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("recording", help="CSV, WAV, MATLAB .mat, .npy/.npz or parquet file")
     p.add_argument("--fs", type=float, default=None, help="sample rate [Hz] (if not in file)")
     p.add_argument("--rpm", type=float, default=None, help="shaft speed [rev/min]")
-    p.add_argument(
+    which = p.add_mutually_exclusive_group()
+    which.add_argument(
         "--bearing",
         default=None,
         choices=sorted(BEARINGS),
-        help="bearing (required unless the file says: cmtool parquet files, the CWRU and "
-        "MFPT layouts)",
+        help="catalog bearing (required unless the file says: cmtool parquet files, the CWRU "
+        "and MFPT layouts; or give --geometry)",
     )
+    which.add_argument("--geometry", default=None, help=GEOMETRY_HELP)
     p.add_argument("--variable", default=None, help="variable of a .mat/.npz file")
     p.add_argument("--channel", default=None, help="column or channel")
     p.add_argument("--model", default=None, help="trained model (cmtool train)")

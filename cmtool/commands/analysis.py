@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 import logging
+import math
 from pathlib import Path
 
 from generators import (
@@ -42,14 +43,20 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     rpm = check_shaft_speed_rpm("--rpm", args.rpm) if args.rpm is not None else meta.get("rpm")
     if rpm is None:
         raise CliError(f"{args.recording}: the file holds no shaft speed; give --rpm")
-    name = args.bearing or meta.get("bearing")
+    geometry = None
+    if args.geometry:
+        from .simulate import parse_geometry
+
+        geometry = parse_geometry(args.geometry)
+    name = args.bearing or (geometry.name if geometry is not None else meta.get("bearing"))
     if name is None:
         raise CliError(
             f"{args.recording}: the file does not say which bearing it is; give --bearing "
-            f"(one of {', '.join(sorted(BEARINGS))})"
+            f"(one of {', '.join(sorted(BEARINGS))}) or --geometry"
         )
-    if args.bearing and meta.get("bearing") and args.bearing != meta["bearing"]:
-        warnings.append(f"--bearing {args.bearing} differs from the file's {meta['bearing']}")
+    if (args.bearing or geometry) and meta.get("bearing") and name != meta["bearing"]:
+        given = f"--bearing {args.bearing}" if args.bearing else f"--geometry {name}"
+        warnings.append(f"{given} differs from the file's {meta['bearing']}")
     model = None
     if args.model:
         from ..classifier import load_model
@@ -67,7 +74,7 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
         x,
         float(fs),
         float(rpm),
-        name,
+        geometry if geometry is not None else name,
         model=model,
         baseline=baseline,
         baseline_fs=baseline_fs,
@@ -76,6 +83,13 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     diagnosis.warnings = warnings + diagnosis.warnings
     diagnosis.assumptions["channel"] = str(meta.get("variable") or args.channel or "first")
     diagnosis.assumptions["file"] = Path(args.recording).name
+    if geometry is not None:
+        diagnosis.assumptions["bearing_geometry"] = (
+            f"given: {geometry.ball_count} balls, ball diameter {geometry.ball_diameter:g} m, "
+            f"pitch diameter {geometry.pitch_diameter:g} m, contact angle "
+            f"{math.degrees(geometry.contact_angle):g} deg (the healthy model for waviness "
+            "takes groove conformity 0.52, clearance 10 um, steel)"
+        )
     if args.report:
         report = write_report(
             diagnosis, args.report, title=Path(args.recording).name, x=x, fs=float(fs)
@@ -95,6 +109,8 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
             f"  assumed: bearing {a['bearing']}, {a['rpm']:g} rpm, fs {a['fs_hz']:g} Hz, "
             f"{a['record_s']:g} s ({a['samples']} samples), channel {a['channel']}"
         )
+        if "bearing_geometry" in a:
+            print(f"  bearing geometry {a['bearing_geometry']}")
         for c in diagnosis.candidates:
             cage = [w for w in c.get("lines_weighed", []) if w["line"] == "cage 1x"]
             print(

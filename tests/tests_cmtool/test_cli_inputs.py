@@ -403,3 +403,45 @@ def test_a_cwru_file_with_two_records_gives_the_one_its_name_numbers(tmp_path):
     # one drive-end record: read whatever the file is called
     savemat(tmp_path / "renamed.mat", {"X105_DE_time": own, "X105_FE_time": other})
     assert read_recording(tmp_path / "renamed.mat")[1]["variable"] == "X105_DE_time"
+
+
+def test_a_bearing_not_in_the_catalog_is_given_by_its_geometry(outer_race_csv, capsys):
+    """--geometry: the catalog 6205's numbers give the 6205's rates and verdict, stated as given."""
+    from generators import bearing
+
+    g = bearing("6205")
+    spec = (
+        f"my6205:balls={g.ball_count}:ball_diameter={g.ball_diameter!r}:"
+        f"pitch_diameter={g.pitch_diameter!r}:contact_angle_deg=0"
+    )
+    assert main(["frequencies", "--rpm", "1797", "--json"]) == 0
+    catalog = json.loads(capsys.readouterr().out)
+    assert main(["frequencies", "--rpm", "1797", "--json", "--geometry", spec]) == 0
+    given = json.loads(capsys.readouterr().out)
+    assert given["bearing"] == "my6205"
+    assert given["frequencies_hz"] == pytest.approx(catalog["frequencies_hz"], rel=1e-12)
+    base = ["diagnose", str(outer_race_csv), "--rpm", "1797", "--json"]
+    assert main([*base, "--bearing", "6205"]) == 0
+    by_name = json.loads(capsys.readouterr().out)
+    assert main([*base, "--geometry", spec]) == 0
+    by_geometry = json.loads(capsys.readouterr().out)
+    assert by_geometry["verdict"] == by_name["verdict"] == "outer race"
+    assert by_geometry["candidates"] == by_name["candidates"]
+    assert by_geometry["assumptions"]["bearing"] == "my6205"
+    assert "given: 9 balls" in by_geometry["assumptions"]["bearing_geometry"]
+    # another bearing moves the rates the lines are searched at
+    assert (
+        main([*base, "--geometry", "6310:balls=8:ball_diameter=20.64e-3:pitch_diameter=77.5e-3"])
+        == 0
+    )
+    other = json.loads(capsys.readouterr().out)
+    assert other["frequencies"]["bpfo"] != pytest.approx(by_name["frequencies"]["bpfo"], rel=0.01)
+    for bad, message in (
+        ("x:balls=8:ball_diameter=2e-3", "pitch_diameter= is missing"),
+        (":balls=8:ball_diameter=2e-3:pitch_diameter=1e-2", "designation is missing"),
+        ("x:balls=8:ball_diameter=2e-3:pitch_diameter=1e-2:contact_angle_deg=60", "[0, 45] deg"),
+        ("x:balls=8:ball_diameter=2e-2:pitch_diameter=1e-2", "must exceed ball_diameter"),
+        ("x:balls=0:ball_diameter=2e-3:pitch_diameter=1e-2", "ball_count = 0 is outside"),
+    ):
+        assert main(["diagnose", str(outer_race_csv), "--rpm", "1797", "--geometry", bad]) == 2
+        assert message in _one_line_error(capsys)
