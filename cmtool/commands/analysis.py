@@ -20,18 +20,18 @@ logger = logging.getLogger("cmtool")
 
 
 def cmd_diagnose(args: argparse.Namespace) -> int:
-    """Diagnose a recording: verdict, evidence, optional report and JSON."""
-    from ..diagnose import check_clipping, diagnose_signal, explained_lines, write_report
-    from ..io import read_recording
-    from ..waviness import check_load_n, comparison_text
+    """Diagnose a recording (or each recording a folder's MANIFEST.csv lists)."""
+    from ..waviness import check_load_n
 
     if args.report and Path(args.report).exists() and not Path(args.report).is_dir():
         raise CliError(f"--report {args.report!r} is a file; give a folder for report.md")
     if args.load is not None:
         check_load_n(args.load, "--load")  # refused before any work
+    if Path(args.recording).is_dir():
+        return _diagnose_folder(args)
+    from ..io import read_recording
+
     x, meta = read_recording(args.recording, variable=args.variable, channel=args.channel)
-    if not args.allow_clipping:
-        check_clipping(x, args.recording)
     warnings = []
     fs = args.fs if args.fs is not None else meta.get("fs_hz")
     if fs is None:
@@ -57,93 +57,273 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     if (args.bearing or geometry) and meta.get("bearing") and name != meta["bearing"]:
         given = f"--bearing {args.bearing}" if args.bearing else f"--geometry {name}"
         warnings.append(f"{given} differs from the file's {meta['bearing']}")
-    model = None
-    if args.model:
-        from ..classifier import load_model
-
-        model = load_model(args.model)
+    model = _model(args)
     baseline = baseline_fs = None
     if args.baseline:
+        from ..diagnose import check_clipping
+
         baseline, base_meta = read_recording(
             args.baseline, variable=args.variable, channel=args.channel
         )
         baseline_fs = base_meta.get("fs_hz", float(fs))
         if not args.allow_clipping:
             check_clipping(baseline, f"--baseline {args.baseline}")
-    diagnosis = diagnose_signal(
+    diagnosis = _diagnose_one(
+        args,
         x,
         float(fs),
         float(rpm),
         geometry if geometry is not None else name,
-        model=model,
+        model,
+        file=Path(args.recording).name,
+        channel=str(meta.get("variable") or args.channel or "first"),
+        source=str(args.recording),
         baseline=baseline,
         baseline_fs=baseline_fs,
-        load_n=args.load,
+        warnings=warnings,
     )
-    diagnosis.warnings = warnings + diagnosis.warnings
-    diagnosis.assumptions["channel"] = str(meta.get("variable") or args.channel or "first")
-    diagnosis.assumptions["file"] = Path(args.recording).name
-    if geometry is not None:
-        diagnosis.assumptions["bearing_geometry"] = (
-            f"given: {geometry.ball_count} balls, ball diameter {geometry.ball_diameter:g} m, "
-            f"pitch diameter {geometry.pitch_diameter:g} m, contact angle "
-            f"{math.degrees(geometry.contact_angle):g} deg (the healthy model for waviness "
-            "takes groove conformity 0.52, clearance 10 um, steel)"
-        )
     if args.report:
-        report = write_report(
-            diagnosis, args.report, title=Path(args.recording).name, x=x, fs=float(fs)
-        )
+        report = _write_report(diagnosis, Path(args.report), x, float(fs))
         if not args.json:
             print(f"wrote {report}")
     if args.json:
         print(json.dumps(diagnosis.to_dict(), indent=2))
     else:
-        print(
-            f"{Path(args.recording).name}: {diagnosis.verdict} (confidence "
-            f"{diagnosis.confidence:.2f}); envelope band {diagnosis.band_hz[0]:.0f}-"
-            f"{diagnosis.band_hz[1]:.0f} Hz, threshold {diagnosis.threshold_db:.1f} dB"
-        )
-        a = diagnosis.assumptions
-        print(
-            f"  assumed: bearing {a['bearing']}, {a['rpm']:g} rpm, fs {a['fs_hz']:g} Hz, "
-            f"{a['record_s']:g} s ({a['samples']} samples), channel {a['channel']}"
-        )
-        if "bearing_geometry" in a:
-            print(f"  bearing geometry {a['bearing_geometry']}")
-        for c in diagnosis.candidates:
-            cage = [w for w in c.get("lines_weighed", []) if w["line"] == "cage 1x"]
-            print(
-                f"  {c['fault']:<11s} {c['frequency_hz']:9.3f} Hz  envelope SNR "
-                f"{c['envelope_snr_db'][0]:6.1f} / {c['envelope_snr_db'][1]:6.1f} / "
-                f"{c['envelope_snr_db'][2]:6.1f} dB (1x/2x/3x)"
-                + (f", cage rate {cage[0]['snr_db']:.1f} dB" if cage else "")
-                + f", weighed {c['evidence_db']:5.1f} dB"
-                + ("  DETECTED" if c["detected"] else "")
-                + (f"  ({shared})" if (shared := explained_lines(c)) else "")
-            )
-        print(f"  basis: {diagnosis.basis}")
-        change = (diagnosis.baseline or {}).get("velocity_bands_change_db", {})
-        bands = ", ".join(
-            f"{k} {v:.3g}" + (f" ({change[k]:+.1f} dB)" if change.get(k) is not None else "")
-            for k, v in (diagnosis.velocity_bands or {}).items()
-        )
-        print(f"  velocity RMS (ISO 15242 bands, signal unit x s): {bands}")
-        if diagnosis.waviness:
-            w = diagnosis.waviness
-            over = w.get("over_baseline_db")
-            print(
-                f"  waviness hint: {w['surface']} race order ~{w['order']} at {w['line_hz']} Hz"
-                + ("" if over is None else f", {over:+.1f} dB over the baseline")
-                + comparison_text(w)
-            )
-        if diagnosis.model_verdict:
-            print(f"  model: {diagnosis.model_verdict}")
-        if diagnosis.severity:
-            print(f"  fault size: {diagnosis.severity['reason']}")
-        for w in diagnosis.warnings:
-            print(f"  warning: {w}")
+        _print_diagnosis(diagnosis)
     return 0
+
+
+def _model(args: argparse.Namespace):
+    """The ``--model`` bundle, or None."""
+    if not args.model:
+        return None
+    from ..classifier import load_model
+
+    return load_model(args.model)
+
+
+def _diagnose_one(
+    args: argparse.Namespace,
+    x,
+    fs: float,
+    rpm: float,
+    bearing,
+    model,
+    *,
+    file: str,
+    channel: str,
+    source: str,
+    baseline=None,
+    baseline_fs: float | None = None,
+    warnings: list[str] | None = None,
+):
+    """One recording's diagnosis, its assumptions completed (clipping refused first).
+
+    ``file``: the name the output shows; ``source``: the path clipping errors name.
+    """
+    from ..diagnose import check_clipping, diagnose_signal
+
+    if not args.allow_clipping:
+        check_clipping(x, source)
+    diagnosis = diagnose_signal(
+        x,
+        fs,
+        rpm,
+        bearing,
+        model=model,
+        baseline=baseline,
+        baseline_fs=baseline_fs,
+        load_n=args.load,
+    )
+    diagnosis.warnings = list(warnings or []) + diagnosis.warnings
+    diagnosis.assumptions["channel"] = channel
+    diagnosis.assumptions["file"] = file
+    if not isinstance(bearing, str):
+        diagnosis.assumptions["bearing_geometry"] = (
+            f"given: {bearing.ball_count} balls, ball diameter {bearing.ball_diameter:g} m, "
+            f"pitch diameter {bearing.pitch_diameter:g} m, contact angle "
+            f"{math.degrees(bearing.contact_angle):g} deg (the healthy model for waviness "
+            "takes groove conformity 0.52, clearance 10 um, steel)"
+        )
+    return diagnosis
+
+
+def _write_report(diagnosis, folder: Path, x, fs: float) -> Path:
+    from ..diagnose import write_report
+
+    return write_report(diagnosis, folder, title=diagnosis.assumptions["file"], x=x, fs=fs)
+
+
+def _print_diagnosis(diagnosis) -> None:
+    """The text output of one diagnosis."""
+    from ..diagnose import explained_lines
+    from ..waviness import comparison_text
+
+    a = diagnosis.assumptions
+    print(
+        f"{a['file']}: {diagnosis.verdict} (confidence "
+        f"{diagnosis.confidence:.2f}); envelope band {diagnosis.band_hz[0]:.0f}-"
+        f"{diagnosis.band_hz[1]:.0f} Hz, threshold {diagnosis.threshold_db:.1f} dB"
+    )
+    print(
+        f"  assumed: bearing {a['bearing']}, {a['rpm']:g} rpm, fs {a['fs_hz']:g} Hz, "
+        f"{a['record_s']:g} s ({a['samples']} samples), channel {a['channel']}"
+    )
+    if "bearing_geometry" in a:
+        print(f"  bearing geometry {a['bearing_geometry']}")
+    for c in diagnosis.candidates:
+        cage = [w for w in c.get("lines_weighed", []) if w["line"] == "cage 1x"]
+        print(
+            f"  {c['fault']:<11s} {c['frequency_hz']:9.3f} Hz  envelope SNR "
+            f"{c['envelope_snr_db'][0]:6.1f} / {c['envelope_snr_db'][1]:6.1f} / "
+            f"{c['envelope_snr_db'][2]:6.1f} dB (1x/2x/3x)"
+            + (f", cage rate {cage[0]['snr_db']:.1f} dB" if cage else "")
+            + f", weighed {c['evidence_db']:5.1f} dB"
+            + ("  DETECTED" if c["detected"] else "")
+            + (f"  ({shared})" if (shared := explained_lines(c)) else "")
+        )
+    print(f"  basis: {diagnosis.basis}")
+    change = (diagnosis.baseline or {}).get("velocity_bands_change_db", {})
+    bands = ", ".join(
+        f"{k} {v:.3g}" + (f" ({change[k]:+.1f} dB)" if change.get(k) is not None else "")
+        for k, v in (diagnosis.velocity_bands or {}).items()
+    )
+    print(f"  velocity RMS (ISO 15242 bands, signal unit x s): {bands}")
+    if diagnosis.waviness:
+        w = diagnosis.waviness
+        over = w.get("over_baseline_db")
+        print(
+            f"  waviness hint: {w['surface']} race order ~{w['order']} at {w['line_hz']} Hz"
+            + ("" if over is None else f", {over:+.1f} dB over the baseline")
+            + comparison_text(w)
+        )
+    if diagnosis.model_verdict:
+        print(f"  model: {diagnosis.model_verdict}")
+    if diagnosis.severity:
+        print(f"  fault size: {diagnosis.severity['reason']}")
+    for w in diagnosis.warnings:
+        print(f"  warning: {w}")
+
+
+#: Columns of ``verdicts.csv`` (``cmtool diagnose FOLDER --report OUT``).
+VERDICT_COLUMNS = (
+    "file",
+    "verdict",
+    "confidence",
+    "basis",
+    "margin_db",
+    "bearing",
+    "rpm",
+    "fs_hz",
+    "band_low_hz",
+    "band_high_hz",
+    "waviness_hint",
+    "warnings",
+    "manifest_label",
+    "error",
+)
+
+
+def _diagnose_folder(args: argparse.Namespace) -> int:
+    """Every recording a folder's MANIFEST.csv lists: a line (or JSON object) each.
+
+    The manifest gives each recording's rate, speed and bearing, so --fs, --rpm, --bearing,
+    --geometry and --baseline are refused; a recording that cannot be diagnosed is reported
+    in its row and the rest go on (exit code 1 if any failed). With --report, each
+    recording's report goes to a folder of its own and the table to ``verdicts.csv``.
+    """
+    import pandas as pd
+
+    from ..io import read_recording
+    from ..manifest import read_manifest
+
+    given = [
+        flag
+        for flag, value in (
+            ("--fs", args.fs),
+            ("--rpm", args.rpm),
+            ("--bearing", args.bearing),
+            ("--geometry", args.geometry),
+            ("--baseline", args.baseline),
+        )
+        if value is not None
+    ]
+    if given:
+        raise CliError(
+            f"{args.recording} is a folder: its MANIFEST.csv gives each recording's rate, "
+            f"speed and bearing; {', '.join(given)} cannot be given with it"
+        )
+    entries = read_manifest(args.recording)
+    model = _model(args)
+    out = Path(args.report) if args.report else None
+    rows, results = [], []
+    bar = progress_bar(len(entries), "diagnose", unit="recording")
+    for entry in entries:
+        row = dict.fromkeys(VERDICT_COLUMNS)
+        row.update(file=entry.file, bearing=entry.bearing, rpm=entry.rpm, fs_hz=entry.fs_hz)
+        row["manifest_label"] = None if entry.label == "unknown" else entry.label
+        try:
+            x, meta = read_recording(entry.path, variable=entry.variable, channel=args.channel)
+            diagnosis = _diagnose_one(
+                args,
+                x,
+                entry.fs_hz,
+                entry.rpm,
+                entry.bearing,
+                model,
+                file=entry.file,
+                channel=str(entry.variable or meta.get("variable") or args.channel or "first"),
+                source=str(entry.path),
+            )
+        except (ValueError, FileNotFoundError) as error:  # this recording only
+            row["error"] = str(error)
+            rows.append(row)
+            results.append({"file": entry.file, "error": str(error)})
+            bar.update(1)
+            continue
+        top = diagnosis.candidates[0]
+        wav = diagnosis.waviness
+        row.update(
+            verdict=diagnosis.verdict,
+            confidence=diagnosis.confidence,
+            basis=diagnosis.basis,
+            margin_db=round(top["evidence_db"] - diagnosis.threshold_db, 2),
+            band_low_hz=diagnosis.band_hz[0],
+            band_high_hz=diagnosis.band_hz[1],
+            waviness_hint=None if not wav else f"{wav['surface']} race order ~{wav['order']}",
+            warnings=" | ".join(diagnosis.warnings) or None,
+        )
+        rows.append(row)
+        results.append(diagnosis.to_dict())
+        if out is not None:
+            _write_report(diagnosis, out / _report_folder(entry.file), x, entry.fs_hz)
+        bar.update(1)
+    bar.close()
+    table = pd.DataFrame(rows, columns=list(VERDICT_COLUMNS))
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
+        table.to_csv(out / "verdicts.csv", index=False)
+    if args.json:
+        print(json.dumps(results, indent=2))
+    else:
+        for row in rows:
+            if row["error"]:
+                print(f"{row['file']}: not diagnosed: {row['error']}")
+                continue
+            print(
+                f"{row['file']}: {row['verdict']} (confidence {row['confidence']:.2f}, "
+                f"margin {row['margin_db']:+.1f} dB; {row['bearing']}, {row['rpm']:g} rpm)"
+                + (f"; waviness hint: {row['waviness_hint']}" if row["waviness_hint"] else "")
+                + (f"; {row['warnings'].count(' | ') + 1} warning(s)" if row["warnings"] else "")
+            )
+        if out is not None:
+            print(f"wrote {out / 'verdicts.csv'} and a report per recording")
+    return 1 if table["error"].notna().any() else 0
+
+
+def _report_folder(file: str) -> str:
+    """A report folder's name for a manifest's file (its path with separators replaced)."""
+    return str(Path(file).with_suffix("")).replace("/", "__").replace("\\", "__")
 
 
 def cmd_realism(args: argparse.Namespace) -> int:

@@ -445,3 +445,68 @@ def test_a_bearing_not_in_the_catalog_is_given_by_its_geometry(outer_race_csv, c
     ):
         assert main(["diagnose", str(outer_race_csv), "--rpm", "1797", "--geometry", bad]) == 2
         assert message in _one_line_error(capsys)
+
+
+def test_a_folder_with_a_manifest_is_diagnosed_recording_by_recording(
+    outer_race_csv, tmp_path, capsys
+):
+    """Each listed recording is diagnosed with its own rate, speed and bearing; one that cannot
+    be is reported in its row and the rest go on; --report writes a report each and a table."""
+    folder = tmp_path / "route"
+    (folder / "pump").mkdir(parents=True)
+    x = np.loadtxt(outer_race_csv, delimiter=",")[:, 1]
+    np.save(folder / "pump" / "de.npy", x)
+    np.save(folder / "quiet.npy", np.random.default_rng(2).standard_normal(x.size))
+    np.save(folder / "clipped.npy", np.clip(x, -0.1 * x.max(), 0.1 * x.max()))
+    pd.DataFrame(
+        {
+            "file": ["pump/de.npy", "quiet.npy", "clipped.npy"],
+            "sampling_rate_hz": 12000,
+            "shaft_rpm": 1797,
+            "bearing": "6205",
+            "fault_location": ["outer", "", ""],
+        }
+    ).to_csv(folder / "MANIFEST.csv", index=False)
+    out = tmp_path / "reports"
+    assert main(["diagnose", str(folder), "--report", str(out)]) == 1  # one was refused
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith("pump/de.npy: outer race (confidence ")
+    assert lines[1].startswith("quiet.npy: healthy")
+    assert lines[2].startswith("clipped.npy: not diagnosed: ") and "is clipped" in lines[2]
+    table = pd.read_csv(out / "verdicts.csv")
+    assert list(table["file"]) == ["pump/de.npy", "quiet.npy", "clipped.npy"]
+    assert list(table["verdict"].fillna("-")) == ["outer race", "healthy", "-"]
+    assert table["margin_db"].iloc[0] > 0 > table["margin_db"].iloc[1]
+    assert table["manifest_label"].iloc[0] == "outer race" and table["error"].notna().tolist() == [
+        False,
+        False,
+        True,
+    ]
+    assert (out / "pump__de" / "report.md").is_file() and (out / "quiet" / "envelope.png").is_file()
+    # the same verdict as the file diagnosed alone
+    assert (
+        main(
+            [
+                "diagnose",
+                str(folder / "pump" / "de.npy"),
+                "--fs",
+                "12000",
+                "--rpm",
+                "1797",
+                "--bearing",
+                "6205",
+                "--json",
+            ]
+        )
+        == 0
+    )
+    alone = json.loads(capsys.readouterr().out)
+    assert main(["diagnose", str(folder), "--json", "--allow-clipping"]) == 0
+    batch = json.loads(capsys.readouterr().out)
+    assert [d["verdict"] for d in batch][:2] == ["outer race", "healthy"]
+    assert batch[0]["candidates"] == alone["candidates"]
+    assert batch[0]["assumptions"]["file"] == "pump/de.npy"
+    # the manifest gives rate, speed and bearing: the flags that would contradict it are refused
+    for flag in (["--rpm", "1797"], ["--bearing", "6205"], ["--fs", "12000"]):
+        assert main(["diagnose", str(folder), *flag]) == 2
+        assert "cannot be given with it" in _one_line_error(capsys)
