@@ -27,7 +27,6 @@ adds its verdict.
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -606,10 +605,6 @@ CANONICAL = {
 }
 
 
-#: The envelope plot's marker of each fault verdict.
-_VERDICT_MARKERS = {"outer race": "bpfo", "inner race": "bpfi", "ball": "two_bsf"}
-
-
 def _logistic(margin: float, scale: float, offset: float) -> float:
     """1 / (1 + exp(-(margin - offset) / scale)), margin and offset in dB."""
     return 1.0 / (1.0 + math.exp(-(margin - offset) / scale))
@@ -787,108 +782,10 @@ def explained_lines(candidate: dict) -> str:
 def write_report(
     diagnosis: Diagnosis, out: str | Path, *, title: str, x: np.ndarray, fs: float
 ) -> Path:
-    """Write ``report.md`` with the spectrum, envelope spectrum and kurtogram plots."""
-    from .plots import plot_kurtogram, plot_spectrum
-    from .waviness import comparison_text
+    """Write ``report.md`` with the spectrum, envelope spectrum and kurtogram plots.
 
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    sp = diagnosis.spectra
-    f = diagnosis.frequencies
-    markers = {"shaft": f["shaft"], "bpfo": f["bpfo"], "bpfi": f["bpfi"], "two_bsf": f["two_bsf"]}
-    spec_png = plot_spectrum(
-        sp.frequencies,
-        sp.amplitude,
-        out / "spectrum.png",
-        title=f"{title}: amplitude spectrum",
-        ylabel="amplitude",
-        markers=markers,
-        fmax=min(fs / 2, 20 * f["bpfi"]),
-    )
-    env_png = plot_spectrum(
-        sp.envelope_frequencies,
-        sp.envelope_amplitude,
-        out / "envelope.png",
-        title=f"{title}: envelope spectrum, band {sp.band[0]:.0f}-{sp.band[1]:.0f} Hz",
-        ylabel="envelope amplitude",
-        markers=markers,
-        fmax=min(fs / 2, 5 * f["bpfi"]),
-        emphasis=_VERDICT_MARKERS.get(diagnosis.verdict),
-        sidebands={"inner race": f["shaft"], "ball": f["ftf"]}.get(diagnosis.verdict),
-    )
-    paths = [spec_png, env_png]
-    if sp.kurtogram is not None:
-        paths.append(plot_kurtogram(sp.kurtogram, out / "kurtogram.png", title=title))
-    lines = [
-        f"# Diagnosis: {title}",
-        "",
-        f"**Verdict: {diagnosis.verdict}** (confidence {diagnosis.confidence:.2f}; "
-        f"{diagnosis.basis})",
-        "",
-    ]
-    if diagnosis.model_verdict:
-        lines += [
-            f"Model verdict: **{diagnosis.model_verdict['label']}** "
-            f"{diagnosis.model_verdict.get('probabilities', '')}",
-            "",
-        ]
-    if diagnosis.waviness:
-        w = diagnosis.waviness
-        lines += [
-            f"Waviness hint: {w['surface']} race, order about {w['order']} (line "
-            f"{w['line_hz']} Hz, {w['snr_db']} dB above the floor"
-            + comparison_text(w)
-            + f"; {w['note']})",
-            "",
-        ]
-    if diagnosis.velocity_bands:
-        lines += [
-            "## Velocity bands (ISO 15242: 50-300, 300-1800, 1800-10000 Hz), RMS [signal unit x s]",
-            "",
-            "| band | RMS | over baseline [dB] |",
-            "|---|---|---|",
-        ]
-        change = (diagnosis.baseline or {}).get("velocity_bands_change_db", {})
-        for name, value in diagnosis.velocity_bands.items():
-            lines.append(f"| {name} | {value:.4g} | {change.get(name, '-')} |")
-        lines.append("")
-    if diagnosis.severity:
-        lines += ["## Fault size", "", diagnosis.severity["reason"], ""]
-    if diagnosis.warnings:
-        lines += ["## Warnings", ""] + [f"- {w}" for w in diagnosis.warnings] + [""]
-    lines += [
-        "## Evidence (envelope spectrum, dB above the local noise floor)",
-        "",
-        "| fault | frequency [Hz] | 1x | 2x | 3x | sidebands | weighed [dB] | detected "
-        "| confidence | lines of another fault |",
-        "|---|---|---|---|---|---|---|---|---|---|",
-    ]
-    for c in diagnosis.candidates:
-        s = c["envelope_snr_db"]
-        lines.append(
-            f"| {c['fault']} | {c['frequency_hz']} | {s[0]} | {s[1]} | {s[2]} | "
-            f"{c['sideband_snr_db'] if c['sideband_snr_db'] is not None else '-'} | "
-            f"{c['evidence_db']} | {'yes' if c['detected'] else 'no'} | {c['confidence']} | "
-            f"{explained_lines(c) or '-'} |"
-        )
-    lines += [
-        "",
-        f"Detection threshold: {diagnosis.threshold_db:.1f} dB on the weighed evidence of each "
-        "fault's lines (fundamental, 2x, 3x, first sidebands; false-alarm probability about "
-        "1e-4 per fault for Gaussian noise, counting every band searched). A line that lies on "
-        "a stronger detected fault's harmonics or their sidebands (a 6205's 2 x BPFI and 3 x "
-        "BPFO are 0.7 % apart) counts for that fault only: the last column names them.",
-        "",
-        "## Assumptions",
-        "",
-        *[f"- {k}: {v}" for k, v in diagnosis.assumptions.items()],
-        "",
-        "## Characteristic frequencies [Hz]",
-        "",
-    ]
-    lines += [f"- {k}: {v}" for k, v in diagnosis.frequencies.items()]
-    lines += ["", "## Plots", ""] + [f"![{p.stem}]({p.name})" for p in paths]
-    report = out / "report.md"
-    report.write_text("\n".join(lines) + "\n")
-    (out / "diagnosis.json").write_text(json.dumps(diagnosis.to_dict(), indent=2))
-    return report
+    :func:`cmtool.report.write_report` (the report's own module; kept here by name).
+    """
+    from .report import write_report as write
+
+    return write(diagnosis, out, title=title, x=x, fs=fs)
