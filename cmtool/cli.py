@@ -262,6 +262,13 @@ def build_parser() -> argparse.ArgumentParser:
         help="diagnose a record (or baseline) with 3 %% or more of its samples at full scale "
         "instead of refusing it (its verdict then carries a warning)",
     )
+    p.add_argument(
+        "--unit",
+        default=None,
+        choices=("g", "m/s^2"),
+        help="the recording's acceleration unit, for velocity bands in mm/s (default: the "
+        "file's where it says: g in CWRU and MFPT files, m/s^2 in cmtool's)",
+    )
     p.add_argument("--json", action="store_true", help="print the verdict as JSON")
     p.set_defaults(func=cmd_diagnose)
 

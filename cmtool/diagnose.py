@@ -129,6 +129,7 @@ class Diagnosis:
     basis: str = "the rule evidence (envelope analysis of the random part)"
     probabilities: dict | None = None
     velocity_bands: dict | None = None
+    velocity_bands_mm_s: dict | None = None
     baseline: dict | None = None
     severity: dict | None = None
 
@@ -155,6 +156,8 @@ class Diagnosis:
             out["probabilities"] = self.probabilities
         if self.velocity_bands is not None:
             out["velocity_bands_iso15242"] = self.velocity_bands
+        if self.velocity_bands_mm_s is not None:
+            out["velocity_bands_iso15242_mm_s"] = self.velocity_bands_mm_s
         if self.baseline is not None:
             out["baseline"] = self.baseline
         if self.severity is not None:
@@ -406,6 +409,7 @@ def diagnose_signal(
     baseline_fs: float | None = None,
     load_n: float | None = None,
     waviness: bool = True,
+    unit: str | None = None,
 ) -> Diagnosis:
     """Diagnose one signal.
 
@@ -435,6 +439,9 @@ def diagnose_signal(
     waviness : bool
         Judge race waviness on a healthy verdict (five healthy simulations of the bearing
         when no baseline is given, about 0.1 s); ``cmtool bench`` leaves it out.
+    unit : {"g", "m/s^2"}, optional
+        The signal's unit, if it is an acceleration whose unit is known: the ISO 15242
+        velocity bands are then also given in mm/s (``velocity_bands_mm_s``).
 
     Returns
     -------
@@ -444,6 +451,9 @@ def diagnose_signal(
         warnings, and the model's verdict when a model is given.
     """
     geometry = bearing(geometry) if isinstance(geometry, str) else geometry
+    scale = None if unit is None else ACCELERATION_UNITS.get(unit)
+    if unit is not None and scale is None:
+        raise ValueError(f"unit = {unit!r} is not one of {', '.join(ACCELERATION_UNITS)}")
     if load_n is not None:
         from .waviness import check_load_n
 
@@ -504,6 +514,11 @@ def diagnose_signal(
         },
     )
     diagnosis.velocity_bands = {k: float(v) for k, v in features.velocity_band_rms(x, fs).items()}
+    if scale is not None:
+        diagnosis.assumptions["unit"] = unit
+        diagnosis.velocity_bands_mm_s = {
+            k: 1e3 * scale * v for k, v in diagnosis.velocity_bands.items()
+        }
     if verdict == "healthy" and waviness:
         diagnosis.waviness = _race_waviness(
             diagnosis, geometry, freqs, rpm, fs, x.size / fs, load_n, baseline, baseline_fs
@@ -603,6 +618,10 @@ CANONICAL = {
     "outer race": "outer race",
     "ball": "ball",
 }
+
+
+#: Acceleration units a signal may be given in, and their size [m/s^2].
+ACCELERATION_UNITS = {"g": 9.80665, "m/s^2": 1.0, "m/s2": 1.0}
 
 
 def _logistic(margin: float, scale: float, offset: float) -> float:

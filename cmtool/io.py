@@ -447,6 +447,7 @@ def read_recording(
             meta["variable"] = key
         x = _one_channel(np.asarray(loaded, dtype=float), channel, path)
     elif suffix in (".csv", ".parquet"):
+        simulated = False  # a cmtool simulate file (parquet with its metadata)
         if suffix == ".csv":
             try:
                 frame = pd.read_csv(path)
@@ -460,6 +461,7 @@ def read_recording(
             stored = pq.read_schema(path).metadata or {}
             if b"cmtool" in stored:  # a cmtool simulate file: rate, speed and bearing
                 info = json.loads(stored[b"cmtool"])
+                simulated = True
                 meta["fs_hz"] = float(info["fs_hz"])
                 params = info.get("parameters", {})
                 shaft = params.get("operating", {}).get("shaft_frequency")
@@ -492,6 +494,8 @@ def read_recording(
             col = channel
         x = frame[col].to_numpy(dtype=float)
         meta["variable"] = str(col)
+        if simulated and "_acceleration_" in str(col):
+            meta["unit"] = "m/s^2"  # a cmtool simulate file: channels in SI units
         if time_cols and len(frame) > 2 and "fs_hz" not in meta:
             dt = np.diff(frame[time_cols[0]].to_numpy(dtype=float))
             meta["fs_hz"] = float(1.0 / np.median(dt))

@@ -76,12 +76,14 @@ def write_report(
         lines += [
             "## Velocity bands (ISO 15242: 50-300, 300-1800, 1800-10000 Hz), RMS [signal unit x s]",
             "",
-            "| band | RMS | over baseline [dB] |",
-            "|---|---|---|",
+            "| band | RMS | RMS [mm/s] | over baseline [dB] |",
+            "|---|---|---|---|",
         ]
         change = (diagnosis.baseline or {}).get("velocity_bands_change_db", {})
+        in_mm_s = diagnosis.velocity_bands_mm_s or {}
         for name, value in diagnosis.velocity_bands.items():
-            lines.append(f"| {name} | {value:.4g} | {change.get(name, '-')} |")
+            mm_s = f"{in_mm_s[name]:.4g}" if name in in_mm_s else "- (unit not known: --unit)"
+            lines.append(f"| {name} | {value:.4g} | {mm_s} | {change.get(name, '-')} |")
         lines.append("")
     if diagnosis.severity:
         lines += ["## Fault size", "", diagnosis.severity["reason"], ""]

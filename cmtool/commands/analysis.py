@@ -78,6 +78,7 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
         file=Path(args.recording).name,
         channel=str(meta.get("variable") or args.channel or "first"),
         source=str(args.recording),
+        unit=args.unit or meta.get("unit"),
         baseline=baseline,
         baseline_fs=baseline_fs,
         warnings=warnings,
@@ -113,6 +114,7 @@ def _diagnose_one(
     file: str,
     channel: str,
     source: str,
+    unit: str | None = None,
     baseline=None,
     baseline_fs: float | None = None,
     warnings: list[str] | None = None,
@@ -134,6 +136,7 @@ def _diagnose_one(
         baseline=baseline,
         baseline_fs=baseline_fs,
         load_n=args.load,
+        unit=unit,
     )
     diagnosis.warnings = list(warnings or []) + diagnosis.warnings
     diagnosis.assumptions["channel"] = channel
@@ -184,11 +187,13 @@ def _print_diagnosis(diagnosis) -> None:
         )
     print(f"  basis: {diagnosis.basis}")
     change = (diagnosis.baseline or {}).get("velocity_bands_change_db", {})
+    in_mm_s = diagnosis.velocity_bands_mm_s
     bands = ", ".join(
         f"{k} {v:.3g}" + (f" ({change[k]:+.1f} dB)" if change.get(k) is not None else "")
-        for k, v in (diagnosis.velocity_bands or {}).items()
+        for k, v in (in_mm_s or diagnosis.velocity_bands or {}).items()
     )
-    print(f"  velocity RMS (ISO 15242 bands, signal unit x s): {bands}")
+    unit = f"mm/s, the signal in {a['unit']}" if in_mm_s else "signal unit x s: --unit for mm/s"
+    print(f"  velocity RMS (ISO 15242 bands, {unit}): {bands}")
     if diagnosis.waviness:
         w = diagnosis.waviness
         over = w.get("over_baseline_db")
@@ -274,6 +279,7 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
                 file=entry.file,
                 channel=str(entry.variable or meta.get("variable") or args.channel or "first"),
                 source=str(entry.path),
+                unit=args.unit or meta.get("unit"),
             )
         except (ValueError, FileNotFoundError) as error:  # this recording only
             row["error"] = str(error)

@@ -510,3 +510,35 @@ def test_a_folder_with_a_manifest_is_diagnosed_recording_by_recording(
     for flag in (["--rpm", "1797"], ["--bearing", "6205"], ["--fs", "12000"]):
         assert main(["diagnose", str(folder), *flag]) == 2
         assert "cannot be given with it" in _one_line_error(capsys)
+
+
+def test_velocity_bands_in_mm_s_when_the_recordings_unit_is_known(tmp_path, capsys):
+    """ISO 15242 bands in mm/s: a 1 kHz tone of 1 m/s velocity amplitude reads 707 mm/s."""
+    from scipy.io import savemat
+
+    from cmtool.diagnose import diagnose_signal
+
+    fs = 25600.0
+    t = np.arange(int(fs)) / fs
+    tone = 2 * np.pi * 1000 * np.cos(2 * np.pi * 1000 * t)  # m/s^2; velocity sin(2 pi 1000 t)
+    si = diagnose_signal(tone, fs, 1797.0, "6205", unit="m/s^2", waviness=False)
+    assert si.velocity_bands_mm_s["medium"] == pytest.approx(1e3 / np.sqrt(2), rel=2e-3)
+    in_g = diagnose_signal(tone / 9.80665, fs, 1797.0, "6205", unit="g", waviness=False)
+    assert in_g.velocity_bands_mm_s["medium"] == pytest.approx(si.velocity_bands_mm_s["medium"])
+    assert (
+        in_g.assumptions["unit"] == "g"
+        and "unit" not in diagnose_signal(tone, fs, 1797.0, "6205", waviness=False).assumptions
+    )
+    with pytest.raises(ValueError, match="unit = 'mm' is not one of g, m/s"):
+        diagnose_signal(tone, fs, 1797.0, "6205", unit="mm")
+    # a CWRU-layout file says g: the command line gives mm/s without being told
+    savemat(tmp_path / "12k_Drive_End_X.mat", {"X100_DE_time": (tone / 9.80665)[:, None]})
+    args = ["diagnose", str(tmp_path / "12k_Drive_End_X.mat"), "--fs", "25600", "--rpm", "1797"]
+    assert main([*args, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["velocity_bands_iso15242_mm_s"]["medium"] == pytest.approx(707.1, rel=2e-3)
+    assert main(args) == 0
+    assert "velocity RMS (ISO 15242 bands, mm/s, the signal in g): low" in capsys.readouterr().out
+    np.save(tmp_path / "tone.npy", tone)  # a file that does not say: asked for
+    assert main(["diagnose", str(tmp_path / "tone.npy"), *args[2:], "--bearing", "6205"]) == 0
+    assert "--unit for mm/s" in capsys.readouterr().out
