@@ -97,7 +97,8 @@ SEVERITY_NOT_ESTIMATED = (
     "not estimated: a pit's size is not in what this detector reads on a machine it was not "
     "calibrated on (estimators trained on simulated pits of known size do worse than "
     "answering the median size on another simulated rig; docs/diagnosis.md, Severity); trend "
-    "the evidence and the ISO 15242 velocity bands against a baseline instead"
+    "the evidence and the ISO 15242 velocity bands against a baseline instead (cmtool "
+    "diagnose FOLDER --report OUT with dated recordings in its MANIFEST.csv: trend.png)"
 )
 
 #: What the rule assumes of a local fault's impacts (docs/diagnosis.md, "What the rule needs"):

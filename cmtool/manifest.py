@@ -4,7 +4,9 @@
 a row per recording with its ``file`` (relative to the folder), ``sampling_rate_hz``,
 ``shaft_rpm`` and, for a labelled benchmark, ``fault_location``; optional ``bearing`` (a catalog
 name), ``dataset`` (the rig: ``CWRU`` and ``MFPT`` also name their bearing) and
-``channel_variable`` (the variable of a ``.mat``/``.npz`` file). A row that cannot be used is
+``channel_variable`` (the variable of a ``.mat``/``.npz`` file), and for a trend ``time`` (when
+the recording was taken: an ISO 8601 date and time) and ``machine`` (which machine or
+measurement point it is). A row that cannot be used is
 an error naming the manifest, its line, the column, the value and what is allowed, before any
 recording is read.
 """
@@ -55,6 +57,10 @@ class ManifestEntry:
     variable : str or None
         The variable to read (``channel_variable``; None for a struct field such as
         ``bearing.gs``, which the reader finds itself).
+    time : pandas.Timestamp or None
+        When it was recorded (``time``).
+    machine : str or None
+        The machine or measurement point (``machine``).
     """
 
     file: str
@@ -65,6 +71,8 @@ class ManifestEntry:
     rig: str
     label: str
     variable: str | None
+    time: pd.Timestamp | None = None
+    machine: str | None = None
 
 
 def _text(value: object) -> str | None:
@@ -163,6 +171,15 @@ def read_manifest(
                 + ("" if labelled else ", or empty")
             )
         variable = _text(row.get("channel_variable"))
+        time = _text(row.get("time"))
+        if time is not None:
+            try:
+                time = pd.Timestamp(time)
+            except ValueError:
+                raise RecordingError(
+                    f"{where}: time = {time!r} is not a date and time (ISO 8601, e.g. "
+                    "2026-11-28T14:00)"
+                ) from None
         path = folder / file
         if not path.is_file():
             raise FileNotFoundError(f"{where}: {path}: no such file")
@@ -176,6 +193,8 @@ def read_manifest(
                 rig=rig or name,
                 label=label,
                 variable=variable if variable is not None and "." not in variable else None,
+                time=time,
+                machine=_text(row.get("machine")),
             )
         )
     return entries

@@ -6,7 +6,7 @@ path.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 import matplotlib
@@ -15,7 +15,13 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-__all__ = ["plot_spectrum", "plot_kurtogram", "plot_confusion", "waviness_markers"]
+__all__ = [
+    "plot_spectrum",
+    "plot_kurtogram",
+    "plot_confusion",
+    "plot_trend",
+    "waviness_markers",
+]
 
 _COLORS = {
     "bpfo": "tab:red",
@@ -156,6 +162,65 @@ def plot_kurtogram(result, path: str | Path, *, title: str = "kurtogram") -> Pat
     ax.set_ylabel("level")
     ax.set_title(f"{title}: band {low:.0f}-{high:.0f} Hz, SK = {result.kurtosis:.2f}")
     fig.colorbar(im, ax=ax, label="spectral kurtosis")
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+    return path
+
+
+def plot_trend(
+    times: Sequence,
+    margins: Mapping[str, Sequence[float]],
+    bands: Mapping[str, Sequence[float]],
+    path: str | Path,
+    *,
+    title: str,
+    band_unit: str,
+) -> Path:
+    """A machine's trend: each fault's evidence over the threshold, and the velocity bands.
+
+    Parameters
+    ----------
+    times : sequence of datetime-like
+        When each recording was taken (sorted).
+    margins : mapping of str to sequence of float
+        Fault -> its weighed evidence minus the detection threshold [dB] per recording
+        (above 0: detected).
+    bands : mapping of str to sequence of float
+        ISO 15242 band -> velocity RMS per recording [``band_unit``].
+    path : str or Path
+        PNG to write.
+    title, band_unit : str
+        Title; the bands' unit.
+
+    Returns
+    -------
+    Path
+        The written PNG.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(10, 6), dpi=110, sharex=True)
+    colors = {
+        "outer race": _COLORS["bpfo"],
+        "inner race": _COLORS["bpfi"],
+        "ball": _COLORS["two_bsf"],
+    }
+    for fault, values in margins.items():
+        top.plot(times, values, marker="o", color=colors.get(fault), label=fault)
+    top.axhline(0.0, color="0.3", ls="--", lw=1.0, label="detection threshold")
+    top.set_ylabel("evidence over threshold [dB]")
+    top.set_title(title)
+    top.legend(loc="best", fontsize=8)
+    top.grid(alpha=0.3)
+    for band, values in bands.items():
+        bottom.plot(times, values, marker="s", label=f"{band} (ISO 15242)")
+    bottom.set_yscale("log")
+    bottom.set_ylabel(f"velocity RMS [{band_unit}]")
+    bottom.set_xlabel("time")
+    bottom.legend(loc="best", fontsize=8)
+    bottom.grid(alpha=0.3)
+    fig.autofmt_xdate()
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)

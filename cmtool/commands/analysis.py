@@ -213,6 +213,8 @@ def _print_diagnosis(diagnosis) -> None:
 #: Columns of ``verdicts.csv`` (``cmtool diagnose FOLDER --report OUT``).
 VERDICT_COLUMNS = (
     "file",
+    "machine",
+    "time",
     "verdict",
     "confidence",
     "basis",
@@ -222,6 +224,13 @@ VERDICT_COLUMNS = (
     "fs_hz",
     "band_low_hz",
     "band_high_hz",
+    "outer_race_margin_db",
+    "inner_race_margin_db",
+    "ball_margin_db",
+    "velocity_low",
+    "velocity_medium",
+    "velocity_high",
+    "velocity_unit",
     "waviness_hint",
     "warnings",
     "manifest_label",
@@ -235,7 +244,9 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
     The manifest gives each recording's rate, speed and bearing, so --fs, --rpm, --bearing,
     --geometry and --baseline are refused; a recording that cannot be diagnosed is reported
     in its row and the rest go on (exit code 1 if any failed). With --report, each
-    recording's report goes to a folder of its own and the table to ``verdicts.csv``.
+    recording's report goes to a folder of its own and the table to ``verdicts.csv``; where
+    the manifest dates two or more recordings of a machine, ``trend.png`` (or one per
+    machine) shows each fault's evidence over the threshold and the velocity bands in time.
     """
     import pandas as pd
 
@@ -266,6 +277,7 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
     for entry in entries:
         row = dict.fromkeys(VERDICT_COLUMNS)
         row.update(file=entry.file, bearing=entry.bearing, rpm=entry.rpm, fs_hz=entry.fs_hz)
+        row.update(machine=entry.machine, time=entry.time)
         row["manifest_label"] = None if entry.label == "unknown" else entry.label
         try:
             x, meta = read_recording(entry.path, variable=entry.variable, channel=args.channel)
@@ -299,6 +311,13 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
             waviness_hint=None if not wav else f"{wav['surface']} race order ~{wav['order']}",
             warnings=" | ".join(diagnosis.warnings) or None,
         )
+        for c in diagnosis.candidates:
+            key = f"{c['fault'].replace(' ', '_')}_margin_db"
+            row[key] = round(c["evidence_db"] - diagnosis.threshold_db, 2)
+        bands = diagnosis.velocity_bands_mm_s or diagnosis.velocity_bands or {}
+        for band, value in bands.items():
+            row[f"velocity_{band}"] = value
+        row["velocity_unit"] = "mm/s" if diagnosis.velocity_bands_mm_s else "signal unit x s"
         rows.append(row)
         results.append(diagnosis.to_dict())
         if out is not None:
@@ -306,9 +325,11 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
         bar.update(1)
     bar.close()
     table = pd.DataFrame(rows, columns=list(VERDICT_COLUMNS))
+    trends = []
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)
         table.to_csv(out / "verdicts.csv", index=False)
+        trends = _plot_trends(table, out)
     if args.json:
         print(json.dumps(results, indent=2))
     else:
@@ -324,7 +345,38 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
             )
         if out is not None:
             print(f"wrote {out / 'verdicts.csv'} and a report per recording")
+        for path in trends:
+            print(f"wrote {path}")
     return 1 if table["error"].notna().any() else 0
+
+
+def _plot_trends(table, out: Path) -> list[Path]:
+    """``trend.png`` per machine with two or more dated, diagnosed recordings of one unit."""
+    import pandas as pd
+
+    from ..plots import plot_trend
+
+    dated = table[table["time"].notna() & table["error"].isna()].copy()
+    dated["machine"] = dated["machine"].fillna("")
+    paths = []
+    groups = list(dated.groupby("machine", sort=True))
+    for machine, part in groups:
+        part = part.sort_values("time")
+        if len(part) < 2 or part["velocity_unit"].nunique() > 1:
+            continue
+        name = "trend.png" if len(groups) == 1 else f"trend_{_report_folder(machine)}.png"
+        faults = ("outer race", "inner race", "ball")
+        paths.append(
+            plot_trend(
+                pd.to_datetime(part["time"]).tolist(),
+                {f: part[f"{f.replace(' ', '_')}_margin_db"].tolist() for f in faults},
+                {b: part[f"velocity_{b}"].tolist() for b in ("low", "medium", "high")},
+                out / name,
+                title=f"trend{' of ' + machine if machine else ''}: {len(part)} recordings",
+                band_unit=str(part["velocity_unit"].iloc[0]),
+            )
+        )
+    return paths
 
 
 def _report_folder(file: str) -> str:

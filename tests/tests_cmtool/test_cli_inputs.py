@@ -542,3 +542,57 @@ def test_velocity_bands_in_mm_s_when_the_recordings_unit_is_known(tmp_path, caps
     np.save(tmp_path / "tone.npy", tone)  # a file that does not say: asked for
     assert main(["diagnose", str(tmp_path / "tone.npy"), *args[2:], "--bearing", "6205"]) == 0
     assert "--unit for mm/s" in capsys.readouterr().out
+
+
+def test_dated_recordings_of_a_machine_give_its_trend(tmp_path, capsys):
+    """The manifest's time and machine: per-fault margins in verdicts.csv and a trend per
+    machine, the margin of a growing outer-race fault rising through the threshold."""
+    from scipy import signal as sp_signal
+
+    from cmtool.io import RecordingError
+    from cmtool.manifest import read_manifest
+    from generators import bearing, characteristic_frequencies
+
+    rng = np.random.default_rng(3)
+    fs, n = 12000.0, 24000
+    bpfo = characteristic_frequencies(bearing("6205"), 1797 / 60).bpfo
+    folder = tmp_path / "route"
+    folder.mkdir()
+    rows = []
+    for machine in ("pump", "fan"):
+        for month, amplitude in enumerate((0.0, 1.0, 4.0), start=1):
+            times = np.arange(0.0, n / fs, 1 / bpfo)
+            times = times + rng.normal(0.0, 0.01 / bpfo, times.size)  # slip: 1 % jitter
+            x = np.zeros(n)
+            x[np.clip((times * fs).astype(int), 0, n - 1)] = amplitude if machine == "pump" else 0
+            x = sp_signal.lfilter(*sp_signal.iirpeak(3000.0, 15.0, fs), x)
+            np.save(folder / f"{machine}{month}.npy", x + 0.05 * rng.standard_normal(n))
+            rows.append(
+                {
+                    "file": f"{machine}{month}.npy",
+                    "sampling_rate_hz": fs,
+                    "shaft_rpm": 1797,
+                    "bearing": "6205",
+                    "machine": machine,
+                    "time": f"2026-{month:02d}-01T08:00",
+                }
+            )
+    pd.DataFrame(rows).to_csv(folder / "MANIFEST.csv", index=False)
+    out = tmp_path / "out"
+    assert main(["diagnose", str(folder), "--report", str(out), "--unit", "g"]) == 0
+    printed = capsys.readouterr().out
+    assert "trend_pump.png" in printed and "trend_fan.png" in printed
+    assert (out / "trend_pump.png").stat().st_size > 10000
+    table = pd.read_csv(out / "verdicts.csv", parse_dates=["time"])
+    pump = table[table["machine"] == "pump"].sort_values("time")
+    margins = pump["outer_race_margin_db"].to_numpy()
+    assert margins[0] < 0 < margins[1] < margins[2], margins
+    assert list(pump["verdict"]) == ["healthy", "outer race", "outer race"]
+    assert (table["velocity_unit"] == "mm/s").all()
+    assert (table[table["machine"] == "fan"]["verdict"] == "healthy").all()
+    # a time that is not one is named with its line
+    frame = pd.read_csv(folder / "MANIFEST.csv")
+    frame.loc[2, "time"] = "last tuesday"
+    frame.to_csv(folder / "MANIFEST.csv", index=False)
+    with pytest.raises(RecordingError, match=r"line 4 \(pump3.npy\): time = 'last tuesday'"):
+        read_manifest(folder)
