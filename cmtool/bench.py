@@ -46,8 +46,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from generators import BearingGeometry, characteristic_frequencies
 from generators import bearing as catalog_bearing
-from generators import characteristic_frequencies
 
 from .diagnose import CANONICAL, FAULTS, diagnose_signal
 from .io import read_recording
@@ -184,7 +184,7 @@ def _labelled(scores: dict[str, float], limit: float) -> DetectorOutput:
 
 
 def builtin_outputs(
-    x: np.ndarray, fs: float, rpm: float, bearing: str, *, model=None
+    x: np.ndarray, fs: float, rpm: float, bearing: str | BearingGeometry, *, model=None
 ) -> dict[str, DetectorOutput]:
     """Every built-in detector on one signal (``model``/``combined`` when a model is given)."""
     from features.detectors import (
@@ -194,7 +194,7 @@ def builtin_outputs(
         time_scores,
     )
 
-    geometry = catalog_bearing(bearing)
+    geometry = catalog_bearing(bearing) if isinstance(bearing, str) else bearing
     freqs = characteristic_frequencies(geometry, rpm / 60.0)
     rates = {fault: getattr(freqs, key) for fault, key in FAULTS.items()}
     d = diagnose_signal(x, fs, rpm, geometry, model=model, waviness=False)
@@ -229,7 +229,15 @@ def _records(path: Path, bearing_default: str, allow_incomplete: bool = False):
         for entry in read_manifest(path, labelled=True, bearing_default=bearing_default):
             x, _ = read_recording(entry.path, variable=entry.variable)
             meta = {"bearing": entry.bearing, "fs_hz": entry.fs_hz, "rig": entry.rig}
-            yield (entry.file, x, entry.fs_hz, entry.rpm, entry.bearing, entry.label, meta)
+            yield (
+                entry.file,
+                x,
+                entry.fs_hz,
+                entry.rpm,
+                entry.bearing_or_geometry,
+                entry.label,
+                meta,
+            )
         return
     from .datasets import read_dataset
 
@@ -265,7 +273,7 @@ def _signal_rows(record) -> list[dict]:
     sid, x, fs, rpm, brg, label, meta = record
     outputs = builtin_outputs(x, fs, rpm, brg, model=_WORKER.get("model"))
     for spec, fn in _WORKER.get("detectors", {}).items():
-        outputs[spec] = _as_output(fn(x, fs, rpm, brg), spec)
+        outputs[spec] = _as_output(fn(x, fs, rpm, getattr(brg, "name", brg)), spec)
     rows = []
     for name, output in outputs.items():
         row = {"id": sid, "detector": name, "label": label, "verdict": output.label, **meta}

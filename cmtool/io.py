@@ -257,6 +257,81 @@ class RecordingError(ValueError):
     """A recording cannot be read as asked (message names the file, variable or channel)."""
 
 
+#: How a bearing not in the catalog is given (diameters [m], contact angle [deg]).
+GEOMETRY_USAGE = "NAME:balls=Z:ball_diameter=d:pitch_diameter=D[:contact_angle_deg=A]"
+
+_GEOMETRY_KEYS = {
+    "balls": "ball_count",
+    "ball_diameter": "ball_diameter",
+    "pitch_diameter": "pitch_diameter",
+    "contact_angle_deg": "contact_angle",
+}
+
+
+def geometry_from_spec(spec: str, where: str = "--geometry"):
+    """A bearing not in the catalog from its designation and kinematic geometry.
+
+    ``NAME:balls=Z:ball_diameter=d:pitch_diameter=D[:contact_angle_deg=A]``, diameters in m,
+    the contact angle in degrees (a maker's tables give it so; default 0, at most 45). The
+    fault rates need only these; :class:`generators.BearingGeometry`'s defaults stand for the
+    rest (groove conformity 0.52, clearance 10 um, steel).
+
+    Parameters
+    ----------
+    spec : str
+        The specification.
+    where : str
+        What gave it, for the messages (an option, a manifest's line).
+
+    Returns
+    -------
+    generators.BearingGeometry
+
+    Raises
+    ------
+    generators.ParameterError
+        A key missing, unknown or not a number, or a value out of its range (named).
+
+    Examples
+    --------
+    >>> g = geometry_from_spec("6310:balls=8:ball_diameter=20.64e-3:pitch_diameter=77.5e-3")
+    >>> g.name, g.ball_count
+    ('6310', 8)
+    """
+    import math
+
+    from generators import BearingGeometry, ParameterError
+
+    name, *items = (part.strip() for part in str(spec).split(":"))
+    if not name:
+        raise ParameterError(f"{where} {spec!r}: the designation is missing ({GEOMETRY_USAGE})")
+    fields: dict[str, float] = {}
+    for item in items:
+        key, equals, value = (part.strip() for part in item.partition("="))
+        if key not in _GEOMETRY_KEYS or not equals:
+            raise ParameterError(
+                f"{where} {spec!r}: {item!r} is not one of "
+                f"{', '.join(k + '=' for k in _GEOMETRY_KEYS)} ({GEOMETRY_USAGE})"
+            )
+        try:
+            fields[_GEOMETRY_KEYS[key]] = int(value) if key == "balls" else float(value)
+        except ValueError:
+            kind = "an integer" if key == "balls" else "a number"
+            raise ParameterError(f"{where} {spec!r}: {key}={value!r} is not {kind}") from None
+    for key in ("balls", "ball_diameter", "pitch_diameter"):
+        if _GEOMETRY_KEYS[key] not in fields:
+            raise ParameterError(f"{where} {spec!r}: {key}= is missing ({GEOMETRY_USAGE})")
+    degrees = fields.pop("contact_angle", 0.0)
+    if not 0.0 <= degrees <= 45.0:
+        raise ParameterError(
+            f"{where} {spec!r}: contact_angle_deg = {degrees:g} deg is outside the allowed "
+            "range [0, 45] deg (a deep groove ball bearing)"
+        )
+    return BearingGeometry(
+        name=name, contact_angle=math.radians(degrees), source=f"given ({where})", **fields
+    )
+
+
 def _mat_variables(path: Path) -> dict[str, Any]:
     from scipy import io as sio
 

@@ -1,14 +1,14 @@
 """A folder of measured recordings described by its ``MANIFEST.csv``, read and checked once.
 
-``cmtool bench`` and ``cmtool realism`` take such a folder (the layout of ``../shared/data``):
-a row per recording with its ``file`` (relative to the folder), ``sampling_rate_hz``,
-``shaft_rpm`` and, for a labelled benchmark, ``fault_location``; optional ``bearing`` (a catalog
-name), ``dataset`` (the rig: ``CWRU`` and ``MFPT`` also name their bearing) and
-``channel_variable`` (the variable of a ``.mat``/``.npz`` file), and for a trend ``time`` (when
-the recording was taken: an ISO 8601 date and time) and ``machine`` (which machine or
-measurement point it is). A row that cannot be used is
-an error naming the manifest, its line, the column, the value and what is allowed, before any
-recording is read.
+``cmtool bench``, ``cmtool realism`` and ``cmtool diagnose FOLDER`` take such a folder (the
+layout of ``../shared/data``): a row per recording with its ``file`` (relative to the
+folder), ``sampling_rate_hz``, ``shaft_rpm`` and, for a labelled benchmark,
+``fault_location``; optional ``bearing`` (a catalog name, or a bearing not in it as
+:func:`cmtool.io.geometry_from_spec` reads it), ``dataset`` (the rig: ``CWRU`` and ``MFPT``
+also name their bearing), ``channel_variable`` (the variable of a ``.mat``/``.npz`` file),
+and for a trend ``time`` (when the recording was taken: ISO 8601) and ``machine`` (which
+machine or measurement point). A row that cannot be used is an error naming the manifest,
+its line, the column, the value and what is allowed, before any recording is read.
 """
 
 from __future__ import annotations
@@ -19,10 +19,10 @@ from pathlib import Path
 
 import pandas as pd
 
-from generators import BEARINGS
+from generators import BEARINGS, BearingGeometry
 
 from .diagnose import CANONICAL
-from .io import RecordingError
+from .io import RecordingError, geometry_from_spec
 
 __all__ = ["MANIFEST_BEARINGS", "ManifestEntry", "read_manifest"]
 
@@ -48,7 +48,7 @@ class ManifestEntry:
     rpm : float
         Shaft speed [rev/min].
     bearing : str
-        Catalog name of the bearing.
+        Catalog name of the bearing, or the designation of ``geometry``.
     rig : str
         The ``dataset`` column, else the bearing.
     label : str
@@ -61,6 +61,8 @@ class ManifestEntry:
         When it was recorded (``time``).
     machine : str or None
         The machine or measurement point (``machine``).
+    geometry : BearingGeometry or None
+        A bearing not in the catalog, as the ``bearing`` column gave it.
     """
 
     file: str
@@ -73,6 +75,12 @@ class ManifestEntry:
     variable: str | None
     time: pd.Timestamp | None = None
     machine: str | None = None
+    geometry: BearingGeometry | None = None
+
+    @property
+    def bearing_or_geometry(self) -> str | BearingGeometry:
+        """What ``diagnose_signal`` takes: the geometry if given, else the catalog name."""
+        return self.geometry if self.geometry is not None else self.bearing
 
 
 def _text(value: object) -> str | None:
@@ -154,9 +162,14 @@ def read_manifest(
         rpm = _number(where, "shaft_rpm", row["shaft_rpm"], *_RPM_RANGE, "rpm")
         rig = _text(row.get("dataset"))
         name = _text(row.get("bearing")) or MANIFEST_BEARINGS.get(rig or "", bearing_default)
-        if name not in catalog:
+        geometry = None
+        if ":" in name:  # a bearing not in the catalog, by its geometry
+            geometry = geometry_from_spec(name, f"{where}: bearing")
+            name = geometry.name
+        elif name not in catalog:
             raise RecordingError(
-                f"{where}: bearing = {name!r} is not in the catalog ({', '.join(catalog)})"
+                f"{where}: bearing = {name!r} is not in the catalog ({', '.join(catalog)}); "
+                "give a bearing not in it as NAME:balls=Z:ball_diameter=d:pitch_diameter=D"
             )
         location = _text(row.get("fault_location"))
         if location is None:
@@ -195,6 +208,7 @@ def read_manifest(
                 variable=variable if variable is not None and "." not in variable else None,
                 time=time,
                 machine=_text(row.get("machine")),
+                geometry=geometry,
             )
         )
     return entries

@@ -91,7 +91,8 @@ def recording_segments(folder: str | Path, duration_s: float) -> pd.DataFrame:
     for entry in read_manifest(folder):
         x, _ = read_recording(entry.path, variable=entry.variable)
         fs = entry.fs_hz
-        f = characteristic_frequencies(catalog_bearing(entry.bearing), entry.rpm / 60)
+        geometry = entry.geometry or catalog_bearing(entry.bearing)
+        f = characteristic_frequencies(geometry, entry.rpm / 60)
         n = max(1, int(round(duration_s * fs)))
         count = max(1, x.size // n)
         for i in range(count):

@@ -286,7 +286,7 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
                 x,
                 entry.fs_hz,
                 entry.rpm,
-                entry.bearing,
+                entry.bearing_or_geometry,
                 model,
                 file=entry.file,
                 channel=str(entry.variable or meta.get("variable") or args.channel or "first"),

@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import json
 import logging
-import math
 import sys
 from pathlib import Path
 
@@ -117,50 +116,17 @@ def parse_defect(spec: str) -> LocalizedDefect:
     return LocalizedDefect(surface=surface, **fields)  # type: ignore[arg-type]
 
 
-#: What ``--geometry`` reads (diameters [m], contact angle [deg]).
-GEOMETRY_USAGE = "NAME:balls=Z:ball_diameter=d:pitch_diameter=D[:contact_angle_deg=A]"
-
-
 def parse_geometry(spec: str) -> BearingGeometry:
-    """Parse a bearing that is not in the catalog: its designation and kinematic geometry.
-
-    ``NAME:balls=Z:ball_diameter=d:pitch_diameter=D[:contact_angle_deg=A]``, diameters in m,
-    the contact angle in degrees (a maker's tables give it so; default 0). What the rule
-    detector reads needs only these (the fault rates); the healthy model that race-waviness
-    lines are judged against takes the defaults of :class:`generators.BearingGeometry` for
-    the rest (groove conformity 0.52, clearance 10 um, steel), which the output states.
+    """``--geometry``: :func:`cmtool.io.geometry_from_spec` (a bearing not in the catalog).
 
     Examples
     --------
-    >>> g = parse_geometry("6310:balls=8:ball_diameter=20.64e-3:pitch_diameter=77.5e-3")
-    >>> g.name, g.ball_count
-    ('6310', 8)
+    >>> parse_geometry("6310:balls=8:ball_diameter=20.64e-3:pitch_diameter=77.5e-3").name
+    '6310'
     """
-    name, fields = _parse_spec(
-        spec,
-        "--geometry",
-        GEOMETRY_USAGE,
-        {
-            "balls": ("ball_count", int),
-            "ball_diameter": ("ball_diameter", float),
-            "pitch_diameter": ("pitch_diameter", float),
-            "contact_angle_deg": ("contact_angle", float),
-        },
-        ("balls", "ball_diameter", "pitch_diameter"),
-    )
-    if not name:
-        raise CliError(
-            f"--geometry {spec!r}: the bearing's designation is missing ({GEOMETRY_USAGE})"
-        )
-    if "contact_angle" in fields:
-        degrees = float(fields["contact_angle"])  # type: ignore[arg-type]
-        if not 0.0 <= degrees <= 45.0:
-            raise CliError(
-                f"--geometry {spec!r}: contact_angle_deg = {degrees:g} deg is outside the "
-                "allowed range [0, 45] deg (a deep groove ball bearing)"
-            )
-        fields["contact_angle"] = math.radians(degrees)
-    return BearingGeometry(name=name, source="given on the command line (--geometry)", **fields)  # type: ignore[arg-type]
+    from ..io import geometry_from_spec
+
+    return geometry_from_spec(spec, "--geometry")
 
 
 def parse_form_waviness(spec: str) -> tuple[float, float, float]:

@@ -1,5 +1,6 @@
 """A folder of recordings described by MANIFEST.csv: read once, every row checked."""
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -78,3 +79,39 @@ def test_missing_columns_are_named_before_any_recording_is_read(tmp_path, capsys
     (tmp_path / "MANIFEST.csv").write_text("")
     with pytest.raises(RecordingError, match="MANIFEST.csv: the file holds no data"):
         read_manifest(folder)
+
+
+def test_a_manifest_names_a_bearing_not_in_the_catalog_by_its_geometry(tmp_path, capsys):
+    """bearing = NAME:balls=...: the same rates and verdicts as the catalog bearing it copies."""
+    from cmtool.realism import recording_segments
+    from generators import bearing
+
+    g = bearing("6205")
+    spec = f"copy:balls=9:ball_diameter={g.ball_diameter!r}:pitch_diameter={g.pitch_diameter!r}"
+    rng = np.random.default_rng(5)
+    x = rng.standard_normal(12000)
+    x[::112] += 8.0  # impacts near BPFO at 1797 rpm, enough for a verdict to compare
+    np.save(tmp_path / "a.npy", x)
+    rows = [{**GOOD, "bearing": "6205"}, {**GOOD, "bearing": spec}]
+    pd.DataFrame(rows).to_csv(tmp_path / "MANIFEST.csv", index=False)
+    catalog, given = read_manifest(tmp_path, labelled=True)
+    assert catalog.geometry is None and catalog.bearing_or_geometry == "6205"
+    assert given.bearing == "copy" and given.geometry.ball_count == 9
+    segments = recording_segments(tmp_path, 1.0)
+    rates = ["bpfo_hz", "bpfi_hz", "two_bsf_hz", "ftf_hz"]
+    np.testing.assert_allclose(segments[rates].iloc[1], segments[rates].iloc[0], rtol=1e-12)
+    assert main(["diagnose", str(tmp_path), "--json"]) == 0
+    by_name, by_geometry = json.loads(capsys.readouterr().out)
+    assert by_geometry["candidates"] == by_name["candidates"]
+    assert "given: 9 balls" in by_geometry["assumptions"]["bearing_geometry"]
+    assert main(["bench", str(tmp_path), "--out", str(tmp_path / "bench")]) == 0
+    results = pd.read_csv(tmp_path / "bench" / "results.csv")
+    envelope = results[results["detector"] == "envelope"]
+    assert list(envelope["bearing"]) == ["6205", "copy"]
+    scores = ["verdict", "score_outer_race", "score_inner_race", "score_ball"]
+    assert envelope[scores].iloc[0].tolist() == envelope[scores].iloc[1].tolist()
+    pd.DataFrame([{**GOOD, "bearing": "copy:balls=9:ball_diameter=8e-3"}]).to_csv(
+        tmp_path / "MANIFEST.csv", index=False
+    )
+    with pytest.raises(ValueError, match=r"line 2 \(a.npy\): bearing 'copy:.*pitch_diameter= is"):
+        read_manifest(tmp_path)
