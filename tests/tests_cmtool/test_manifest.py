@@ -115,3 +115,22 @@ def test_a_manifest_names_a_bearing_not_in_the_catalog_by_its_geometry(tmp_path,
     )
     with pytest.raises(ValueError, match=r"line 2 \(a.npy\): bearing 'copy:.*pitch_diameter= is"):
         read_manifest(tmp_path)
+
+
+@pytest.mark.realdata
+def test_the_measured_recordings_folder_is_diagnosed_file_by_file(shared_data, tmp_path, capsys):
+    """``cmtool diagnose ../shared/data``: every CWRU and MFPT layout read with its manifest's
+    rate, speed, bearing and variable, in g (velocity in mm/s), none refused."""
+    out = tmp_path / "reports"
+    assert main(["diagnose", str(shared_data), "--report", str(out)]) == 0
+    capsys.readouterr()
+    table = pd.read_csv(out / "verdicts.csv")
+    manifest = pd.read_csv(shared_data / "MANIFEST.csv")
+    assert list(table["file"]) == list(manifest["file"])
+    assert table["error"].isna().all() and table["verdict"].notna().all()
+    assert set(table["bearing"]) == {"6205", "mfpt"}
+    assert (table["velocity_unit"] == "mm/s").all()
+    assert all(
+        (out / Path(f).with_suffix("").as_posix().replace("/", "__")).is_dir()
+        for f in table["file"]
+    )
