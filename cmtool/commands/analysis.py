@@ -250,7 +250,7 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
     """
     import pandas as pd
 
-    from ..io import read_recording
+    from ..io import atomic_write, read_recording
     from ..manifest import read_manifest
 
     given = [
@@ -328,7 +328,7 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
     trends = []
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)
-        table.to_csv(out / "verdicts.csv", index=False)
+        atomic_write(out / "verdicts.csv", lambda tmp: table.to_csv(tmp, index=False))
         trends = _plot_trends(table, out)
     if args.json:
         print(json.dumps(results, indent=2))
