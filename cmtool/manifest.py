@@ -6,9 +6,11 @@ folder), ``sampling_rate_hz``, ``shaft_rpm`` and, for a labelled benchmark,
 ``fault_location``; optional ``bearing`` (a catalog name, or a bearing not in it as
 :func:`cmtool.io.geometry_from_spec` reads it), ``dataset`` (the rig: ``CWRU`` and ``MFPT``
 also name their bearing), ``channel_variable`` (the variable of a ``.mat``/``.npz`` file),
-and for a trend ``time`` (when the recording was taken: ISO 8601) and ``machine`` (which
-machine or measurement point). A row that cannot be used is an error naming the manifest,
-its line, the column, the value and what is allowed, before any recording is read.
+and for a trend ``time`` (when the recording was taken: ISO 8601), ``machine`` (which
+machine or measurement point) and ``baseline`` (a healthy recording of the same machine,
+relative to the folder, that ``cmtool diagnose FOLDER`` compares the recording with). A row
+that cannot be used is an error naming the manifest, its line, the column, the value and
+what is allowed, before any recording is read.
 """
 
 from __future__ import annotations
@@ -63,6 +65,8 @@ class ManifestEntry:
         The machine or measurement point (``machine``).
     geometry : BearingGeometry or None
         A bearing not in the catalog, as the ``bearing`` column gave it.
+    baseline : Path or None
+        A healthy recording of the same machine (``baseline``).
     """
 
     file: str
@@ -76,6 +80,7 @@ class ManifestEntry:
     time: pd.Timestamp | None = None
     machine: str | None = None
     geometry: BearingGeometry | None = None
+    baseline: Path | None = None
 
     @property
     def bearing_or_geometry(self) -> str | BearingGeometry:
@@ -196,6 +201,11 @@ def read_manifest(
         path = folder / file
         if not path.is_file():
             raise FileNotFoundError(f"{where}: {path}: no such file")
+        baseline = _text(row.get("baseline"))
+        if baseline is not None:
+            baseline = folder / baseline
+            if not baseline.is_file():
+                raise FileNotFoundError(f"{where}: baseline {baseline}: no such file")
         entries.append(
             ManifestEntry(
                 file=file,
@@ -209,6 +219,7 @@ def read_manifest(
                 time=time,
                 machine=_text(row.get("machine")),
                 geometry=geometry,
+                baseline=baseline,
             )
         )
     return entries

@@ -231,6 +231,10 @@ VERDICT_COLUMNS = (
     "velocity_medium",
     "velocity_high",
     "velocity_unit",
+    "velocity_low_change_db",
+    "velocity_medium_change_db",
+    "velocity_high_change_db",
+    "baseline",
     "waviness_hint",
     "warnings",
     "manifest_label",
@@ -241,7 +245,8 @@ VERDICT_COLUMNS = (
 def _diagnose_folder(args: argparse.Namespace) -> int:
     """Every recording a folder's MANIFEST.csv lists: a line (or JSON object) each.
 
-    The manifest gives each recording's rate, speed and bearing, so --fs, --rpm, --bearing,
+    The manifest gives each recording's rate, speed and bearing (and its ``baseline``, a
+    healthy recording of the same machine, where it names one), so --fs, --rpm, --bearing,
     --geometry and --baseline are refused; a recording that cannot be diagnosed is reported
     in its row and the rest go on (exit code 1 if any failed). With --report, each
     recording's report goes to a folder of its own and the table to ``verdicts.csv``; where
@@ -278,9 +283,15 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
         row = dict.fromkeys(VERDICT_COLUMNS)
         row.update(file=entry.file, bearing=entry.bearing, rpm=entry.rpm, fs_hz=entry.fs_hz)
         row.update(machine=entry.machine, time=entry.time)
+        if entry.baseline is not None:
+            row["baseline"] = entry.baseline.relative_to(Path(args.recording)).as_posix()
         row["manifest_label"] = None if entry.label == "unknown" else entry.label
         try:
             x, meta = read_recording(entry.path, variable=entry.variable, channel=args.channel)
+            baseline = baseline_fs = None
+            if entry.baseline is not None:
+                baseline, base_meta = read_recording(entry.baseline, channel=args.channel)
+                baseline_fs = base_meta.get("fs_hz", entry.fs_hz)
             diagnosis = _diagnose_one(
                 args,
                 x,
@@ -292,6 +303,8 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
                 channel=str(entry.variable or meta.get("variable") or args.channel or "first"),
                 source=str(entry.path),
                 unit=args.unit or meta.get("unit"),
+                baseline=baseline,
+                baseline_fs=baseline_fs,
             )
         except (ValueError, FileNotFoundError) as error:  # this recording only
             row["error"] = str(error)
@@ -318,6 +331,8 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
         for band, value in bands.items():
             row[f"velocity_{band}"] = value
         row["velocity_unit"] = "mm/s" if diagnosis.velocity_bands_mm_s else "signal unit x s"
+        for band, change in (diagnosis.baseline or {}).get("velocity_bands_change_db", {}).items():
+            row[f"velocity_{band}_change_db"] = change
         rows.append(row)
         results.append(diagnosis.to_dict())
         if out is not None:

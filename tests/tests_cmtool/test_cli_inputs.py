@@ -590,8 +590,24 @@ def test_dated_recordings_of_a_machine_give_its_trend(tmp_path, capsys):
     assert list(pump["verdict"]) == ["healthy", "outer race", "outer race"]
     assert (table["velocity_unit"] == "mm/s").all()
     assert (table[table["machine"] == "fan"]["verdict"] == "healthy").all()
+    # each recording against its machine's first (a baseline of the same machine): the
+    # ISO 15242 bands' change in dB, the high band (where the impacts ring) rising with the fault
+    frame = pd.read_csv(folder / "MANIFEST.csv")
+    frame["baseline"] = frame["machine"] + "1.npy"
+    frame.to_csv(folder / "MANIFEST.csv", index=False)
+    assert main(["diagnose", str(folder), "--report", str(out), "--unit", "g"]) == 0
+    capsys.readouterr()
+    table = pd.read_csv(out / "verdicts.csv")
+    change = table.set_index("file")["velocity_high_change_db"]
+    assert change["pump1.npy"] == 0.0 and 0.0 < change["pump2.npy"] < change["pump3.npy"]
+    assert abs(change["fan3.npy"]) < 1.0 and (table["baseline"] == frame["baseline"]).all()
+    frame.loc[0, "baseline"] = "gone.npy"
+    frame.to_csv(folder / "MANIFEST.csv", index=False)
+    with pytest.raises(FileNotFoundError, match=r"line 2 \(pump1.npy\): baseline .*gone.npy"):
+        read_manifest(folder)
     # a time that is not one is named with its line
     frame = pd.read_csv(folder / "MANIFEST.csv")
+    frame.loc[0, "baseline"] = None
     frame.loc[2, "time"] = "last tuesday"
     frame.to_csv(folder / "MANIFEST.csv", index=False)
     with pytest.raises(RecordingError, match=r"line 4 \(pump3.npy\): time = 'last tuesday'"):
