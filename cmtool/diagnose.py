@@ -514,7 +514,11 @@ def diagnose_signal(
             "randomness": RANDOMNESS_ASSUMED,
         },
     )
-    diagnosis.velocity_bands = {k: float(v) for k, v in features.velocity_band_rms(x, fs).items()}
+    bands = features.velocity_band_rms(x, fs)
+    diagnosis.velocity_bands = {k: float(v) for k, v in bands.items() if math.isfinite(v)}
+    if len(diagnosis.velocity_bands) < len(bands):  # a band starting above fs/2 has no value
+        missing = [k for k in bands if k not in diagnosis.velocity_bands]
+        diagnosis.assumptions["velocity_bands"] = f"above fs/2, left out: {', '.join(missing)}"
     if scale is not None:
         diagnosis.assumptions["unit"] = unit
         diagnosis.velocity_bands_mm_s = {
