@@ -539,6 +539,13 @@ def train(
     left_out = int((~kept).sum())
     faint = frame[~kept.to_numpy()].reset_index(drop=True)
     frame = frame[kept.to_numpy()].reset_index(drop=True)
+    labels = sorted(frame["label"].astype(str).unique())
+    if len(labels) < 2:  # refused before the features are computed
+        raise ValueError(
+            f"the dataset's signals kept for training have {len(labels)} label(s) "
+            f"({', '.join(labels) or 'none'}; {left_out} faint faults left out by "
+            f"min_fault_snr_db = {min_fault_snr_db}): a classifier needs at least two"
+        )
     # one pass computes every signal's features and the rule's evidence for the calibration
     # (kept signals first, then the faint ones, as pooled_calibration orders them)
     table, names, rule = _table_and_rule(

@@ -612,3 +612,11 @@ def test_dated_recordings_of_a_machine_give_its_trend(tmp_path, capsys):
     frame.to_csv(folder / "MANIFEST.csv", index=False)
     with pytest.raises(RecordingError, match=r"line 4 \(pump3.npy\): time = 'last tuesday'"):
         read_manifest(folder)
+
+
+def test_training_on_one_label_is_refused_before_any_feature(small_dataset):
+    from cmtool.classifier import train
+
+    healthy = small_dataset[small_dataset["label"] == "healthy"]
+    with pytest.raises(ValueError, match=r"have 1 label\(s\) \(healthy; .*needs at least two"):
+        train(healthy, recipe=None)
