@@ -287,10 +287,13 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
             row["baseline"] = entry.baseline.relative_to(Path(args.recording)).as_posix()
         row["manifest_label"] = None if entry.label == "unknown" else entry.label
         try:
-            x, meta = read_recording(entry.path, variable=entry.variable, channel=args.channel)
+            variable = entry.variable or args.variable  # the manifest's, else --variable
+            x, meta = read_recording(entry.path, variable=variable, channel=args.channel)
             baseline = baseline_fs = None
             if entry.baseline is not None:
-                baseline, base_meta = read_recording(entry.baseline, channel=args.channel)
+                baseline, base_meta = read_recording(  # its own variable: found, or --variable
+                    entry.baseline, variable=args.variable, channel=args.channel
+                )
                 baseline_fs = base_meta.get("fs_hz", entry.fs_hz)
             diagnosis = _diagnose_one(
                 args,
@@ -300,7 +303,7 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
                 entry.bearing_or_geometry,
                 model,
                 file=entry.file,
-                channel=str(entry.variable or meta.get("variable") or args.channel or "first"),
+                channel=str(variable or meta.get("variable") or args.channel or "first"),
                 source=str(entry.path),
                 unit=args.unit or meta.get("unit"),
                 baseline=baseline,
