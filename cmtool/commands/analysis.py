@@ -348,6 +348,8 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
         out.mkdir(parents=True, exist_ok=True)
         atomic_write(out / "verdicts.csv", lambda tmp: table.to_csv(tmp, index=False))
         trends = _plot_trends(table, out)
+        index = _index_text(table, trends, out)
+        atomic_write(out / "index.md", lambda tmp: tmp.write_text(index))
     if args.json:
         print(json.dumps(results, indent=2))
     else:
@@ -362,10 +364,42 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
                 + (f"; {row['warnings'].count(' | ') + 1} warning(s)" if row["warnings"] else "")
             )
         if out is not None:
-            print(f"wrote {out / 'verdicts.csv'} and a report per recording")
+            print(f"wrote {out / 'index.md'}, {out / 'verdicts.csv'} and a report per recording")
         for path in trends:
             print(f"wrote {path}")
     return 1 if table["error"].notna().any() else 0
+
+
+def _index_text(table, trends: list[Path], out: Path) -> str:
+    """``index.md`` of a folder's diagnoses: a row and a report link per recording, the trends."""
+    lines = [
+        f"# Diagnoses: {len(table)} recordings",
+        "",
+        "| recording | machine | time | verdict | confidence | margin [dB] | report |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    import pandas as pd
+
+    def given(value) -> bool:
+        return value is not None and not (pd.api.types.is_scalar(value) and pd.isna(value))
+
+    for row in table.to_dict("records"):
+        folder = _report_folder(row["file"])
+        failed = given(row["error"])
+        cells = [
+            row["file"],
+            row["machine"] if given(row["machine"]) else "",
+            str(row["time"]) if given(row["time"]) else "",
+            f"not diagnosed: {row['error']}" if failed else row["verdict"],
+            f"{row['confidence']:.2f}" if given(row["confidence"]) else "",
+            f"{row['margin_db']:+.1f}" if given(row["margin_db"]) else "",
+            "" if failed else f"[report]({folder}/report.md)",
+        ]
+        lines.append("| " + " | ".join(str(c).replace("|", "/") for c in cells) + " |")
+    lines += ["", "The table with every column: [verdicts.csv](verdicts.csv).", ""]
+    for path in trends:
+        lines += [f"![{path.stem}]({path.relative_to(out).as_posix()})", ""]
+    return "\n".join(lines)
 
 
 def _plot_trends(table, out: Path) -> list[Path]:

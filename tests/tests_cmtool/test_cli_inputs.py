@@ -483,6 +483,11 @@ def test_a_folder_with_a_manifest_is_diagnosed_recording_by_recording(
         True,
     ]
     assert (out / "pump__de" / "report.md").is_file() and (out / "quiet" / "envelope.png").is_file()
+    index = (out / "index.md").read_text()
+    assert (
+        "| pump/de.npy |  |  | outer race | " in index and "[report](pump__de/report.md)" in index
+    )
+    assert "| clipped.npy |  |  | not diagnosed: " in index and "nan" not in index
     # the same verdict as the file diagnosed alone
     assert (
         main(
@@ -583,6 +588,7 @@ def test_dated_recordings_of_a_machine_give_its_trend(tmp_path, capsys):
     printed = capsys.readouterr().out
     assert "trend_pump.png" in printed and "trend_fan.png" in printed
     assert (out / "trend_pump.png").stat().st_size > 10000
+    assert "![trend_pump](trend_pump.png)" in (out / "index.md").read_text()
     table = pd.read_csv(out / "verdicts.csv", parse_dates=["time"])
     pump = table[table["machine"] == "pump"].sort_values("time")
     margins = pump["outer_race_margin_db"].to_numpy()
