@@ -269,6 +269,12 @@ def build_parser() -> argparse.ArgumentParser:
         help="the recording's acceleration unit, for velocity bands in mm/s (default: the "
         "file's where it says: g in CWRU and MFPT files, m/s^2 in cmtool's)",
     )
+    p.add_argument(
+        "--workers",
+        type=_positive_int,
+        default=1,
+        help="processes for a folder's recordings (each diagnoses whole recordings)",
+    )
     p.add_argument("--json", action="store_true", help="print the verdict as JSON")
     p.set_defaults(func=cmd_diagnose)
 

@@ -255,7 +255,7 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
     """
     import pandas as pd
 
-    from ..io import atomic_write, read_recording
+    from ..io import atomic_write
     from ..manifest import read_manifest
 
     given = [
@@ -279,68 +279,28 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
     out = Path(args.report) if args.report else None
     rows, results = [], []
     bar = progress_bar(len(entries), "diagnose", unit="recording")
-    for entry in entries:
-        row = dict.fromkeys(VERDICT_COLUMNS)
-        row.update(file=entry.file, bearing=entry.bearing, rpm=entry.rpm, fs_hz=entry.fs_hz)
-        row.update(machine=entry.machine, time=entry.time)
-        if entry.baseline is not None:
-            row["baseline"] = entry.baseline.relative_to(Path(args.recording)).as_posix()
-        row["manifest_label"] = None if entry.label == "unknown" else entry.label
+    tasks = [(args, entry, out) for entry in entries]
+    workers = min(getattr(args, "workers", 1) or 1, len(entries))
+    if workers > 1:
+        from concurrent.futures import ProcessPoolExecutor
+
+        with ProcessPoolExecutor(
+            max_workers=workers, initializer=_folder_worker, initargs=(model,)
+        ) as pool:
+            for row, result in pool.map(_folder_row, tasks):
+                rows.append(row)
+                results.append(result)
+                bar.update(1)
+    else:
+        _folder_worker(model)
         try:
-            variable = entry.variable or args.variable  # the manifest's, else --variable
-            x, meta = read_recording(entry.path, variable=variable, channel=args.channel)
-            baseline = baseline_fs = None
-            if entry.baseline is not None:
-                baseline, base_meta = read_recording(  # its own variable: found, or --variable
-                    entry.baseline, variable=args.variable, channel=args.channel
-                )
-                baseline_fs = base_meta.get("fs_hz", entry.fs_hz)
-            diagnosis = _diagnose_one(
-                args,
-                x,
-                entry.fs_hz,
-                entry.rpm,
-                entry.bearing_or_geometry,
-                model,
-                file=entry.file,
-                channel=str(variable or meta.get("variable") or args.channel or "first"),
-                source=str(entry.path),
-                unit=args.unit or meta.get("unit"),
-                baseline=baseline,
-                baseline_fs=baseline_fs,
-            )
-        except (ValueError, FileNotFoundError) as error:  # this recording only
-            row["error"] = str(error)
-            rows.append(row)
-            results.append({"file": entry.file, "error": str(error)})
-            bar.update(1)
-            continue
-        top = diagnosis.candidates[0]
-        wav = diagnosis.waviness
-        row.update(
-            verdict=diagnosis.verdict,
-            confidence=diagnosis.confidence,
-            basis=diagnosis.basis,
-            margin_db=round(top["evidence_db"] - diagnosis.threshold_db, 2),
-            band_low_hz=diagnosis.band_hz[0],
-            band_high_hz=diagnosis.band_hz[1],
-            waviness_hint=None if not wav else f"{wav['surface']} race order ~{wav['order']}",
-            warnings=" | ".join(diagnosis.warnings) or None,
-        )
-        for c in diagnosis.candidates:
-            key = f"{c['fault'].replace(' ', '_')}_margin_db"
-            row[key] = round(c["evidence_db"] - diagnosis.threshold_db, 2)
-        bands = diagnosis.velocity_bands_mm_s or diagnosis.velocity_bands or {}
-        for band, value in bands.items():
-            row[f"velocity_{band}"] = value
-        row["velocity_unit"] = "mm/s" if diagnosis.velocity_bands_mm_s else "signal unit x s"
-        for band, change in (diagnosis.baseline or {}).get("velocity_bands_change_db", {}).items():
-            row[f"velocity_{band}_change_db"] = change
-        rows.append(row)
-        results.append(diagnosis.to_dict())
-        if out is not None:
-            _write_report(diagnosis, out / _report_folder(entry.file), x, entry.fs_hz)
-        bar.update(1)
+            for task in tasks:
+                row, result = _folder_row(task)
+                rows.append(row)
+                results.append(result)
+                bar.update(1)
+        finally:
+            _FOLDER_WORKER.clear()
     bar.close()
     table = pd.DataFrame(rows, columns=list(VERDICT_COLUMNS))
     trends = []
@@ -368,6 +328,78 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
         for path in trends:
             print(f"wrote {path}")
     return 1 if table["error"].notna().any() else 0
+
+
+#: One process's model while it diagnoses a folder's recordings (set by _folder_worker).
+_FOLDER_WORKER: dict = {}
+
+
+def _folder_worker(model) -> None:
+    _FOLDER_WORKER["model"] = model
+
+
+def _folder_row(task) -> tuple[dict, dict]:
+    """One manifest entry's row of ``verdicts.csv`` and its JSON object (report written)."""
+    from ..io import read_recording
+
+    args, entry, out = task
+    row = dict.fromkeys(VERDICT_COLUMNS)
+    row.update(file=entry.file, bearing=entry.bearing, rpm=entry.rpm, fs_hz=entry.fs_hz)
+    row.update(machine=entry.machine, time=entry.time)
+    if entry.baseline is not None:
+        row["baseline"] = entry.baseline.relative_to(Path(args.recording)).as_posix()
+    row["manifest_label"] = None if entry.label == "unknown" else entry.label
+    try:
+        variable = entry.variable or args.variable  # the manifest's, else --variable
+        x, meta = read_recording(entry.path, variable=variable, channel=args.channel)
+        baseline = baseline_fs = None
+        if entry.baseline is not None:
+            baseline, base_meta = read_recording(  # its own variable: found, or --variable
+                entry.baseline, variable=args.variable, channel=args.channel
+            )
+            baseline_fs = base_meta.get("fs_hz", entry.fs_hz)
+        diagnosis = _diagnose_one(
+            args,
+            x,
+            entry.fs_hz,
+            entry.rpm,
+            entry.bearing_or_geometry,
+            _FOLDER_WORKER.get("model"),
+            file=entry.file,
+            channel=str(variable or meta.get("variable") or args.channel or "first"),
+            source=str(entry.path),
+            unit=args.unit or meta.get("unit"),
+            baseline=baseline,
+            baseline_fs=baseline_fs,
+        )
+    except (ValueError, FileNotFoundError) as error:  # this recording only
+        row["error"] = str(error)
+        return row, {"file": entry.file, "error": str(error)}
+    top = diagnosis.candidates[0]
+    wav = diagnosis.waviness
+    row.update(
+        verdict=diagnosis.verdict,
+        confidence=diagnosis.confidence,
+        basis=diagnosis.basis,
+        margin_db=round(top["evidence_db"] - diagnosis.threshold_db, 2),
+        band_low_hz=diagnosis.band_hz[0],
+        band_high_hz=diagnosis.band_hz[1],
+        waviness_hint=None if not wav else f"{wav['surface']} race order ~{wav['order']}",
+        warnings=" | ".join(diagnosis.warnings) or None,
+    )
+    for c in diagnosis.candidates:
+        row[f"{c['fault'].replace(' ', '_')}_margin_db"] = round(
+            c["evidence_db"] - diagnosis.threshold_db, 2
+        )
+    bands = diagnosis.velocity_bands_mm_s or diagnosis.velocity_bands or {}
+    for band, value in bands.items():
+        row[f"velocity_{band}"] = value
+    row["velocity_unit"] = "mm/s" if diagnosis.velocity_bands_mm_s else "signal unit x s"
+    for band, change in (diagnosis.baseline or {}).get("velocity_bands_change_db", {}).items():
+        row[f"velocity_{band}_change_db"] = change
+    if out is not None:
+        _write_report(diagnosis, out / _report_folder(entry.file), x, entry.fs_hz)
+    return row, diagnosis.to_dict()
 
 
 def _index_text(table, trends: list[Path], out: Path) -> str:

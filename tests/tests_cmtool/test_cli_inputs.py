@@ -511,6 +511,9 @@ def test_a_folder_with_a_manifest_is_diagnosed_recording_by_recording(
     assert [d["verdict"] for d in batch][:2] == ["outer race", "healthy"]
     assert batch[0]["candidates"] == alone["candidates"]
     assert batch[0]["assumptions"]["file"] == "pump/de.npy"
+    # two processes give the same answers, in the manifest's order
+    assert main(["diagnose", str(folder), "--json", "--allow-clipping", "--workers", "2"]) == 0
+    assert json.loads(capsys.readouterr().out) == batch
     # the manifest gives rate, speed and bearing: the flags that would contradict it are refused
     for flag in (["--rpm", "1797"], ["--bearing", "6205"], ["--fs", "12000"]):
         assert main(["diagnose", str(folder), *flag]) == 2
