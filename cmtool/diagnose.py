@@ -131,6 +131,7 @@ class Diagnosis:
     probabilities: dict | None = None
     velocity_bands: dict | None = None
     velocity_bands_mm_s: dict | None = None
+    overall_velocity: dict | None = None
     baseline: dict | None = None
     severity: dict | None = None
 
@@ -159,6 +160,8 @@ class Diagnosis:
             out["velocity_bands_iso15242"] = self.velocity_bands
         if self.velocity_bands_mm_s is not None:
             out["velocity_bands_iso15242_mm_s"] = self.velocity_bands_mm_s
+        if self.overall_velocity is not None:
+            out["overall_velocity_iso10816"] = self.overall_velocity
         if self.baseline is not None:
             out["baseline"] = self.baseline
         if self.severity is not None:
@@ -519,6 +522,7 @@ def diagnose_signal(
     if len(diagnosis.velocity_bands) < len(bands):  # a band starting above fs/2 has no value
         missing = [k for k in bands if k not in diagnosis.velocity_bands]
         diagnosis.assumptions["velocity_bands"] = f"above fs/2, left out: {', '.join(missing)}"
+    diagnosis.overall_velocity = overall_velocity(x, fs, rpm, scale)
     if scale is not None:
         diagnosis.assumptions["unit"] = unit
         diagnosis.velocity_bands_mm_s = {
@@ -623,6 +627,30 @@ CANONICAL = {
     "outer race": "outer race",
     "ball": "ball",
 }
+
+
+def overall_velocity(x: np.ndarray, fs: float, rpm: float, scale: float | None) -> dict | None:
+    """The machine's overall vibration: velocity RMS over ISO 10816-3's broad band.
+
+    10-1000 Hz, or 2-1000 Hz for shafts at 600 rpm or less (the band the standard's zones are
+    set in; the zones themselves depend on the machine's class and foundation, which a record
+    does not give). ``scale``: the signal's unit in m/s^2 (None: unknown). None where fs/2 lies
+    below the band's start.
+
+    Returns
+    -------
+    dict or None
+        ``band_hz``, ``rms`` [signal unit x s] and ``rms_mm_s`` [mm/s] (None: unit unknown).
+    """
+    band = (2.0 if rpm <= 600.0 else 10.0, 1000.0)
+    rms = features.velocity_band_rms(x, fs, {"overall": band})["overall"]
+    if not math.isfinite(rms):
+        return None
+    return {
+        "band_hz": [band[0], min(band[1], fs / 2)],
+        "rms": rms,
+        "rms_mm_s": None if scale is None else 1e3 * scale * rms,
+    }
 
 
 #: Acceleration units a signal may be given in, and their size [m/s^2].

@@ -187,7 +187,8 @@ def plot_trend(
         Fault -> its weighed evidence minus the detection threshold [dB] per recording
         (above 0: detected).
     bands : mapping of str to sequence of float
-        ISO 15242 band -> velocity RMS per recording [``band_unit``].
+        ISO 15242 band (and ``overall``, ISO 10816-3's broad band) -> velocity RMS per
+        recording [``band_unit``].
     path : str or Path
         PNG to write.
     title, band_unit : str
@@ -214,7 +215,8 @@ def plot_trend(
     top.legend(loc="best", fontsize=8)
     top.grid(alpha=0.3)
     for band, values in bands.items():
-        bottom.plot(times, values, marker="s", label=f"{band} (ISO 15242)")
+        name = "overall (ISO 10816-3)" if band == "overall" else f"{band} (ISO 15242)"
+        bottom.plot(times, values, marker="s", label=name, ls="--" if band == "overall" else "-")
     bottom.set_yscale("log")
     bottom.set_ylabel(f"velocity RMS [{band_unit}]")
     bottom.set_xlabel("time")

@@ -74,7 +74,8 @@ def write_report(
         ]
     if diagnosis.velocity_bands:
         lines += [
-            "## Velocity bands (ISO 15242: 50-300, 300-1800, 1800-10000 Hz), RMS [signal unit x s]",
+            "## Velocity (ISO 15242 bands: 50-300, 300-1800, 1800-10000 Hz; ISO 10816-3 "
+            "overall), RMS [signal unit x s]",
             "",
             "| band | RMS | RMS [mm/s] | over baseline [dB] |",
             "|---|---|---|---|",
@@ -84,6 +85,12 @@ def write_report(
         for name, value in diagnosis.velocity_bands.items():
             mm_s = f"{in_mm_s[name]:.4g}" if name in in_mm_s else "- (unit not known: --unit)"
             lines.append(f"| {name} | {value:.4g} | {mm_s} | {change.get(name, '-')} |")
+        overall = diagnosis.overall_velocity
+        if overall:
+            low, high = overall["band_hz"]
+            mm_s = "-" if overall["rms_mm_s"] is None else f"{overall['rms_mm_s']:.4g}"
+            name = f"overall (ISO 10816-3, {low:g}-{high:g} Hz)"
+            lines.append(f"| {name} | {overall['rms']:.4g} | {mm_s} | - |")
         lines.append("")
     if diagnosis.severity:
         lines += ["## Fault size", "", diagnosis.severity["reason"], ""]

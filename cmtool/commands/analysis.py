@@ -194,6 +194,15 @@ def _print_diagnosis(diagnosis) -> None:
     )
     unit = f"mm/s, the signal in {a['unit']}" if in_mm_s else "signal unit x s: --unit for mm/s"
     print(f"  velocity RMS (ISO 15242 bands, {unit}): {bands}")
+    overall = diagnosis.overall_velocity
+    if overall:
+        low, high = overall["band_hz"]
+        value = (
+            f"{overall['rms_mm_s']:.3g} mm/s"
+            if overall["rms_mm_s"] is not None
+            else f"{overall['rms']:.3g} (signal unit x s)"
+        )
+        print(f"  overall velocity RMS (ISO 10816-3 band, {low:g}-{high:g} Hz): {value}")
     if diagnosis.waviness:
         w = diagnosis.waviness
         over = w.get("over_baseline_db")
@@ -230,6 +239,7 @@ VERDICT_COLUMNS = (
     "velocity_low",
     "velocity_medium",
     "velocity_high",
+    "velocity_overall",
     "velocity_unit",
     "velocity_low_change_db",
     "velocity_medium_change_db",
@@ -394,6 +404,8 @@ def _folder_row(task) -> tuple[dict, dict]:
     bands = diagnosis.velocity_bands_mm_s or diagnosis.velocity_bands or {}
     for band, value in bands.items():
         row[f"velocity_{band}"] = value
+    overall = diagnosis.overall_velocity or {}
+    row["velocity_overall"] = overall.get("rms_mm_s" if diagnosis.velocity_bands_mm_s else "rms")
     row["velocity_unit"] = "mm/s" if diagnosis.velocity_bands_mm_s else "signal unit x s"
     for band, change in (diagnosis.baseline or {}).get("velocity_bands_change_db", {}).items():
         row[f"velocity_{band}_change_db"] = change
@@ -454,7 +466,7 @@ def _plot_trends(table, out: Path) -> list[Path]:
             plot_trend(
                 pd.to_datetime(part["time"]).tolist(),
                 {f: part[f"{f.replace(' ', '_')}_margin_db"].tolist() for f in faults},
-                {b: part[f"velocity_{b}"].tolist() for b in ("low", "medium", "high")},
+                {b: part[f"velocity_{b}"].tolist() for b in ("low", "medium", "high", "overall")},
                 out / name,
                 title=f"trend{' of ' + machine if machine else ''}: {len(part)} recordings",
                 band_unit=str(part["velocity_unit"].iloc[0]),

@@ -537,6 +537,13 @@ def test_velocity_bands_in_mm_s_when_the_recordings_unit_is_known(tmp_path, caps
         in_g.assumptions["unit"] == "g"
         and "unit" not in diagnose_signal(tone, fs, 1797.0, "6205", waviness=False).assumptions
     )
+    # the overall vibration, ISO 10816-3's 10-1000 Hz (2-1000 Hz at 600 rpm or less)
+    slow = 2 * np.pi * 100 * np.cos(2 * np.pi * 100 * t)  # velocity sin(2 pi 100 t) [m/s]
+    for rpm, band in ((1797.0, [10.0, 1000.0]), (600.0, [2.0, 1000.0])):
+        overall = diagnose_signal(slow, fs, rpm, "6205", unit="m/s^2", waviness=False)
+        assert overall.overall_velocity["band_hz"] == band
+        assert overall.overall_velocity["rms_mm_s"] == pytest.approx(1e3 / np.sqrt(2), rel=2e-3)
+    assert si.overall_velocity["rms_mm_s"] < 1.0  # the 1 kHz tone lies outside it
     with pytest.raises(ValueError, match="unit = 'mm' is not one of g, m/s"):
         diagnose_signal(tone, fs, 1797.0, "6205", unit="mm")
     # a CWRU-layout file says g: the command line gives mm/s without being told
