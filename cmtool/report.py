@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from .diagnose import Diagnosis, explained_lines
+from .io import atomic_write
 
 __all__ = ["write_report"]
 
@@ -129,6 +130,8 @@ def write_report(
     lines += [f"- {k}: {v}" for k, v in diagnosis.frequencies.items()]
     lines += ["", "## Plots", ""] + [f"![{p.stem}]({p.name})" for p in paths]
     report = out / "report.md"
-    report.write_text("\n".join(lines) + "\n")
-    (out / "diagnosis.json").write_text(json.dumps(diagnosis.to_dict(), indent=2))
+    text = "\n".join(lines) + "\n"
+    atomic_write(report, lambda tmp: tmp.write_text(text))
+    data = json.dumps(diagnosis.to_dict(), indent=2)
+    atomic_write(out / "diagnosis.json", lambda tmp: tmp.write_text(data))
     return report

@@ -6,6 +6,7 @@ import argparse
 import json
 import logging
 import math
+import sys
 from pathlib import Path
 
 from generators import (
@@ -458,7 +459,14 @@ def _plot_trends(table, out: Path) -> list[Path]:
     groups = list(dated.groupby("machine", sort=True))
     for machine, part in groups:
         part = part.sort_values("time")
-        if len(part) < 2 or part["velocity_unit"].nunique() > 1:
+        if len(part) < 2:
+            continue
+        if part["velocity_unit"].nunique() > 1:
+            print(
+                f"no trend of {machine or 'the recordings'}: their velocity units differ "
+                "(give --unit)",
+                file=sys.stderr,
+            )
             continue
         name = "trend.png" if len(groups) == 1 else f"trend_{_report_folder(machine)}.png"
         faults = ("outer race", "inner race", "ball")

@@ -636,3 +636,32 @@ def test_training_on_one_label_is_refused_before_any_feature(small_dataset):
     healthy = small_dataset[small_dataset["label"] == "healthy"]
     with pytest.raises(ValueError, match=r"have 1 label\(s\) \(healthy; .*needs at least two"):
         train(healthy, recipe=None)
+
+
+def test_a_machine_whose_recordings_mix_units_gets_no_trend_and_is_told(tmp_path, capsys):
+    """A CWRU-layout file (g) and a bare array (unit unknown) of one machine: no trend drawn
+    from mixed units, a line on stderr says so, and --unit makes them one."""
+    from scipy.io import savemat
+
+    folder = tmp_path / "route"
+    folder.mkdir()
+    x = np.random.default_rng(6).standard_normal(24000)
+    savemat(folder / "12k_Drive_End_A.mat", {"X100_DE_time": x[:, None]})
+    np.save(folder / "b.npy", x)
+    pd.DataFrame(
+        {
+            "file": ["12k_Drive_End_A.mat", "b.npy"],
+            "sampling_rate_hz": 12000,
+            "shaft_rpm": 1797,
+            "machine": "pump",
+            "time": ["2026-01-01", "2026-02-01"],
+        }
+    ).to_csv(folder / "MANIFEST.csv", index=False)
+    out = tmp_path / "out"
+    assert main(["diagnose", str(folder), "--report", str(out)]) == 0
+    assert "no trend of pump: their velocity units differ" in capsys.readouterr().err
+    assert not (out / "trend.png").exists()
+    assert main(["diagnose", str(folder), "--report", str(out), "--unit", "g"]) == 0
+    capsys.readouterr()
+    assert (out / "trend.png").is_file()
+    assert json.loads((out / "12k_Drive_End_A" / "diagnosis.json").read_text())["verdict"]
