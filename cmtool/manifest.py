@@ -7,8 +7,9 @@ folder), ``sampling_rate_hz``, ``shaft_rpm`` and, for a labelled benchmark,
 :func:`cmtool.io.geometry_from_spec` reads it), ``dataset`` (the rig: ``CWRU`` and ``MFPT``
 also name their bearing), ``channel_variable`` (the variable of a ``.mat``/``.npz`` file),
 and for a trend ``time`` (when the recording was taken: ISO 8601), ``machine`` (which
-machine or measurement point) and ``baseline`` (a healthy recording of the same machine,
-relative to the folder, that ``cmtool diagnose FOLDER`` compares the recording with). A row
+machine or measurement point), ``baseline`` (a healthy recording of the same machine,
+relative to the folder, that ``cmtool diagnose FOLDER`` compares the recording with) and
+``unit`` (the acceleration's unit, ``g`` or ``m/s^2``, for velocities in mm/s). A row
 that cannot be used is an error naming the manifest, its line, the column, the value and
 what is allowed, before any recording is read.
 """
@@ -23,7 +24,7 @@ import pandas as pd
 
 from generators import BEARINGS, BearingGeometry
 
-from .diagnose import CANONICAL
+from .diagnose import ACCELERATION_UNITS, CANONICAL
 from .io import RecordingError, geometry_from_spec
 
 __all__ = ["MANIFEST_BEARINGS", "ManifestEntry", "read_manifest"]
@@ -67,6 +68,8 @@ class ManifestEntry:
         A bearing not in the catalog, as the ``bearing`` column gave it.
     baseline : Path or None
         A healthy recording of the same machine (``baseline``).
+    unit : str or None
+        The recording's acceleration unit (``unit``: ``g`` or ``m/s^2``).
     """
 
     file: str
@@ -81,6 +84,7 @@ class ManifestEntry:
     machine: str | None = None
     geometry: BearingGeometry | None = None
     baseline: Path | None = None
+    unit: str | None = None
 
     @property
     def bearing_or_geometry(self) -> str | BearingGeometry:
@@ -201,6 +205,11 @@ def read_manifest(
         path = folder / file
         if not path.is_file():
             raise FileNotFoundError(f"{where}: {path}: no such file")
+        unit = _text(row.get("unit"))
+        if unit is not None and unit not in ACCELERATION_UNITS:
+            raise RecordingError(
+                f"{where}: unit = {unit!r} is not one of {', '.join(ACCELERATION_UNITS)}, or empty"
+            )
         baseline = _text(row.get("baseline"))
         if baseline is not None:
             baseline = folder / baseline
@@ -220,6 +229,7 @@ def read_manifest(
                 machine=_text(row.get("machine")),
                 geometry=geometry,
                 baseline=baseline,
+                unit=unit,
             )
         )
     return entries

@@ -379,7 +379,7 @@ def _folder_row(task) -> tuple[dict, dict]:
             file=entry.file,
             channel=str(variable or meta.get("variable") or args.channel or "first"),
             source=str(entry.path),
-            unit=args.unit or meta.get("unit"),
+            unit=entry.unit or args.unit or meta.get("unit"),  # the manifest's, --unit, the file's
             baseline=baseline,
             baseline_fs=baseline_fs,
         )

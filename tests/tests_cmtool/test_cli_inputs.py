@@ -664,4 +664,20 @@ def test_a_machine_whose_recordings_mix_units_gets_no_trend_and_is_told(tmp_path
     assert main(["diagnose", str(folder), "--report", str(out), "--unit", "g"]) == 0
     capsys.readouterr()
     assert (out / "trend.png").is_file()
+    # or the manifest says it, row by row
+    (out / "trend.png").unlink()
+    frame = pd.read_csv(folder / "MANIFEST.csv")
+    frame["unit"] = ["", "m/s^2"]
+    frame.to_csv(folder / "MANIFEST.csv", index=False)
+    assert main(["diagnose", str(folder), "--report", str(out)]) == 0
+    capsys.readouterr()
+    table = pd.read_csv(out / "verdicts.csv")
+    assert (table["velocity_unit"] == "mm/s").all() and (out / "trend.png").is_file()
+    # the same samples read as g and as m/s^2: 9.81 times apart
+    low = table["velocity_low"].to_numpy()
+    assert low[0] / low[1] == pytest.approx(9.80665, rel=1e-9)
+    frame["unit"] = ["", "mm"]
+    frame.to_csv(folder / "MANIFEST.csv", index=False)
+    assert main(["diagnose", str(folder)]) == 2
+    assert "line 3 (b.npy): unit = 'mm' is not one of g" in _one_line_error(capsys)
     assert json.loads((out / "12k_Drive_End_A" / "diagnosis.json").read_text())["verdict"]
