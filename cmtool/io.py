@@ -261,11 +261,45 @@ class RecordingError(ValueError):
 GEOMETRY_USAGE = "NAME:balls=Z:ball_diameter=d:pitch_diameter=D[:contact_angle_deg=A]"
 
 _GEOMETRY_KEYS = {
-    "balls": "ball_count",
-    "ball_diameter": "ball_diameter",
-    "pitch_diameter": "pitch_diameter",
-    "contact_angle_deg": "contact_angle",
+    "balls": ("ball_count", int),
+    "ball_diameter": ("ball_diameter", float),
+    "pitch_diameter": ("pitch_diameter", float),
+    "contact_angle_deg": ("contact_angle", float),
 }
+
+
+def split_spec(
+    spec: str,
+    option: str,
+    usage: str,
+    keys: dict[str, tuple[str, object]],
+    required: tuple,
+    error: type[Exception] = ValueError,
+) -> tuple[str, dict[str, object]]:
+    """Split ``head:key=value:...``; ``keys`` maps a key to (field name, converter).
+
+    Every message names ``option`` and the spec; ``error`` is the exception raised (the
+    command line's own, or :class:`generators.ParameterError`).
+    """
+    parts = spec.split(":")
+    head = parts[0].strip()
+    fields: dict[str, object] = {}
+    for item in parts[1:]:
+        if "=" not in item:
+            raise error(f"{option} {spec!r}: {item!r} is not key=value (expected {usage})")
+        key, value = (s.strip() for s in item.split("=", 1))
+        if key not in keys:
+            raise error(f"{option} {spec!r}: unknown key {key!r} (allowed: {', '.join(keys)})")
+        name, convert = keys[key]
+        try:
+            fields[name] = convert(value)  # type: ignore[operator]
+        except ValueError as err:
+            kind = "an integer" if convert is int else "a number"
+            raise error(f"{option} {spec!r}: {key}={value!r} is not {kind}") from err
+    for key in required:
+        if keys[key][0] not in fields:
+            raise error(f"{option} {spec!r}: {key}= is missing")
+    return head, fields
 
 
 def geometry_from_spec(spec: str, where: str = "--geometry"):
@@ -302,26 +336,17 @@ def geometry_from_spec(spec: str, where: str = "--geometry"):
 
     from generators import BearingGeometry, ParameterError
 
-    name, *items = (part.strip() for part in str(spec).split(":"))
+    name, fields = split_spec(
+        str(spec),
+        where,
+        GEOMETRY_USAGE,
+        _GEOMETRY_KEYS,
+        ("balls", "ball_diameter", "pitch_diameter"),
+        ParameterError,
+    )
     if not name:
         raise ParameterError(f"{where} {spec!r}: the designation is missing ({GEOMETRY_USAGE})")
-    fields: dict[str, float] = {}
-    for item in items:
-        key, equals, value = (part.strip() for part in item.partition("="))
-        if key not in _GEOMETRY_KEYS or not equals:
-            raise ParameterError(
-                f"{where} {spec!r}: {item!r} is not one of "
-                f"{', '.join(k + '=' for k in _GEOMETRY_KEYS)} ({GEOMETRY_USAGE})"
-            )
-        try:
-            fields[_GEOMETRY_KEYS[key]] = int(value) if key == "balls" else float(value)
-        except ValueError:
-            kind = "an integer" if key == "balls" else "a number"
-            raise ParameterError(f"{where} {spec!r}: {key}={value!r} is not {kind}") from None
-    for key in ("balls", "ball_diameter", "pitch_diameter"):
-        if _GEOMETRY_KEYS[key] not in fields:
-            raise ParameterError(f"{where} {spec!r}: {key}= is missing ({GEOMETRY_USAGE})")
-    degrees = fields.pop("contact_angle", 0.0)
+    degrees = float(fields.pop("contact_angle", 0.0))  # type: ignore[arg-type]
     if not 0.0 <= degrees <= 45.0:
         raise ParameterError(
             f"{where} {spec!r}: contact_angle_deg = {degrees:g} deg is outside the allowed "

@@ -38,26 +38,10 @@ def _optional_float(value: str) -> float | None:
 def _parse_spec(
     spec: str, option: str, usage: str, keys: dict[str, tuple[str, object]], required: tuple
 ) -> tuple[str, dict[str, object]]:
-    """Split ``surface:key=value:...``; ``keys`` maps a key to (field name, converter)."""
-    parts = spec.split(":")
-    surface = parts[0].strip()
-    fields: dict[str, object] = {}
-    for item in parts[1:]:
-        if "=" not in item:
-            raise CliError(f"{option} {spec!r}: {item!r} is not key=value (expected {usage})")
-        key, value = (s.strip() for s in item.split("=", 1))
-        if key not in keys:
-            raise CliError(f"{option} {spec!r}: unknown key {key!r} (allowed: {', '.join(keys)})")
-        name, convert = keys[key]
-        try:
-            fields[name] = convert(value)  # type: ignore[operator]
-        except ValueError as err:
-            kind = "an integer" if convert is int else "a number"
-            raise CliError(f"{option} {spec!r}: {key}={value!r} is not {kind}") from err
-    for key in required:
-        if keys[key][0] not in fields:
-            raise CliError(f"{option} {spec!r}: {key}= is missing")
-    return surface, fields
+    """Split ``surface:key=value:...`` (:func:`cmtool.io.split_spec`, errors as CliError)."""
+    from ..io import split_spec
+
+    return split_spec(spec, option, usage, keys, required, CliError)
 
 
 def parse_waviness(spec: str) -> Waviness:
