@@ -517,12 +517,14 @@ def diagnose_signal(
             "randomness": RANDOMNESS_ASSUMED,
         },
     )
-    bands = features.velocity_band_rms(x, fs)
+    # the ISO 15242 bands and the overall band from one spectrum of the record
+    broad = overall_band(rpm)
+    bands = features.velocity_band_rms(x, fs, {**features.ISO_15242_BANDS, "overall": broad})
+    diagnosis.overall_velocity = overall_velocity(bands.pop("overall"), broad, fs, scale)
     diagnosis.velocity_bands = {k: float(v) for k, v in bands.items() if math.isfinite(v)}
     if len(diagnosis.velocity_bands) < len(bands):  # a band starting above fs/2 has no value
         missing = [k for k in bands if k not in diagnosis.velocity_bands]
         diagnosis.assumptions["velocity_bands"] = f"above fs/2, left out: {', '.join(missing)}"
-    diagnosis.overall_velocity = overall_velocity(x, fs, rpm, scale)
     if scale is not None:
         diagnosis.assumptions["unit"] = unit
         diagnosis.velocity_bands_mm_s = {
@@ -629,21 +631,29 @@ CANONICAL = {
 }
 
 
-def overall_velocity(x: np.ndarray, fs: float, rpm: float, scale: float | None) -> dict | None:
-    """The machine's overall vibration: velocity RMS over ISO 10816-3's broad band.
+def overall_band(rpm: float) -> tuple[float, float]:
+    """ISO 10816-3's broad band [Hz]: 10-1000 Hz, or 2-1000 Hz for shafts at 600 rpm or less.
 
-    10-1000 Hz, or 2-1000 Hz for shafts at 600 rpm or less (the band the standard's zones are
-    set in; the zones themselves depend on the machine's class and foundation, which a record
-    does not give). ``scale``: the signal's unit in m/s^2 (None: unknown). None where fs/2 lies
-    below the band's start.
+    The band the standard's zones are set in; the zones themselves depend on the machine's
+    class and foundation, which a record does not give.
+    """
+    return (2.0 if rpm <= 600.0 else 10.0, 1000.0)
+
+
+def overall_velocity(
+    rms: float, band: tuple[float, float], fs: float, scale: float | None
+) -> dict | None:
+    """The machine's overall vibration: the velocity RMS over :func:`overall_band`.
+
+    ``rms`` [signal unit x s] over ``band`` [Hz]; ``scale``: the signal's unit in m/s^2
+    (None: unknown).
 
     Returns
     -------
     dict or None
-        ``band_hz``, ``rms`` [signal unit x s] and ``rms_mm_s`` [mm/s] (None: unit unknown).
+        ``band_hz``, ``rms`` [signal unit x s] and ``rms_mm_s`` [mm/s] (None: unit unknown);
+        None where fs/2 lies below the band's start.
     """
-    band = (2.0 if rpm <= 600.0 else 10.0, 1000.0)
-    rms = features.velocity_band_rms(x, fs, {"overall": band})["overall"]
     if not math.isfinite(rms):
         return None
     return {
