@@ -147,7 +147,10 @@ def _diagnose_one(
             f"given: {bearing.ball_count} balls, ball diameter {bearing.ball_diameter:g} m, "
             f"pitch diameter {bearing.pitch_diameter:g} m, contact angle "
             f"{math.degrees(bearing.contact_angle):g} deg (the healthy model for waviness "
-            "takes groove conformity 0.52, clearance 10 um, steel)"
+            f"takes groove conformity {bearing.inner_groove_curvature:g} inner and "
+            f"{bearing.outer_groove_curvature:g} outer, radial clearance "
+            f"{bearing.radial_internal_clearance * 1e6:g} um, {bearing.ball_material.name} balls "
+            f"and {bearing.ring_material.name} rings)"
         )
     return diagnosis
 

@@ -429,6 +429,9 @@ def test_a_bearing_not_in_the_catalog_is_given_by_its_geometry(outer_race_csv, c
     assert by_geometry["candidates"] == by_name["candidates"]
     assert by_geometry["assumptions"]["bearing"] == "my6205"
     assert "given: 9 balls" in by_geometry["assumptions"]["bearing_geometry"]
+    # the rest is BearingGeometry's defaults, stated from the object the waviness model gets
+    stated = by_geometry["assumptions"]["bearing_geometry"]
+    assert "radial clearance 10 um, AISI 52100 balls" in stated
     # another bearing moves the rates the lines are searched at
     assert (
         main([*base, "--geometry", "6310:balls=8:ball_diameter=20.64e-3:pitch_diameter=77.5e-3"])
