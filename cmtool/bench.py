@@ -640,7 +640,7 @@ def summarise(results: pd.DataFrame) -> dict[str, pd.DataFrame]:
 
 def plot_roc(curves: dict, path: Path, *, title: str = "") -> Path:
     """ROC curves, one panel per fault, one line per detector (log false-alarm axis)."""
-    from .plots import plt
+    from .plots import plt, save_figure
 
     fig, axes = plt.subplots(1, len(FAULT_CLASSES), figsize=(13, 4.2), dpi=110, sharey=True)
     detectors = list(dict.fromkeys(d for d, _ in curves))
@@ -663,9 +663,7 @@ def plot_roc(curves: dict, path: Path, *, title: str = "") -> Path:
     if title:
         fig.suptitle(title)
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
 
 
 def plot_pd_vs_snr(table: pd.DataFrame, path: Path, *, pfa: float = 1e-2, title: str = "") -> Path:
@@ -674,7 +672,7 @@ def plot_pd_vs_snr(table: pd.DataFrame, path: Path, *, pfa: float = 1e-2, title:
     One panel for every fault together, and one per fault when ``table`` has a ``fault``
     column (rows with ``fault`` = ``all`` make the first panel).
     """
-    from .plots import plt
+    from .plots import plt, save_figure
 
     faults = list(dict.fromkeys(table["fault"])) if "fault" in table else ["all"]
     fig, axes = plt.subplots(
@@ -697,9 +695,7 @@ def plot_pd_vs_snr(table: pd.DataFrame, path: Path, *, pfa: float = 1e-2, title:
     axes[0][-1].legend(fontsize=7, loc="upper left")
     fig.suptitle(title or "detection against SNR")
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
 
 
 def _markdown(frame: pd.DataFrame, digits: int = 3) -> str:

@@ -271,7 +271,7 @@ def plot_fidelity(
     table: pd.DataFrame, path: str | Path, *, error_bound: float | None = None
 ) -> Path:
     """Runtime against band amplitude error, one marker per setting, Pareto front joined."""
-    from .plots import plt
+    from .plots import plt, save_figure
 
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -307,6 +307,4 @@ def plot_fidelity(
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7, ncol=2)
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)

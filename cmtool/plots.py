@@ -16,6 +16,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 __all__ = [
+    "save_figure",
     "plot_spectrum",
     "plot_kurtogram",
     "plot_confusion",
@@ -32,6 +33,37 @@ _COLORS = {
     "shaft": "black",
     "wpf": "tab:purple",
 }
+
+
+def save_figure(fig, path: Path | str, **savefig_kwargs) -> Path:
+    """Write a figure atomically (a temporary file renamed onto ``path``) and close it.
+
+    A reader (a report viewer, a dashboard polling the folder) never sees half a PNG, and an
+    interrupted run leaves the previous file, as with every other result cmtool writes
+    (:func:`cmtool.io.atomic_write`).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    path : path-like
+        Where to write it; the format is the suffix's (``.png``, ``.svg``, ``.pdf``).
+    **savefig_kwargs
+        Passed to ``Figure.savefig`` (``dpi`` for example).
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    from .io import atomic_write
+
+    path = Path(path)
+    file_format = path.suffix.lstrip(".").lower() or "png"
+    try:
+        atomic_write(path, lambda tmp: fig.savefig(tmp, format=file_format, **savefig_kwargs))
+    finally:
+        plt.close(fig)
+    return path
 
 
 def plot_spectrum(
@@ -120,9 +152,7 @@ def plot_spectrum(
     if markers:
         ax.legend(loc="upper right", fontsize=8)
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
 
 
 def plot_kurtogram(result, path: str | Path, *, title: str = "kurtogram") -> Path:
@@ -163,9 +193,7 @@ def plot_kurtogram(result, path: str | Path, *, title: str = "kurtogram") -> Pat
     ax.set_title(f"{title}: band {low:.0f}-{high:.0f} Hz, SK = {result.kurtosis:.2f}")
     fig.colorbar(im, ax=ax, label="spectral kurtosis")
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
 
 
 def plot_trend(
@@ -224,9 +252,7 @@ def plot_trend(
     bottom.grid(alpha=0.3)
     fig.autofmt_xdate()
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
 
 
 def plot_confusion(
@@ -260,9 +286,7 @@ def plot_confusion(
     ax.set_ylabel("true")
     ax.set_title(title)
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
 
 
 def waviness_markers(result, defects) -> dict[str, float]:

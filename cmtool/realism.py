@@ -307,10 +307,7 @@ def plot_realism(result: dict[str, Any], path: str | Path, *, top: int = 12) -> 
     The features' bars are coloured by which way the measured segments lie
     (:func:`feature_difference`: measured higher, lower, or alike).
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from .plots import plt, save_figure
 
     path = Path(path)
     fig, (roc, bars) = plt.subplots(1, 2, figsize=(12, 4.8), width_ratios=(1, 1.4))
@@ -333,7 +330,4 @@ def plot_realism(result: dict[str, Any], path: str | Path, *, top: int = 12) -> 
     bars.set(xlabel="importance (mean decrease in impurity)", title="what gives it away")
     bars.tick_params(axis="y", labelsize=8)
     fig.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path, dpi=110)

@@ -40,3 +40,50 @@ def test_no_private_name_imported_from_another_module():
                 if alias.name.startswith("_") and not alias.name.startswith("__"):
                     found.append(f"{path.relative_to(REPO)}: {node.module}.{alias.name}")
     assert not found, found
+
+
+def test_figures_are_written_through_the_atomic_writer():
+    """Every PNG cmtool writes goes through ``cmtool.plots.save_figure`` (a temporary file
+    renamed onto the result), like every other file it writes: no direct ``savefig``."""
+    direct = []
+    for path in _modules():
+        for node in ast.walk(ast.parse(path.read_text())):
+            if (
+                isinstance(node, ast.Call)
+                and isinstance(node.func, ast.Attribute)
+                and node.func.attr == "savefig"
+                and path.name != "plots.py"
+            ):
+                direct.append(f"{path.relative_to(REPO)}:{node.lineno}")
+    assert not direct, direct
+
+
+def test_save_figure_keeps_the_previous_file_when_writing_fails(tmp_path):
+    from cmtool.plots import plt, save_figure
+
+    path = tmp_path / "spectrum.png"
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [1, 0])
+    assert save_figure(fig, path) == path
+    first = path.read_bytes()
+    assert first.startswith(b"\x89PNG")
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0, 1])
+
+    def fail(target, *args, **kwargs):  # half a file written, then the disk is full
+        with open(target, "wb") as half:
+            half.write(first[:100])
+        raise OSError("disk full")
+
+    fig.savefig = fail
+    try:
+        save_figure(fig, path)
+    except OSError:
+        pass
+    else:
+        raise AssertionError("the failure was swallowed")
+    assert path.read_bytes() == first
+    assert [p.name for p in tmp_path.iterdir()] == ["spectrum.png"]
+    assert not plt.get_fignums()  # both figures closed
+    svg = save_figure(plt.figure(), tmp_path / "empty.svg")
+    assert b"<svg" in svg.read_bytes()[:400]
