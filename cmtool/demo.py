@@ -118,7 +118,7 @@ def run_demo(out: Path, *, recipe: Path = SMALL_RECIPE, workers: int = 1) -> int
     )
     x = fresh["housing_acceleration_y"]
     x = x + np.random.default_rng(1).normal(0, 10 ** (-10 / 20) * x.std(), x.size)
-    diagnosis = diagnose_signal(x, fresh.fs, 2100.0, geometry, model=bundle)
+    diagnosis = diagnose_signal(x, fresh.fs, 2100.0, geometry, model=bundle, unit="m/s^2")
     report = write_report(
         diagnosis,
         out / "diagnosis_simulated",
@@ -146,7 +146,7 @@ def run_demo(out: Path, *, recipe: Path = SMALL_RECIPE, workers: int = 1) -> int
     )
     x = pit["housing_acceleration_y"]
     x = x + np.random.default_rng(2).normal(0, 10 ** (-10 / 20) * x.std(), x.size)
-    diagnosis = diagnose_signal(x, pit.fs, 1797.0, geometry)
+    diagnosis = diagnose_signal(x, pit.fs, 1797.0, geometry, unit="m/s^2")
     report = write_report(
         diagnosis,
         out / "diagnosis_local_defect",
@@ -161,7 +161,7 @@ def run_demo(out: Path, *, recipe: Path = SMALL_RECIPE, workers: int = 1) -> int
     summary.append(("report", report))
     if SHARED_RECORDING.is_file():
         x, meta = read_recording(SHARED_RECORDING)
-        diagnosis = diagnose_signal(x, 12000.0, meta["rpm"], geometry)
+        diagnosis = diagnose_signal(x, 12000.0, meta["rpm"], geometry, unit=meta.get("unit"))
         report = write_report(
             diagnosis, out / "diagnosis_cwru_ir007", x=x, fs=12000.0, title=SHARED_RECORDING.name
         )

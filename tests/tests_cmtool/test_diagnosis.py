@@ -428,6 +428,11 @@ def test_demo_runs_end_to_end(tmp_path, capsys):
     assert (tmp_path / "diagnosis_local_defect" / "report.md").exists()
     # the simulated inner-race pit is called inner race by the rule-based envelope detector
     assert "inner-race pit 0.18 mm: rule-based verdict inner race" in out
+    # the simulations are in m/s^2: their velocity bands and overall vibration read in mm/s
+    for name in ("diagnosis_simulated", "diagnosis_local_defect"):
+        report = json.loads((tmp_path / name / "diagnosis.json").read_text())
+        assert set(report["velocity_bands_iso15242_mm_s"]) == {"low", "medium", "high"}
+        assert report["overall_velocity_iso10816"]["rms_mm_s"] > 0
 
 
 def test_simulated_healthy_bearings_are_healthy_and_slipping_pits_are_found(small):
