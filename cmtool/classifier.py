@@ -21,6 +21,7 @@ from __future__ import annotations
 import copy
 import hashlib
 import json
+import math
 import re
 import zipfile
 from collections.abc import Callable
@@ -535,6 +536,12 @@ def train(
         ``pooled_calibration`` (:func:`pooled_calibration`) and ``class_kinds``
         (:func:`class_kinds`).
     """
+    if min_fault_snr_db is not None and not math.isfinite(min_fault_snr_db):
+        raise ValueError(f"min_fault_snr_db = {min_fault_snr_db!r} is not a finite number [dB]")
+    if isinstance(random_state, bool) or not 0 <= int(random_state) <= 2**32 - 1:
+        raise ValueError(
+            f"random_state = {random_state!r} is outside the allowed range [0, 2**32 - 1]"
+        )
     kept = visible_faults(frame, min_fault_snr_db)
     left_out = int((~kept).sum())
     faint = frame[~kept.to_numpy()].reset_index(drop=True)

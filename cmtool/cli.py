@@ -21,7 +21,7 @@ from generators import (
 
 from . import __version__
 from .commands.analysis import cmd_bench, cmd_demo, cmd_diagnose, cmd_realism
-from .commands.common import CliError
+from .commands.common import CliError, finite_float, positive_float, seed_int
 from .commands.data import cmd_dataset_info, cmd_evaluate, cmd_generate, cmd_train
 from .commands.simulate import (
     add_model_arguments,
@@ -122,7 +122,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--levels", default="shaft,shaft+housing,full")
     p.add_argument("--steps", default=None, help="comma-separated RK4 steps [s]")
     p.add_argument("--rtols", default=None, help="comma-separated DOPRI5 tolerances")
-    p.add_argument("--f-max", type=float, default=5000.0, help="spectrum error band [Hz]")
+    p.add_argument("--f-max", type=positive_float, default=5000.0, help="spectrum error band [Hz]")
     p.add_argument(
         "--error-bound",
         type=float,
@@ -160,7 +160,12 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("train", help="train a classifier on a dataset")
     p.add_argument("dataset", help="dataset folder (cmtool generate)")
     p.add_argument("--out", required=True, help="model file (skops archive, e.g. model.skops)")
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument(
+        "--seed",
+        type=seed_int,
+        default=0,
+        help="seed of the classifiers (the same seed, the same model)",
+    )
     p.add_argument(
         "--feature-set",
         default="evidence+scale-free",
@@ -172,7 +177,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--min-fault-snr",
-        type=float,
+        type=finite_float,
         default=-10.0,
         metavar="DB",
         help="leave out faulty signals whose fault SNR is below DB (nothing in them shows the "

@@ -24,6 +24,7 @@ from generators import (
     BearingGeometry,
     LocalizedDefect,
     OperatingCondition,
+    ParameterError,
     Rig,
     Scene,
     SimulationDivergedError,
@@ -171,6 +172,11 @@ def fidelity_study(
     rig = rig or Rig()
     settings = settings or SimulationSettings(fs=25600.0, duration=1.0, settle_time=0.2)
     settings = dataclasses.replace(settings, channels=(CHANNEL,))
+    if not 0.0 < f_max <= settings.fs / 2.0:  # NaN fails too
+        raise ParameterError(
+            f"f_max = {f_max:g} Hz is outside the allowed range (0, {settings.fs / 2.0:g}] Hz "
+            "(up to half the sample rate)"
+        )
     defects = tuple(defects)
     ref = simulate(
         geometry,

@@ -1,8 +1,10 @@
-"""What every subcommand shares: the user-facing error and the progress bar."""
+"""What every subcommand shares: the user-facing error, option types and the progress bar."""
 
 from __future__ import annotations
 
+import argparse
 import logging
+import math
 import sys
 
 logger = logging.getLogger("cmtool")
@@ -10,6 +12,39 @@ logger = logging.getLogger("cmtool")
 
 class CliError(Exception):
     """A command-line input error (printed without a traceback, exit code 2)."""
+
+
+MAX_SEED = 2**32 - 1  # numpy's and scikit-learn's seeds
+
+
+def seed_int(text: str) -> int:
+    """An argparse type: a random seed, an integer in [0, 2**32 - 1]."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    if not 0 <= value <= MAX_SEED:
+        raise argparse.ArgumentTypeError(f"{value} is outside the allowed range [0, {MAX_SEED}]")
+    return value
+
+
+def finite_float(text: str) -> float:
+    """An argparse type: a finite number (no nan, no inf)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a finite number")
+    return value
+
+
+def positive_float(text: str) -> float:
+    """An argparse type: a finite number above 0."""
+    value = finite_float(text)
+    if value <= 0.0:
+        raise argparse.ArgumentTypeError(f"{value:g} is outside the allowed range (0, inf)")
+    return value
 
 
 def progress_bar(

@@ -26,7 +26,7 @@ from generators import (
 from generators.form import MAX_FORM_WAVINESS
 from generators.params import check_shaft_speed_rpm
 
-from .common import CliError, progress_bar
+from .common import CliError, progress_bar, seed_int
 
 logger = logging.getLogger("cmtool")
 
@@ -285,7 +285,7 @@ def add_model_arguments(p: argparse.ArgumentParser) -> None:
         default=None,
         help="comma-separated output channels (default all), e.g. housing_velocity_y",
     )
-    n.add_argument("--seed", type=int, default=None, help="seed for random waviness phases")
+    n.add_argument("--seed", type=seed_int, default=None, help="seed for random waviness phases")
 
 
 def _model_inputs(args: argparse.Namespace):
@@ -582,13 +582,28 @@ def cmd_frequencies(args: argparse.Namespace) -> int:
     return 0
 
 
+def _number_list(option: str, text: str | None) -> tuple[float, ...] | None:
+    """A comma-separated list of numbers, or None; an entry that is none is named."""
+    if not text:
+        return None
+    values = []
+    for item in text.split(","):
+        try:
+            values.append(float(item))
+        except ValueError:
+            raise CliError(
+                f"{option} {text!r}: {item.strip()!r} is not a number (comma-separated numbers)"
+            ) from None
+    return tuple(values)
+
+
 def cmd_fidelity(args: argparse.Namespace) -> int:
     """Run the speed/accuracy study and print, write and plot the table."""
     from ..fidelity import fidelity_study, plot_fidelity, recommend
 
     geometry, operating, defects, _, rig, settings = _model_inputs(args)
-    steps = tuple(float(v) for v in args.steps.split(",")) if args.steps else None
-    rtols = tuple(float(v) for v in args.rtols.split(",")) if args.rtols else None
+    steps = _number_list("--steps", args.steps)
+    rtols = _number_list("--rtols", args.rtols)
     levels = tuple(args.levels.split(","))
     kwargs = {}
     if steps is not None:

@@ -684,3 +684,49 @@ def test_a_machine_whose_recordings_mix_units_gets_no_trend_and_is_told(tmp_path
     assert main(["diagnose", str(folder)]) == 2
     assert "line 3 (b.npy): unit = 'mm' is not one of g" in _one_line_error(capsys)
     assert json.loads((out / "12k_Drive_End_A" / "diagnosis.json").read_text())["verdict"]
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["train", "DATA", "--out", "m.skops", "--seed", "-1"], "--seed: -1 is outside"),
+        (["train", "DATA", "--out", "m.skops", "--seed", "4294967296"], "[0, 4294967295]"),
+        (["train", "DATA", "--out", "m.skops", "--min-fault-snr", "nan"], "not a finite number"),
+        (["train", "DATA", "--out", "m.skops", "--min-fault-snr", "inf"], "not a finite number"),
+        (["simulate", "--seed", "-3"], "--seed: -3 is outside the allowed range"),
+        (["fidelity", "--f-max", "-5"], "--f-max: -5 is outside the allowed range (0, inf)"),
+        (["fidelity", "--f-max", "nan"], "--f-max: 'nan' is not a finite number"),
+    ],
+)
+def test_seeds_and_numbers_out_of_range_are_usage_errors(argv, message, capsys):
+    """Found by probing the command line: a negative seed failed in numpy or scikit-learn
+    (after the features) without naming --seed; --min-fault-snr nan or inf trained a model
+    filtering nothing or everything; fidelity ran with --f-max -5."""
+    with pytest.raises(SystemExit) as stop:
+        main(argv)
+    assert stop.value.code == 2
+    assert message in capsys.readouterr().err
+
+
+def test_fidelity_names_a_list_entry_that_is_no_number_and_f_max_above_nyquist(capsys):
+    assert main(["fidelity", "--levels", "shaft", "--steps", "1e-5,abc"]) == 2
+    assert "--steps '1e-5,abc': 'abc' is not a number" in _one_line_error(capsys)
+    from cmtool.fidelity import fidelity_study
+    from generators import OperatingCondition, ParameterError, SimulationSettings, bearing
+
+    with pytest.raises(ParameterError, match=r"f_max = 7000 Hz .* \(0, 6000\] Hz"):
+        fidelity_study(
+            bearing("6205"),
+            OperatingCondition.from_rpm(1800, 500.0),
+            settings=SimulationSettings(fs=12000.0, duration=0.05),
+            f_max=7000.0,
+        )
+
+
+def test_train_checks_its_seed_and_fault_snr_floor_before_any_feature(small_dataset):
+    from cmtool.classifier import train
+
+    with pytest.raises(ValueError, match=r"min_fault_snr_db = nan is not a finite number"):
+        train(small_dataset, recipe=None, min_fault_snr_db=float("nan"))
+    with pytest.raises(ValueError, match=r"random_state = -1 is outside the allowed range"):
+        train(small_dataset, recipe=None, random_state=-1)
