@@ -159,22 +159,47 @@ def load_callable(spec: str) -> Callable:
     return fn
 
 
-def _as_output(value: object, spec: str) -> DetectorOutput:
-    """A plug-in's return value as a DetectorOutput (the contract in the module docstring)."""
+def _as_output(value: object, spec: str, signal_id: object = None) -> DetectorOutput:
+    """A plug-in's return value as a DetectorOutput (the contract in the module docstring).
+
+    Raises
+    ------
+    ValueError
+        The value breaks the contract: a label not among healthy and the three faults, a
+        mapping without ``label`` or ``scores``, a score that is missing, not a number or not
+        finite; the message names the detector, the signal and what it returned.
+    """
     if isinstance(value, DetectorOutput):
         return value
+    where = f"detector {spec}" + ("" if signal_id is None else f" on signal {signal_id!r}")
+    labels = ("healthy", *FAULT_CLASSES)
+
+    def label_of(raw: object) -> str:
+        label = CANONICAL.get(str(raw).lower()) if isinstance(raw, str) else None
+        if label not in labels:
+            raise ValueError(
+                f"{where} returned the label {raw!r}; a label is one of {', '.join(labels)}"
+            )
+        return label
+
     if isinstance(value, Mapping):
         if "label" not in value or "scores" not in value:
-            raise ValueError(f"detector {spec}: a mapping must hold 'label' and 'scores'")
-        label = CANONICAL.get(str(value["label"]).lower(), str(value["label"]))
-        scores = {
-            CANONICAL.get(str(k).lower(), str(k)): float(v) for k, v in value["scores"].items()
-        }
+            raise ValueError(f"{where}: a mapping must hold 'label' and 'scores'")
+        label = label_of(value["label"])
+        scores = {}
+        for key, raw in dict(value["scores"]).items():
+            try:
+                score = float(raw)
+            except (TypeError, ValueError):
+                score = math.nan
+            if not math.isfinite(score):
+                raise ValueError(f"{where}: the score of {key!r} is {raw!r}, not a finite number")
+            scores[CANONICAL.get(str(key).lower(), str(key))] = score
         missing = [f for f in FAULT_CLASSES if f not in scores]
         if missing:
-            raise ValueError(f"detector {spec}: scores miss {', '.join(missing)}")
+            raise ValueError(f"{where}: scores miss {', '.join(missing)}")
         return DetectorOutput(label, scores)
-    label = CANONICAL.get(str(value).lower(), str(value))
+    label = label_of(value)
     return DetectorOutput(label, {f: float(f == label) for f in FAULT_CLASSES})
 
 
@@ -273,7 +298,14 @@ def _signal_rows(record) -> list[dict]:
     sid, x, fs, rpm, brg, label, meta = record
     outputs = builtin_outputs(x, fs, rpm, brg, model=_WORKER.get("model"))
     for spec, fn in _WORKER.get("detectors", {}).items():
-        outputs[spec] = _as_output(fn(x, fs, rpm, getattr(brg, "name", brg)), spec)
+        try:
+            value = fn(x, fs, rpm, getattr(brg, "name", brg))
+        except Exception as err:  # the user's code: say which detector and signal, go no further
+            raise ValueError(
+                f"detector {spec} failed on signal {sid!r}: {type(err).__name__}: {err} (call "
+                "it on that signal alone for the traceback)"
+            ) from err
+        outputs[spec] = _as_output(value, spec, sid)
     rows = []
     for name, output in outputs.items():
         row = {"id": sid, "detector": name, "label": label, "verdict": output.label, **meta}

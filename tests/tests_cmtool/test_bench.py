@@ -293,3 +293,42 @@ def test_a_dataset_that_turns_the_load_gives_detection_by_its_angle_from_the_sen
     pq.write_table(table, data / source.name)
     seen = [meta["load_from_sensor_deg"] for *_, meta in _records(data.parent, "6205", True)]
     assert seen == pytest.approx([90.0 if i % 2 else 0.0 for i in range(table.num_rows)])
+
+
+def _crashes(x, fs, rpm, bearing):
+    raise RuntimeError("boom")
+
+
+@pytest.mark.parametrize(
+    ("returned", "message"),
+    [
+        (42, "returned the label 42; a label is one of healthy, outer race, inner race, ball"),
+        ("cage", "returned the label 'cage'"),
+        ({"label": "ball", "scores": {"outer": 1.0, "inner": 0.0}}, "scores miss ball"),
+        (
+            {"label": "ball", "scores": {"outer": math.nan, "inner": 0.0, "ball": 1.0}},
+            "the score of 'outer' is nan, not a finite number",
+        ),
+        ({"label": "ball", "scores": {"outer": "high", "inner": 0, "ball": 1}}, "'high'"),
+        ({"verdict": "ball"}, "a mapping must hold 'label' and 'scores'"),
+    ],
+)
+def test_a_plugin_that_breaks_the_contract_is_named_with_its_signal(returned, message):
+    """Found by probing `cmtool bench --detector`: 42 or 'cage' were scored as a label of
+    their own, a NaN score failed in scikit-learn without naming the detector."""
+
+    def plugin(x, fs, rpm, bearing):
+        return returned
+
+    with pytest.raises(ValueError, match=r"detector odd on signal 'small-\d+'") as err:
+        run_bench(SMALL, detectors={"odd": plugin})
+    assert message in str(err.value)
+
+
+def test_a_plugin_that_raises_is_named_with_its_signal(capsys):
+    with pytest.raises(ValueError, match=r"detector crash failed on signal 'small-\d+': "):
+        run_bench(SMALL, detectors={"crash": _crashes})
+    argv = ["bench", str(SMALL), "--detector", f"{__name__}:_crashes"]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert "RuntimeError: boom" in err and "Traceback" not in err
