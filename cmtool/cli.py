@@ -240,8 +240,8 @@ def build_parser() -> argparse.ArgumentParser:
         "--bearing",
         default=None,
         choices=sorted(BEARINGS),
-        help="catalog bearing (required unless the file says: cmtool parquet files, the CWRU "
-        "and MFPT layouts; or give --geometry)",
+        help="catalog bearing (required unless the file says: cmtool parquet and CSV files, "
+        "the CWRU and MFPT layouts; or give --geometry)",
     )
     which.add_argument("--geometry", default=None, help=GEOMETRY_HELP)
     p.add_argument("--variable", default=None, help="variable of a .mat/.npz file")

@@ -357,6 +357,24 @@ def geometry_from_spec(spec: str, where: str = "--geometry"):
     )
 
 
+def _csv_sidecar(path: Path) -> dict[str, Any] | None:
+    """The metadata ``write_signal`` puts beside a CSV (``NAME.csv.json``), or None.
+
+    Only a sidecar cmtool wrote counts (its schema version and sample rate); any other JSON of
+    that name is left alone, and one that cannot be read is an error naming it.
+    """
+    sidecar = path.with_suffix(path.suffix + ".json")
+    if not sidecar.is_file():
+        return None
+    try:
+        info = json.loads(sidecar.read_text())
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as err:
+        raise RecordingError(f"{sidecar}: not a readable JSON sidecar ({err})") from None
+    if not (isinstance(info, dict) and "schema_version" in info and "fs_hz" in info):
+        return None
+    return info
+
+
 def _mat_variables(path: Path) -> dict[str, Any]:
     from scipy import io as sio
 
@@ -472,8 +490,9 @@ def read_recording(
     signal : ndarray, 1-D float64
         The samples (unit as stored: g for CWRU and MFPT).
     metadata : dict
-        ``fs_hz``, ``rpm`` and ``bearing`` when the file holds them (cmtool parquet files;
-        the CWRU and MFPT layouts name their bearing), ``variable``, ``unit`` when known.
+        ``fs_hz``, ``rpm`` and ``bearing`` when the file holds them (cmtool parquet files,
+        cmtool CSV files with their ``.csv.json`` sidecar; the CWRU and MFPT layouts name
+        their bearing), ``variable``, ``unit`` when known.
     """
     path = Path(path)
     if not path.is_file():
@@ -547,7 +566,7 @@ def read_recording(
             meta["variable"] = key
         x = _one_channel(np.asarray(loaded, dtype=float), channel, path)
     elif suffix in (".csv", ".parquet"):
-        simulated = False  # a cmtool simulate file (parquet with its metadata)
+        info = None  # a cmtool simulate file's metadata: rate, speed, bearing, SI units
         if suffix == ".csv":
             try:
                 frame = pd.read_csv(path)
@@ -556,20 +575,22 @@ def read_recording(
             if all(_is_number(c) for c in frame.columns):  # no header: the first row is data
                 frame = pd.read_csv(path, header=None)
                 frame.columns = [f"column {i}" for i in range(frame.shape[1])]
+            info = _csv_sidecar(path)
         else:
             frame = pd.read_parquet(path)
             stored = pq.read_schema(path).metadata or {}
-            if b"cmtool" in stored:  # a cmtool simulate file: rate, speed and bearing
+            if b"cmtool" in stored:
                 info = json.loads(stored[b"cmtool"])
-                simulated = True
-                meta["fs_hz"] = float(info["fs_hz"])
-                params = info.get("parameters", {})
-                shaft = params.get("operating", {}).get("shaft_frequency")
-                if shaft is not None:
-                    meta["rpm"] = 60.0 * float(shaft)
-                name = params.get("bearing", {}).get("name")
-                if name:
-                    meta["bearing"] = str(name)
+        simulated = info is not None
+        if simulated:
+            meta["fs_hz"] = float(info["fs_hz"])
+            params = info.get("parameters", {})
+            shaft = params.get("operating", {}).get("shaft_frequency")
+            if shaft is not None:
+                meta["rpm"] = 60.0 * float(shaft)
+            name = params.get("bearing", {}).get("name")
+            if name:
+                meta["bearing"] = str(name)
         time_cols = [c for c in frame.columns if str(c).lower() in ("time", "t", "time_s")]
         numeric = [
             c

@@ -130,8 +130,11 @@ def test_a_quantised_tone_is_not_taken_for_clipping(tmp_path, capsys):
     assert "is clipped" in _one_line_error(capsys)
 
 
-def test_cmtool_parquet_carries_rate_speed_and_bearing(tmp_path, capsys):
-    signal = tmp_path / "sig.parquet"
+@pytest.mark.parametrize("suffix", [".parquet", ".csv"])
+def test_cmtool_files_carry_rate_speed_bearing_and_unit(tmp_path, capsys, suffix):
+    """A cmtool file, parquet (metadata in the file) or CSV (in its .csv.json sidecar), gives
+    diagnose its rate, speed, bearing and unit (the CSV's were not read until stop 50)."""
+    signal = tmp_path / f"sig{suffix}"
     argv = ["simulate", "--bearing", "6203", "--rpm", "2400", "--duration", "0.5", "--fs"]
     assert (
         main(
@@ -146,7 +149,8 @@ def test_cmtool_parquet_carries_rate_speed_and_bearing(tmp_path, capsys):
         )
         == 0
     )
-    assert list(pd.read_parquet(signal).columns) == [
+    read = pd.read_parquet if suffix == ".parquet" else pd.read_csv
+    assert list(read(signal).columns) == [
         "time",
         "housing_acceleration_y",
         "shaft_velocity_x",
@@ -157,6 +161,23 @@ def test_cmtool_parquet_carries_rate_speed_and_bearing(tmp_path, capsys):
     assumed = data["assumptions"]
     assert (assumed["bearing"], assumed["rpm"], assumed["fs_hz"]) == ("6203", 2400.0, 12000.0)
     assert assumed["channel"] == "housing_acceleration_y"
+    assert set(data["velocity_bands_iso15242_mm_s"]) == {"low", "medium", "high"}
+
+
+def test_a_csv_sidecar_counts_only_when_cmtool_wrote_it(tmp_path):
+    from cmtool.io import RecordingError, read_recording
+
+    csv = tmp_path / "pump.csv"
+    pd.DataFrame({"time": np.arange(100) / 1000.0, "a": np.sin(np.arange(100))}).to_csv(
+        csv, index=False
+    )
+    sidecar = tmp_path / "pump.csv.json"
+    sidecar.write_text(json.dumps({"fs_hz": 5.0, "note": "a logger's own file"}))
+    _, meta = read_recording(csv)
+    assert meta["fs_hz"] == pytest.approx(1000.0) and "unit" not in meta  # from the time column
+    sidecar.write_text("{not json")
+    with pytest.raises(RecordingError, match=r"pump.csv.json: not a readable JSON sidecar"):
+        read_recording(csv)
 
 
 def test_truncated_mat_and_bad_outputs_are_refused_before_work(tmp_path, capsys):
