@@ -10,10 +10,52 @@ import numpy as np
 from .diagnose import Diagnosis, explained_lines
 from .io import atomic_write
 
-__all__ = ["write_report"]
+__all__ = ["model_verdict_text", "write_report"]
 
 #: The envelope plot's marker of each fault verdict.
 _VERDICT_MARKERS = {"outer race": "bpfo", "inner race": "bpfi", "ball": "two_bsf"}
+
+
+def model_verdict_text(model_verdict: dict, *, bold: bool = False) -> str:
+    """A trained model's verdict as an analyst reads it.
+
+    "outer waviness (probability 0.93; inner waviness 0.05, healthy 0.02, ball waviness 0.00),
+    2 segments of the record averaged": each class named with what it was trained on (the
+    bundle's ``class_kinds``: waviness or local fault), the others by falling probability.
+
+    Parameters
+    ----------
+    model_verdict : dict
+        :attr:`cmtool.diagnose.Diagnosis.model_verdict`.
+    bold : bool
+        The verdict's class in Markdown bold (the report).
+
+    Returns
+    -------
+    str
+    """
+    kinds = model_verdict.get("class_kinds") or {}
+    suffix = {"waviness": " waviness", "localized": " local fault"}
+
+    def name(label: str) -> str:
+        return f"{label}{suffix.get(kinds.get(label, ''), '')}"
+
+    label = str(model_verdict["label"])
+    head = f"**{name(label)}**" if bold else name(label)
+    probabilities = model_verdict.get("probabilities") or {}
+    if label in probabilities:
+        others = sorted(
+            ((c, p) for c, p in probabilities.items() if c != label), key=lambda item: -item[1]
+        )
+        rest = "".join(
+            f", {name(c)} {p:.2f}" if i else f"; {name(c)} {p:.2f}"
+            for i, (c, p) in enumerate(others)
+        )
+        head += f" (probability {probabilities[label]:.2f}{rest})"
+    segments = model_verdict.get("segments")
+    if segments:
+        head += f", {segments} segment{'s' if segments > 1 else ''} of the record averaged"
+    return head
 
 
 def write_report(
@@ -59,11 +101,7 @@ def write_report(
         "",
     ]
     if diagnosis.model_verdict:
-        lines += [
-            f"Model verdict: **{diagnosis.model_verdict['label']}** "
-            f"{diagnosis.model_verdict.get('probabilities', '')}",
-            "",
-        ]
+        lines += [f"Model verdict: {model_verdict_text(diagnosis.model_verdict, bold=True)}", ""]
     if diagnosis.waviness:
         w = diagnosis.waviness
         lines += [

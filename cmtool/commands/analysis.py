@@ -164,6 +164,7 @@ def _write_report(diagnosis, folder: Path, x, fs: float) -> Path:
 def _print_diagnosis(diagnosis) -> None:
     """The text output of one diagnosis."""
     from ..diagnose import explained_lines
+    from ..report import model_verdict_text
     from ..waviness import comparison_text
 
     a = diagnosis.assumptions
@@ -216,7 +217,7 @@ def _print_diagnosis(diagnosis) -> None:
             + comparison_text(w)
         )
     if diagnosis.model_verdict:
-        print(f"  model: {diagnosis.model_verdict}")
+        print(f"  model: {model_verdict_text(diagnosis.model_verdict)}")
     if diagnosis.severity:
         print(f"  fault size: {diagnosis.severity['reason']}")
     for w in diagnosis.warnings:

@@ -380,7 +380,24 @@ def test_cli_diagnose_csv_json_and_model(tmp_path, capsys, rng, bundle):
         "model_verdict",
     } <= set(data)
     assert data["frequencies"]["bpfo"] == pytest.approx(107.54, abs=0.01)
-    assert (tmp_path / "rep" / "report.md").read_text().startswith("# Diagnosis")
+    report = (tmp_path / "rep" / "report.md").read_text()
+    assert report.startswith("# Diagnosis")
+    # the model's verdict in words, its class named with what it was trained on, no raw dict
+    verdict = data["model_verdict"]
+    kind = {"waviness": " waviness", "localized": " local fault"}.get(
+        verdict.get("class_kinds", {}).get(verdict["label"], ""), ""
+    )
+    worded = (
+        f"{verdict['label']}{kind} (probability {verdict['probabilities'][verdict['label']]:.2f}"
+    )
+    assert f"Model verdict: **{worded.split(' (')[0]}** (" in report
+    assert (
+        main(["diagnose", str(csv), "--rpm", "1800", "--bearing", "6205", "--model", str(model)])
+        == 0
+    )
+    line = next(x for x in capsys.readouterr().out.splitlines() if x.startswith("  model: "))
+    assert line.startswith(f"  model: {worded}") and "{" not in line, line
+    assert line.endswith("1 segment of the record averaged"), line
     assert main(["diagnose", str(csv)]) == 2  # no rpm in a CSV
     assert "give --rpm" in capsys.readouterr().err
 
