@@ -240,8 +240,12 @@ def check_clipping(x: np.ndarray, name: str = "signal") -> None:
     ------
     ValueError
         When at least ``CLIPPING_ERROR_SHARE`` of the samples sit on a plateau at the record's
-        largest or smallest value (:func:`clipped_share`).
+        largest or smallest value (:func:`clipped_share`), or a sample is NaN or infinite.
     """
+    x = np.asarray(x, dtype=float)
+    bad = x.size - int(np.count_nonzero(np.isfinite(x)))
+    if bad:  # an inf would pass for the largest value of a 100 % clipped record
+        raise ValueError(f"{name} contains {bad} non-finite values (NaN or inf)")
     share = clipped_share(x)  # 0 for a constant record: diagnose_signal says what that is
     if share < CLIPPING_ERROR_SHARE:
         return
@@ -254,12 +258,15 @@ def check_clipping(x: np.ndarray, name: str = "signal") -> None:
     )
 
 
-def check_signal_quality(x: np.ndarray) -> list[str]:
-    """Warnings for clipped signals; raises ValueError for a constant one."""
+def check_signal_quality(x: np.ndarray, name: str = "signal") -> list[str]:
+    """Warnings for clipped signals; raises ValueError for a constant or non-finite one."""
+    bad = x.size - int(np.count_nonzero(np.isfinite(x)))
+    if bad:
+        raise ValueError(f"{name} contains {bad} non-finite values (NaN or inf)")
     warnings = []
     peak = float(np.max(np.abs(x)))
     if peak == 0 or float(np.ptp(x)) == 0:
-        raise ValueError("signal is constant: nothing to diagnose")
+        raise ValueError(f"{name} is constant: nothing to diagnose")
     count = round(clipped_share(x) * x.size)
     if count > max(3, 1e-4 * x.size):
         warnings.append(
@@ -464,6 +471,9 @@ def diagnose_signal(
         load_n = check_load_n(load_n)
     x = np.asarray(x, dtype=float)
     rpm, freqs, ctx, warnings = rule_context(x, fs, rpm, geometry)
+    if baseline is not None:  # before the work: a NaN, an inf or a constant baseline
+        baseline = np.asarray(baseline, dtype=float)
+        check_signal_quality(baseline, "baseline")
     fastest = max(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])
     evidence = features.fault_evidence(x, fs, {**ctx, "ftf": freqs.ftf})
     selection, threshold = evidence.selection, evidence.threshold_db
@@ -535,7 +545,7 @@ def diagnose_signal(
             diagnosis, geometry, freqs, rpm, fs, x.size / fs, load_n, baseline, baseline_fs
         )
     if baseline is not None:
-        _against_baseline(diagnosis, np.asarray(baseline, dtype=float), baseline_fs or fs)
+        _against_baseline(diagnosis, baseline, baseline_fs or fs)
     diagnosis.rule_verdict = {"label": verdict, "confidence": confidence}
     if model is not None:
         diagnosis.model_verdict = model_verdict(model, x, fs, freqs, context_extra or {})
@@ -599,7 +609,6 @@ def _race_waviness(
 
 def _against_baseline(diagnosis: Diagnosis, baseline: np.ndarray, fs: float) -> None:
     """The ISO 15242 bands and the waviness line of ``diagnosis`` over a healthy baseline [dB]."""
-    check_signal_quality(baseline)
     bands = features.velocity_band_rms(baseline, fs)
     change = {}
     for name, value in diagnosis.velocity_bands.items():

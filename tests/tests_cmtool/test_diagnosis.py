@@ -346,6 +346,26 @@ def test_diagnose_bad_input(rng):
     assert any("clipped" in w for w in diagnose_signal(clipped, 12000.0, 1800.0).warnings)
 
 
+@pytest.mark.parametrize("bad", [np.inf, -np.inf, np.nan])
+@pytest.mark.parametrize("allow_clipping", [False, True])
+def test_a_record_with_an_inf_or_nan_is_refused_as_such(bad, allow_clipping, tmp_path, capsys):
+    """Found by probing: one inf in a record was read as its largest value, and the record
+    refused as "100 % clipped" (with --allow-clipping: numpy warnings, then an error)."""
+    x = np.random.default_rng(3).standard_normal(12000)
+    x[100] = bad
+    np.save(tmp_path / "rec.npy", x)
+    argv = ["diagnose", str(tmp_path / "rec.npy"), "--fs", "12000", "--rpm", "1800"]
+    argv += ["--bearing", "6205"] + (["--allow-clipping"] if allow_clipping else [])
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Warning" not in err, err
+    assert "contains 1 non-finite values (NaN or inf)" in err and "clipped" not in err
+    with pytest.raises(ValueError, match="baseline contains 1 non-finite"):
+        diagnose_signal(
+            np.random.default_rng(4).standard_normal(12000), 12000.0, 1800.0, baseline=x
+        )
+
+
 def test_cli_diagnose_csv_json_and_model(tmp_path, capsys, rng, bundle):
     x = rng.standard_normal(12000)
     csv = tmp_path / "rec.csv"
