@@ -346,6 +346,27 @@ def test_diagnose_bad_input(rng):
     assert any("clipped" in w for w in diagnose_signal(clipped, 12000.0, 1800.0).warnings)
 
 
+def test_a_record_longer_than_the_limit_is_diagnosed_on_its_first_part(monkeypatch):
+    """Found by probing: a 60 s record at 48 kHz took 0.8 GB and 19 s, about 270 bytes a
+    sample, so an hour's would not fit in memory. The first MAX_RECORD_SAMPLES are
+    diagnosed, and the warning and the assumptions say so."""
+    import cmtool.diagnose as D
+
+    monkeypatch.setattr(D, "MAX_RECORD_SAMPLES", 24000)
+    x = np.random.default_rng(5).standard_normal(36000)
+    long, first = (
+        D.diagnose_signal(x, 12000.0, 1800.0),
+        D.diagnose_signal(x[:24000], 12000.0, 1800.0),
+    )
+    assert long.assumptions["samples"] == 24000 and long.assumptions["record_s"] == 2.0
+    assert long.assumptions["record_total_s"] == 3.0 and "record_total_s" not in first.assumptions
+    assert long.candidates == first.candidates and long.velocity_bands == first.velocity_bands
+    assert [w for w in long.warnings if w not in first.warnings] == [
+        "the record is 3 s (36000 samples): its first 2 s (24000 samples) are diagnosed "
+        "(memory grows by about 270 bytes a sample)"
+    ]
+
+
 @pytest.mark.parametrize("bad", [np.inf, -np.inf, np.nan])
 @pytest.mark.parametrize("allow_clipping", [False, True])
 def test_a_record_with_an_inf_or_nan_is_refused_as_such(bad, allow_clipping, tmp_path, capsys):
