@@ -352,9 +352,17 @@ def geometry_from_spec(spec: str, where: str = "--geometry"):
             f"{where} {spec!r}: contact_angle_deg = {degrees:g} deg is outside the allowed "
             "range [0, 45] deg (a deep groove ball bearing)"
         )
-    return BearingGeometry(
-        name=name, contact_angle=math.radians(degrees), source=f"given ({where})", **fields
-    )
+    try:
+        return BearingGeometry(
+            name=name, contact_angle=math.radians(degrees), source=f"given ({where})", **fields
+        )
+    except ParameterError as err:
+        diameters = [fields.get(k) for k in ("ball_diameter", "pitch_diameter")]
+        if any(isinstance(d, float) and d > 0.5 for d in diameters):  # a maker's table in mm
+            raise ParameterError(
+                f"{where} {spec!r}: {err} (diameters are in m: 7.94 mm is 7.94e-3)"
+            ) from None
+        raise
 
 
 def _csv_sidecar(path: Path) -> dict[str, Any] | None:

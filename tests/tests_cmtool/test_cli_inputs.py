@@ -751,3 +751,24 @@ def test_train_checks_its_seed_and_fault_snr_floor_before_any_feature(small_data
         train(small_dataset, recipe=None, min_fault_snr_db=float("nan"))
     with pytest.raises(ValueError, match=r"random_state = -1 is outside the allowed range"):
         train(small_dataset, recipe=None, random_state=-1)
+
+
+def test_a_geometry_given_in_millimetres_is_told_the_unit(capsys):
+    """A maker's table gives diameters in mm; --geometry takes m: the error says so."""
+    spec = "6205:balls=9:ball_diameter=7.94:pitch_diameter=39.04"
+    assert main(["frequencies", "--geometry", spec, "--rpm", "1800"]) == 2
+    err = _one_line_error(capsys)
+    assert "ball_diameter = 7.94 m is outside" in err and "diameters are in m" in err
+    assert (
+        main(
+            [
+                "frequencies",
+                "--geometry",
+                "x:balls=0:ball_diameter=8e-3:pitch_diameter=0.04",
+                "--rpm",
+                "1800",
+            ]
+        )
+        == 2
+    )
+    assert "diameters are in m" not in _one_line_error(capsys)  # a count error: no hint
