@@ -63,6 +63,19 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message} (see --help)\n")
 
 
+class _DefaultsHelp(argparse.ArgumentDefaultsHelpFormatter):
+    """Each option's default in --help, unless its help already says it or there is none.
+
+    None is an option without a default, False a flag that is off unless given.
+    """
+
+    def _get_help_string(self, action: argparse.Action) -> str | None:
+        text = action.help or ""
+        if "default" in text.lower() or action.default in (None, False, argparse.SUPPRESS):
+            return text
+        return super()._get_help_string(action)
+
+
 #: Help of ``--geometry`` (diagnose, frequencies).
 GEOMETRY_HELP = (
     "a bearing not in the catalog: NAME:balls=Z:ball_diameter=d:pitch_diameter=D"
@@ -83,7 +96,7 @@ def build_parser() -> argparse.ArgumentParser:
 
         @staticmethod
         def add_parser(name: str, **kwargs) -> argparse.ArgumentParser:
-            kwargs.setdefault("formatter_class", argparse.ArgumentDefaultsHelpFormatter)
+            kwargs.setdefault("formatter_class", _DefaultsHelp)
             return commands.add_parser(name, **kwargs)
 
     sub = _Commands()

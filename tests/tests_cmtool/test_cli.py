@@ -1,5 +1,6 @@
 """The command line, through ``main([...])`` (ObsPy style), and signal I/O."""
 
+import argparse
 import json
 
 import numpy as np
@@ -343,3 +344,19 @@ def test_command_line_defaults_are_the_parameter_objects_defaults():
     assert geometry == bearing("6205") and defects == []
     assert operating == OperatingCondition.from_rpm(1800.0)
     assert (scene, rig, settings) == (Scene(), Rig(), SimulationSettings())
+
+
+def test_every_help_states_a_default_once_and_never_none(capsys):
+    """--help of every command: an option's default appears once (its own words or argparse's
+    "(default: X)"), never "(default: None)" or "(default: False)"."""
+    from cmtool.cli import build_parser
+
+    parser = build_parser()
+    commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    for name, sub in commands.choices.items():
+        text = " ".join(sub.format_help().split())
+        assert "(default: None)" not in text and "(default: False)" not in text, name
+        for option in text.split(" --")[1:]:
+            assert option.lower().count("default") <= 1, (name, option)
+    train = " ".join(commands.choices["train"].format_help().split())
+    assert "(default: evidence+scale-free" in train and "(default: -10.0)" not in train
