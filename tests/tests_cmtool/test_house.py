@@ -87,3 +87,20 @@ def test_save_figure_keeps_the_previous_file_when_writing_fails(tmp_path):
     assert not plt.get_fignums()  # both figures closed
     svg = save_figure(plt.figure(), tmp_path / "empty.svg")
     assert b"<svg" in svg.read_bytes()[:400]
+
+
+def test_the_readme_python_example_runs_and_gives_the_value_it_states():
+    """README.md's Python section is run as written; its last line's value is the one its
+    comment states ("~8.7e-6 m/s", two significant digits: rounding up to 0.6 %, so 1 %)."""
+    import re
+
+    import pytest
+
+    text = (REPO / "README.md").read_text()
+    block = text.split("## Python", 1)[1].split("```python", 1)[1].split("```", 1)[0]
+    *body, last = block.strip().splitlines()
+    expression, comment = last.split("#", 1)
+    stated = float(re.search(r"~\s*([0-9.]+e-?[0-9]+)", comment).group(1))
+    namespace: dict = {}
+    exec("\n".join(body), namespace)  # noqa: S102 - the README's own example
+    assert eval(expression, namespace) == pytest.approx(stated, rel=0.01)  # noqa: S307
