@@ -19,8 +19,11 @@ def check_signal(x: object, *, name: str = "x", min_length: int = 2, axis: int =
             f"{name} is a scalar; expected a signal with at least {min_length} samples"
         )
     if arr.shape[axis] < min_length:
+        layout = (
+            "" if arr.ndim == 1 else f" along its last axis (shape {arr.shape}: a signal a row)"
+        )
         raise FeatureError(
-            f"{name} has {arr.shape[axis]} samples; at least {min_length} are needed"
+            f"{name} has {arr.shape[axis]} samples{layout}; at least {min_length} are needed"
         )
     if not np.all(np.isfinite(arr)):
         bad = int(np.count_nonzero(~np.isfinite(arr)))

@@ -81,3 +81,7 @@ def test_bad_envelope_input():
         F.kurtogram(x[:10], fs)
     with pytest.raises(F.FeatureError, match="nlevel = 20"):
         F.kurtogram(x, fs, nlevel=20)
+    # samples x channels where a signal a row is expected: the message says which axis
+    columns = np.stack([x, x], axis=1)
+    with pytest.raises(F.FeatureError, match=r"2 samples along its last axis \(shape \("):
+        F.envelope_spectrum(columns, fs)
