@@ -21,7 +21,9 @@ Detectors (:data:`BUILTIN_DETECTORS`), each giving a label and a continuous scor
   verdict of ``diagnose --model`` (pooled probabilities).
 
 User plug-ins ``module:function`` are called as ``f(x, fs, rpm, bearing)`` with the signal
-(1-D array), its sample rate [Hz], the shaft speed [rpm] and the catalog bearing's name, and
+(1-D array), its sample rate [Hz], the shaft speed [rpm] and the bearing's name (a catalog
+name, or the name a manifest's geometry gives; a plug-in with a ``geometry`` parameter, or
+``**kwargs``, also gets ``geometry=``, the :class:`generators.BearingGeometry`), and
 return either a label (``healthy``, ``outer race``, ``inner race``, ``ball``; the score is then
 1 for the named fault, 0 otherwise) or a mapping ``{"label": ..., "scores": {"outer race":
 s1, "inner race": s2, "ball": s3}}``.
@@ -157,6 +159,19 @@ def load_callable(spec: str) -> Callable:
     if not callable(fn):
         raise ValueError(f"--detector {spec!r}: {name!r} is not a callable of {module!r}")
     return fn
+
+
+def _takes_geometry(fn: Callable) -> bool:
+    """Whether a plug-in accepts a ``geometry`` keyword (then it gets the BearingGeometry)."""
+    import inspect
+
+    try:
+        parameters = inspect.signature(fn).parameters
+    except (TypeError, ValueError):  # a builtin without a signature
+        return False
+    return "geometry" in parameters or any(
+        p.kind is inspect.Parameter.VAR_KEYWORD for p in parameters.values()
+    )
 
 
 def _as_output(value: object, spec: str, signal_id: object = None) -> DetectorOutput:
@@ -298,8 +313,11 @@ def _signal_rows(record) -> list[dict]:
     sid, x, fs, rpm, brg, label, meta = record
     outputs = builtin_outputs(x, fs, rpm, brg, model=_WORKER.get("model"))
     for spec, fn in _WORKER.get("detectors", {}).items():
+        extra = {}
+        if _takes_geometry(fn):  # a bearing not in the catalog has a name only its rows know
+            extra["geometry"] = catalog_bearing(brg) if isinstance(brg, str) else brg
         try:
-            value = fn(x, fs, rpm, getattr(brg, "name", brg))
+            value = fn(x, fs, rpm, getattr(brg, "name", brg), **extra)
         except Exception as err:  # the user's code: say which detector and signal, go no further
             raise ValueError(
                 f"detector {spec} failed on signal {sid!r}: {type(err).__name__}: {err} (call "

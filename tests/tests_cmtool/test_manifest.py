@@ -117,6 +117,28 @@ def test_a_manifest_names_a_bearing_not_in_the_catalog_by_its_geometry(tmp_path,
         read_manifest(tmp_path)
 
 
+def test_a_bench_plugin_with_a_geometry_parameter_gets_the_bearings_geometry(tmp_path):
+    """A plug-in f(x, fs, rpm, bearing) gets the name; one that also takes ``geometry`` gets
+    the BearingGeometry, so that a bearing given by its geometry can be computed on."""
+    from cmtool.bench import run_bench
+
+    seen: dict = {"names": [], "balls": []}
+
+    def by_name(x, fs, rpm, bearing):
+        seen["names"].append(bearing)
+        return "healthy"
+
+    def by_geometry(x, fs, rpm, bearing, geometry):
+        seen["balls"].append((bearing, geometry.ball_count, geometry.pitch_diameter))
+        return "healthy"
+
+    spec = "pump:balls=8:ball_diameter=20.64e-3:pitch_diameter=77.5e-3"
+    _folder(tmp_path, [{**GOOD, "bearing": spec}, {**GOOD, "bearing": "6205"}])
+    run_bench(tmp_path, detectors={"name": by_name, "geometry": by_geometry})
+    assert seen["names"] == ["pump", "6205"]
+    assert seen["balls"] == [("pump", 8, 77.5e-3), ("6205", 9, pytest.approx(39.04e-3, rel=1e-4))]
+
+
 @pytest.mark.realdata
 def test_the_measured_recordings_folder_is_diagnosed_file_by_file(shared_data, tmp_path, capsys):
     """``cmtool diagnose ../shared/data``: every CWRU and MFPT layout read with its manifest's
