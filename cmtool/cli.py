@@ -11,6 +11,7 @@ import argparse
 import logging
 import os
 import sys
+import warnings
 from collections.abc import Sequence
 
 from generators import (
@@ -358,8 +359,14 @@ def main(argv: Sequence[str] | None = None) -> int:
         level=logging.WARNING - 10 * min(args.verbose, 2),
         format="%(levelname)s %(name)s: %(message)s",
     )
+
+    def show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+        print(f"cmtool {args.command}: warning: {message}", file=sys.stderr)
+
     try:
-        return int(args.func(args))
+        with warnings.catch_warnings():  # a library warning as one line of the command's
+            warnings.showwarning = show_warning
+            return int(args.func(args))
     except (CliError, ParameterError, ValueError, FileNotFoundError) as exc:
         print(f"cmtool {args.command}: error: {exc}", file=sys.stderr)
         return 2

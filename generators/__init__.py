@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 # the light modules (pure Python: parameters, catalog, kinematics) load with the package; the
 # numerical ones (numpy, scipy, numba) on first use of one of their names, so that a command
 # line's --help or a parameter check does not pay for the compiler (PEP 562)
-from ._validate import ParameterError, SimulationDivergedError
+from ._validate import OperatingRangeWarning, ParameterError, SimulationDivergedError
 from .catalog import BEARINGS, bearing
 from .form import form_waviness
 from .kinematics import (
@@ -30,6 +30,7 @@ from .params import (
     Scene,
     SimulationSettings,
     Waviness,
+    operating_range_warnings,
 )
 
 #: Public name -> the submodule that defines it (imported when the name is first used).
@@ -105,6 +106,7 @@ __all__ = [
     "Lubricant",
     "Material",
     "OperatingCondition",
+    "OperatingRangeWarning",
     "ParameterError",
     "Rig",
     "Scene",
@@ -126,6 +128,7 @@ __all__ = [
     "hertz_contact",
     "load_deflection_constants",
     "natural_frequencies",
+    "operating_range_warnings",
     "resolve_scene",
     "sagitta",
     "series_constant",

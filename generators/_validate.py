@@ -14,6 +14,13 @@ class ParameterError(ValueError):
     """A parameter is outside its valid range (message names parameter, value and range)."""
 
 
+class OperatingRangeWarning(UserWarning):
+    """A run outside its bearing's catalogue ratings (static load rating, limiting speed).
+
+    The model still integrates it, but describes it less well.
+    """
+
+
 class SimulationDivergedError(RuntimeError):
     """The time integration left the physically bounded region or produced non-finite values."""
 

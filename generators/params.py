@@ -36,6 +36,7 @@ __all__ = [
     "CHANNELS",
     "MAX_SHAFT_SPEED_RPM",
     "check_shaft_speed_rpm",
+    "operating_range_warnings",
 ]
 
 GRAVITY = 9.81  # [m/s^2]
@@ -654,3 +655,42 @@ class SimulationSettings:
                 f"duration = {self.duration:g} s at fs = {self.fs:g} Hz gives "
                 f"{self.duration * self.fs:.0f} samples; at least 16 are needed"
             )
+
+
+def operating_range_warnings(bearing: BearingGeometry, operating: OperatingCondition) -> list[str]:
+    """What a run leaves of the bearing's catalogue ratings: one message per rating exceeded.
+
+    A radial load over the basic static load rating C0r (ISO 76: the most loaded contact at
+    4,200 MPa, where a ball bearing's raceways begin to yield permanently) is beyond the
+    elastic Hertz contact of this model; a speed over the limiting speed is where gyroscopic
+    moments and contact-angle changes, outside this planar model, begin to matter
+    (docs/model.md 7.4). Bearings without published ratings give none.
+
+    Parameters
+    ----------
+    bearing : BearingGeometry
+        The bearing (``static_load_rating`` [N], ``limiting_speed_rpm`` [rev/min]).
+    operating : OperatingCondition
+        The radial load [N] and shaft speed [Hz].
+
+    Returns
+    -------
+    list of str
+    """
+    messages = []
+    rating = bearing.static_load_rating
+    if rating is not None and operating.radial_load > rating:
+        messages.append(
+            f"radial_load = {operating.radial_load:g} N is {operating.radial_load / rating:.3g} "
+            f"x the {bearing.name}'s basic static load rating C0r = {rating:g} N: its most "
+            "loaded contact would yield (ISO 76), which the elastic Hertz contact of the "
+            "model does not describe"
+        )
+    limit = bearing.limiting_speed_rpm
+    if limit is not None and operating.rpm > limit:
+        messages.append(
+            f"shaft speed {operating.rpm:g} rpm is above the {bearing.name}'s limiting speed "
+            f"{limit:g} rpm: gyroscopic moments and contact-angle changes, outside this planar "
+            "model, begin to matter (docs/model.md 7.4)"
+        )
+    return messages

@@ -9,13 +9,20 @@ from __future__ import annotations
 import dataclasses
 import functools
 import math
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
+from numbers import Integral
 
 import numpy as np
 
 from . import _kernels as K
-from ._validate import ParameterError, SimulationDivergedError
+from ._validate import (
+    OperatingRangeWarning,
+    ParameterError,
+    SimulationDivergedError,
+    check_int,
+)
 from .decimation import filter_reach
 from .defects import defect_path
 from .kinematics import BearingFrequencies, characteristic_frequencies
@@ -35,6 +42,7 @@ from .params import (
     Rig,
     Scene,
     SimulationSettings,
+    operating_range_warnings,
 )
 from .start import static_state
 from .static import static_load_distribution
@@ -214,7 +222,11 @@ def prepare(
         if not isinstance(obj, cls):
             raise ParameterError(f"{name} = {obj!r} is not a {cls.__name__}")
     defect_list = as_defects(defects)
+    if isinstance(random_state, Integral) and not isinstance(random_state, bool):
+        check_int("random_state", random_state, low=0)
     rng = np.random.default_rng(random_state)
+    for message in operating_range_warnings(bearing, operating):
+        warnings.warn(message, OperatingRangeWarning, stacklevel=3)
     freqs = None
     if operating.shaft_frequency > 0:
         freqs = characteristic_frequencies(

@@ -126,3 +126,45 @@ def test_catalog_unknown_name():
 
 def test_catalog_override():
     assert bearing("6205", radial_internal_clearance=20e-6).radial_internal_clearance == 20e-6
+
+
+def test_a_run_beyond_the_catalogue_ratings_is_warned_about_and_still_runs(capsys):
+    """Over C0r (7850 N for the 6205) or the limiting speed (13,000 rpm) the model integrates
+    but no longer describes the bearing well: simulate warns (OperatingRangeWarning), and the
+    command line says it in one line. Within both, and for a bearing without ratings, no
+    warning."""
+    import warnings
+
+    from cmtool.cli import main
+    from generators import (
+        OperatingRangeWarning,
+        SimulationSettings,
+        bearing,
+        operating_range_warnings,
+        simulate,
+    )
+
+    g = bearing("6205")
+    assert operating_range_warnings(g, OperatingCondition.from_rpm(12999, 7850.0)) == []
+    heavy, fast = (
+        operating_range_warnings(g, OperatingCondition.from_rpm(1800, 7851.0)),
+        operating_range_warnings(g, OperatingCondition.from_rpm(13001, 500.0)),
+    )
+    assert len(heavy) == 1 and "C0r = 7850 N" in heavy[0] and "1 x" in heavy[0]
+    assert len(fast) == 1 and "limiting speed 13000 rpm" in fast[0]
+    unrated = dataclasses.replace(g, static_load_rating=None, limiting_speed_rpm=None)
+    assert operating_range_warnings(unrated, OperatingCondition.from_rpm(60000, 9e6)) == []
+    short = SimulationSettings(
+        duration=0.01, settle_time=0.005, channels=("housing_acceleration_y",)
+    )
+    with pytest.warns(OperatingRangeWarning, match="basic static load rating"):
+        simulate(g, OperatingCondition.from_rpm(1800, 2e4), settings=short)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        simulate(g, OperatingCondition.from_rpm(1800, 500.0), settings=short)
+    with pytest.raises(ParameterError, match=r"random_state = -1 is outside the allowed range"):
+        simulate(g, OperatingCondition.from_rpm(1800, 500.0), settings=short, random_state=-1)
+    assert main(["simulate", "--rpm", "20000", "--duration", "0.01", "--settle", "0.005"]) == 0
+    err = capsys.readouterr().err
+    assert err.startswith("cmtool simulate: warning: shaft speed 20000 rpm is above"), err
+    assert err.count("\n") == 1
