@@ -126,6 +126,16 @@ def build_parser() -> argparse.ArgumentParser:
     which.add_argument("--bearing", default="6205", choices=sorted(BEARINGS))
     which.add_argument("--geometry", default=None, help=GEOMETRY_HELP)
     p.add_argument("--rpm", type=float, required=True, help="shaft speed [rev/min]")
+    p.add_argument(
+        "--wpf",
+        action="append",
+        metavar="SURFACE:ORDERS",
+        help="waviness passage frequencies of these waviness orders on a surface (outer, "
+        "inner, ball), e.g. outer:9 or inner:8-10,17-19; repeatable",
+    )
+    p.add_argument(
+        "--harmonics", type=_positive_int, default=3, help="ball-pass harmonics q for --wpf"
+    )
     p.add_argument("--json", action="store_true")
     p.set_defaults(func=cmd_frequencies)
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import logging
 import sys
@@ -22,6 +23,7 @@ from generators import (
     bearing,
     characteristic_frequencies,
     form_waviness,
+    waviness_passage_frequencies,
 )
 from generators.form import MAX_FORM_WAVINESS
 from generators.params import check_shaft_speed_rpm
@@ -558,27 +560,76 @@ def _simulate_streamed(args, geometry, operating, defects, scene, rig, settings,
     return 0
 
 
+def parse_wpf(spec: str) -> tuple[str, list[int]]:
+    """``SURFACE:ORDERS`` of ``frequencies --wpf`` (``outer:9``, ``inner:8-10,17-19``)."""
+    surface, _, orders = str(spec).partition(":")
+    usage = "SURFACE:ORDERS, e.g. outer:9 or inner:8-10,17-19"
+    if surface not in ("outer", "inner", "ball") or not orders:
+        raise CliError(f"--wpf {spec!r}: expected {usage} (surface outer, inner or ball)")
+    values: list[int] = []
+    for item in orders.split(","):
+        low, _, high = item.strip().partition("-")
+        try:
+            first, last = int(low), int(high or low)
+        except ValueError:
+            raise CliError(
+                f"--wpf {spec!r}: {item.strip()!r} is not an order or a range of orders ({usage})"
+            ) from None
+        if not 1 <= first <= last <= 500:
+            raise CliError(
+                f"--wpf {spec!r}: orders {item.strip()!r} are outside the allowed range [1, 500]"
+            )
+        values += list(range(first, last + 1))
+    return surface, values
+
+
 def cmd_frequencies(args: argparse.Namespace) -> int:
-    """Print the characteristic frequencies of a catalog bearing or a given geometry."""
+    """Print a bearing's characteristic frequencies, and its WPF for ``--wpf``.
+
+    The bearing is a catalog one or a given geometry; the waviness passage frequencies are
+    those of the orders asked for (docs/model.md 2.1).
+    """
     geometry = parse_geometry(args.geometry) if args.geometry else bearing(args.bearing)
     rpm = check_shaft_speed_rpm("--rpm", args.rpm)
     f = characteristic_frequencies(geometry, rpm / 60.0)
     data = f.as_dict()
-    if args.json:
-        print(
-            json.dumps(
-                {
-                    "bearing": geometry.name,
-                    "rpm": args.rpm,
-                    "frequencies_hz": data,
-                    "orders": f.orders(),
-                },
-                indent=2,
+    wpf = []
+    for spec in args.wpf or []:
+        surface, orders = parse_wpf(spec)
+        for order in orders:
+            lines = waviness_passage_frequencies(
+                geometry, rpm / 60.0, surface, order, max_harmonic=args.harmonics
             )
+            wpf.append(
+                {
+                    "surface": surface,
+                    "order": order,
+                    "lines": [dataclasses.asdict(x) for x in lines],
+                }
+            )
+    if args.json:
+        out = {"bearing": geometry.name, "rpm": args.rpm, "frequencies_hz": data}
+        out["orders"] = f.orders()
+        if wpf:
+            out["waviness_passage_frequencies_hz"] = wpf
+        print(json.dumps(out, indent=2))
+        return 0
+    for key, value in data.items():
+        print(f"{key:>24s} {value:10.4f} Hz  {value / f.shaft:8.5f} x shaft")
+    if wpf:
+        print(
+            "waviness passage frequencies [Hz] (docs/model.md 2.1; q the ball-pass harmonic, for "
+            "the balls the order 2p of 2p f_b; "
+            "strong: the exact-order rules, weak: higher load-zone harmonics; radial: a "
+            "rotating pattern, load: in the load direction only)"
         )
-    else:
-        for key, value in data.items():
-            print(f"{key:>24s} {value:10.4f} Hz  {value / f.shaft:8.5f} x shaft")
+    for entry in wpf:
+        lines = ", ".join(
+            f"{x['frequency']:.3f} (q {x['harmonic']}, {x['direction']}, {x['strength']})"
+            for x in entry["lines"]
+        )
+        none = "no line (an odd order does not compress the ball)"
+        print(f"  {entry['surface']:>5s} N_w = {entry['order']:<3d} {lines or none}")
     return 0
 
 

@@ -231,6 +231,44 @@ def test_frequencies_json(capsys):
     assert data["frequencies_hz"]["bpfo"] == pytest.approx(107.36, abs=0.01)
 
 
+def test_frequencies_gives_the_waviness_passage_frequencies_by_order(capsys):
+    """--wpf: the lines of docs/model.md 2.1 at 1800 rpm (f_s 30 Hz) on a 6205 (Z = 9): outer
+    orders at q BPFO, inner order k at q BPFI + (k - qZ) f_s, even ball orders 2p at 2p f_b
+    and 2p f_b +/- f_c, odd ball orders none."""
+    argv = ["frequencies", "--rpm", "1800", "--wpf", "outer:8-10", "--wpf", "inner:9,10"]
+    assert main([*argv, "--wpf", "ball:3,4", "--harmonics", "2", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    f = data["frequencies_hz"]
+    lines = {
+        (w["surface"], w["order"]): sorted(x["frequency"] for x in w["lines"])
+        for w in data["waviness_passage_frequencies_hz"]
+    }
+    assert list(lines) == [
+        (s, k)
+        for s, ks in (("outer", (8, 9, 10)), ("inner", (9, 10)), ("ball", (3, 4)))
+        for k in ks
+    ]
+    for k in (8, 9, 10):
+        assert lines["outer", k] == pytest.approx([f["bpfo"], 2 * f["bpfo"]])
+    assert lines["inner", 9] == pytest.approx([2 * f["bpfi"] - 9 * 30.0, f["bpfi"]])
+    assert any(x == pytest.approx(f["bpfi"] + 30.0) for x in lines["inner", 10])  # k = Z + 1
+    assert lines["ball", 3] == []
+    assert lines["ball", 4] == pytest.approx(
+        [4 * f["bsf"] - f["ftf"], 4 * f["bsf"], 4 * f["bsf"] + f["ftf"]]
+    )
+    assert main(argv + ["--wpf", "ball:3"]) == 0
+    text = capsys.readouterr().out
+    assert "outer N_w = 9   107.543 (q 1, load, strong)" in text
+    assert "ball N_w = 3   no line (an odd order does not compress the ball)" in text
+    for bad, message in (
+        ("cage:3", "surface outer, inner or ball"),
+        ("outer:0-2", "[1, 500]"),
+        ("outer:9-x", "'9-x' is not an order"),
+    ):
+        assert main(["frequencies", "--rpm", "1800", "--wpf", bad]) == 2
+        assert message in capsys.readouterr().err
+
+
 # every model flag of `simulate` (and of `fidelity`, which shares them), the value given and
 # where it must land: (flag, value, object, field, expected)
 MODEL_FLAGS = [
