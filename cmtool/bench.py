@@ -44,6 +44,7 @@ import re
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -224,7 +225,7 @@ def _labelled(scores: dict[str, float], limit: float) -> DetectorOutput:
 
 
 def builtin_outputs(
-    x: np.ndarray, fs: float, rpm: float, bearing: str | BearingGeometry, *, model=None
+    x: np.ndarray, fs: float, rpm: float, bearing: str | BearingGeometry, *, model: Any = None
 ) -> dict[str, DetectorOutput]:
     """Every built-in detector on one signal (``model``/``combined`` when a model is given)."""
     from features.detectors import (
@@ -335,10 +336,10 @@ def _signal_rows(record) -> list[dict]:
 def run_bench(
     path: str | Path,
     *,
-    model=None,
+    model: Any = None,
     detectors: Mapping[str, Callable] | Iterable[str] | None = None,
     bearing: str = "6205",
-    progress=None,
+    progress: Callable[[int, int], None] | None = None,
     allow_incomplete: bool = False,
     workers: int = 1,
 ) -> pd.DataFrame:

@@ -203,7 +203,9 @@ def candidate_classifiers(
     }
 
 
-def make_classifier(name: str = "random_forest", *, random_state: int = 0, **extractor) -> Pipeline:
+def make_classifier(
+    name: str = "random_forest", *, random_state: int = 0, **extractor: Any
+) -> Pipeline:
     """Full pipeline: FeatureExtractor -> StandardScaler -> classifier ``name``."""
     return Pipeline(
         [
@@ -328,7 +330,9 @@ def _grouped_cv(X, y, groups, estimator, n_splits: int) -> tuple[float, np.ndarr
 EXTRAPOLATION_SHARE = 0.1
 
 
-def extreme_masks(values: np.ndarray, share: float = EXTRAPOLATION_SHARE):
+def extreme_masks(
+    values: np.ndarray, share: float = EXTRAPOLATION_SHARE
+) -> tuple[np.ndarray, np.ndarray]:
     """The signals at the top and at the bottom of one operating variable.
 
     Parameters
@@ -380,13 +384,13 @@ def class_kinds(frame: pd.DataFrame) -> dict[str, str]:
 
 def pooled_calibration(
     frame: pd.DataFrame,
-    X,
-    y,
-    groups,
-    estimator,
+    X: pd.DataFrame,
+    y: np.ndarray,
+    groups: np.ndarray,
+    estimator: Any,
     n_splits: int,
     left_out: pd.DataFrame | None = None,
-    X_left_out=None,
+    X_left_out: pd.DataFrame | None = None,
     *,
     rule: list[dict[str, float]],
 ) -> dict | None:

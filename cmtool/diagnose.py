@@ -414,7 +414,7 @@ def diagnose_signal(
     rpm: float,
     geometry: BearingGeometry | str = "6205",
     *,
-    model=None,
+    model: Any = None,
     context_extra: dict | None = None,
     baseline: np.ndarray | None = None,
     baseline_fs: float | None = None,
@@ -807,7 +807,9 @@ def _combine(diagnosis: Diagnosis) -> None:
     diagnosis.probabilities = {k: round(v, 4) for k, v in pooled.items()}
 
 
-def model_verdict(model, x, fs, freqs: BearingFrequencies, extra: dict) -> dict:
+def model_verdict(
+    model: Any, x: np.ndarray, fs: float, freqs: BearingFrequencies, extra: dict
+) -> dict:
     """Class and probabilities from a trained pipeline (``cmtool train``).
 
     A model trained on signals of T seconds (``signal_duration_s`` in the bundle) sees the

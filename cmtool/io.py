@@ -11,6 +11,7 @@ import json
 import os
 import re
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -19,7 +20,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from generators import SimulationResult
+from generators import BearingGeometry, SimulationResult
 from generators.stream import SignalStream
 
 from . import __version__
@@ -63,7 +64,7 @@ def _process_umask() -> int:
 _UMASK = _process_umask()
 
 
-def atomic_write(path: Path, write) -> None:
+def atomic_write(path: Path, write: Callable[[Path], object]) -> None:
     """Call ``write(tmp_path)`` then rename the temporary file onto ``path`` (atomic on POSIX)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -167,7 +168,7 @@ def write_signal_stream(
     path: str | os.PathLike,
     *,
     channels: tuple[str, ...] | None = None,
-    progress=None,
+    progress: Callable[[int], None] | None = None,
 ) -> Path:
     """Write a streamed simulation (:func:`generators.stream.simulate_stream`) block by block.
 
@@ -302,7 +303,7 @@ def split_spec(
     return head, fields
 
 
-def geometry_from_spec(spec: str, where: str = "--geometry"):
+def geometry_from_spec(spec: str, where: str = "--geometry") -> BearingGeometry:
     """A bearing not in the catalog from its designation and kinematic geometry.
 
     ``NAME:balls=Z:ball_diameter=d:pitch_diameter=D[:contact_angle_deg=A]``, diameters in m,

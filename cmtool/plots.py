@@ -8,6 +8,13 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from features import KurtogramResult
+    from generators import SimulationResult, Waviness
 
 import matplotlib
 
@@ -35,7 +42,7 @@ _COLORS = {
 }
 
 
-def save_figure(fig, path: Path | str, **savefig_kwargs) -> Path:
+def save_figure(fig: Figure, path: Path | str, **savefig_kwargs: Any) -> Path:
     """Write a figure atomically (a temporary file renamed onto ``path``) and close it.
 
     A reader (a report viewer, a dashboard polling the folder) never sees half a PNG, and an
@@ -155,7 +162,7 @@ def plot_spectrum(
     return save_figure(fig, path)
 
 
-def plot_kurtogram(result, path: str | Path, *, title: str = "kurtogram") -> Path:
+def plot_kurtogram(result: KurtogramResult, path: str | Path, *, title: str = "kurtogram") -> Path:
     """Plot a fast kurtogram (``features.KurtogramResult``) with the selected band marked.
 
     Parameters
@@ -256,7 +263,12 @@ def plot_trend(
 
 
 def plot_confusion(
-    matrix, labels, path: str | Path, *, title: str, columns: list[str] | None = None
+    matrix: np.ndarray,
+    labels: Sequence[str],
+    path: str | Path,
+    *,
+    title: str,
+    columns: list[str] | None = None,
 ) -> Path:
     """Confusion matrix (rows: true label, columns: predicted) with counts in the cells.
 
@@ -289,7 +301,7 @@ def plot_confusion(
     return save_figure(fig, path)
 
 
-def waviness_markers(result, defects) -> dict[str, float]:
+def waviness_markers(result: SimulationResult, defects: Sequence[Waviness]) -> dict[str, float]:
     """Fault-frequency markers for a plot: characteristic frequencies plus waviness lines."""
     from generators import Waviness, bearing, waviness_passage_frequencies
 

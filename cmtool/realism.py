@@ -23,8 +23,8 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from generators import BearingFrequencies, characteristic_frequencies
 from generators import bearing as catalog_bearing
-from generators import characteristic_frequencies
 
 from .bench import CANONICAL
 from .io import read_recording
@@ -45,7 +45,7 @@ __all__ = [
 CONTEXT_UNITS = frozenset({"Hz"})
 
 
-def context_columns(frequencies, fs: float) -> dict[str, float]:
+def context_columns(frequencies: BearingFrequencies, fs: float) -> dict[str, float]:
     """The feature extractor's context columns of a signal (``features.CONTEXT_COLUMNS``).
 
     Parameters

@@ -150,7 +150,7 @@ def envelope_spectrum(
     nlevel: int = 6,
     return_band: bool = False,
     fault_frequencies: Mapping[str, float] | None = None,
-):
+) -> tuple[np.ndarray, np.ndarray] | tuple[np.ndarray, np.ndarray, tuple[float, float]]:
     """Amplitude spectrum of the envelope of ``x`` in a band (chosen automatically if None).
 
     Parameters

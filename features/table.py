@@ -31,7 +31,7 @@ Feature names and units (U = unit of the signal, dB = 20 log10 of a ratio):
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -109,7 +109,7 @@ def compute_spectra(
     return Spectra(freqs, amp, ef, ea, (float(band[0]), float(band[1])), kg)
 
 
-def feature_names(faults=DEFAULT_FAULTS, n_harmonics: int = 3) -> list[str]:
+def feature_names(faults: Sequence[str] = DEFAULT_FAULTS, n_harmonics: int = 3) -> list[str]:
     """Names of the features of :func:`extract_features`, in order."""
     names = list(TIME_STATISTICS)
     for kind in ("spectrum", "envelope"):
@@ -129,7 +129,7 @@ def feature_names(faults=DEFAULT_FAULTS, n_harmonics: int = 3) -> list[str]:
     return names
 
 
-def feature_units(faults=DEFAULT_FAULTS, n_harmonics: int = 3) -> dict[str, str]:
+def feature_units(faults: Sequence[str] = DEFAULT_FAULTS, n_harmonics: int = 3) -> dict[str, str]:
     """Unit of each feature ("U" is the signal's unit)."""
     units = {}
     for name in feature_names(faults, n_harmonics):
@@ -152,7 +152,7 @@ def extract_features(
     *,
     fault_frequencies: Mapping[str, float],
     shaft_frequency: float | None = None,
-    faults=DEFAULT_FAULTS,
+    faults: Sequence[str] = DEFAULT_FAULTS,
     n_harmonics: int = 3,
     half_width: float | None = None,
     spectra: Spectra | None = None,

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -45,7 +46,11 @@ CONTEXT_COLUMNS = {
 
 
 def feature_rows_with_evidence(
-    items, faults: tuple[str, ...], n_harmonics: int, names: list[str], keep_evidence: bool = True
+    items: Iterable[tuple[np.ndarray, Mapping[str, float]]],
+    faults: tuple[str, ...],
+    n_harmonics: int,
+    names: list[str],
+    keep_evidence: bool = True,
 ) -> tuple[list[list[float]], list]:
     """Feature rows of ``(signal, context)`` items, and each signal's ``fault_evidence``.
 
@@ -98,7 +103,9 @@ def _feature_rows(items, faults, n_harmonics, names):
     return feature_rows_with_evidence(items, faults, n_harmonics, names, keep_evidence=False)[0]
 
 
-def map_in_processes(function, items: list, n_jobs: int | None, *args) -> list:
+def map_in_processes(
+    function: Callable[..., list], items: list, n_jobs: int | None, *args: Any
+) -> list:
     """``function(part, *args)`` over ``items`` in ``n_jobs`` processes, results in order.
 
     ``function`` takes a list of items and returns one result per item; each process gets

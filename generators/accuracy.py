@@ -51,11 +51,15 @@ import math
 import warnings
 from collections import OrderedDict
 from functools import partial
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ._validate import SimulationDivergedError
 from .steps import DEFAULT_STEP_MASSLESS, defect_step, stability_step
+
+if TYPE_CHECKING:
+    from .prepared import Prepared
 
 __all__ = [
     "PILOT_PERIODS",
@@ -243,7 +247,7 @@ def on_record_grid(step: float, record_dt: float, oversample: int) -> float:
     return record_dt * 2.0**power
 
 
-def error_bound_step(prep, bound: float, oversample: int) -> tuple[float, float]:
+def error_bound_step(prep: Prepared, bound: float, oversample: int) -> tuple[float, float]:
     """The longest RK4 step meeting ``bound`` for a prepared run, and its error estimate.
 
     Parameters

@@ -61,7 +61,7 @@ def clear_stale(cache_dir: Path, digest: str, modules: Sequence[str] = KERNEL_MO
     return removed
 
 
-def guard(dispatcher) -> None:
+def guard(dispatcher: object) -> None:
     """Run :func:`clear_stale` for the cache directory of a cached numba ``dispatcher``."""
     cache = getattr(dispatcher, "_cache", None)
     path = getattr(cache, "_cache_path", None)

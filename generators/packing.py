@@ -15,6 +15,7 @@ import numpy as np
 from . import _kernels as K
 from ._validate import ParameterError
 from .contact import (
+    HertzContact,
     entrainment_speed,
     film_thickness,
     hertz_contact,
@@ -33,7 +34,9 @@ from .params import (
 
 
 @functools.lru_cache(maxsize=64)
-def contact_geometries(geometry: BearingGeometry):
+def contact_geometries(
+    geometry: BearingGeometry,
+) -> tuple[HertzContact, HertzContact, tuple[float, float, float]]:
     """Inner and outer contact geometry and the Hertz constants (K_i, K_o, K_series) [N/m^1.5]."""
     ci = hertz_contact(geometry, "inner")
     co = hertz_contact(geometry, "outer")
@@ -43,7 +46,7 @@ def contact_geometries(geometry: BearingGeometry):
 Defect = Waviness | LocalizedDefect
 
 
-def as_defects(defects) -> tuple[Defect, ...]:
+def as_defects(defects: Defect | Sequence[Defect] | None) -> tuple[Defect, ...]:
     """``simulate``'s ``defects`` argument as a tuple of checked defect objects."""
     if defects is None:
         return ()

@@ -13,6 +13,7 @@ import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from numbers import Integral
+from typing import TypeVar
 
 import numpy as np
 
@@ -150,7 +151,17 @@ def _field_names(cls: type) -> tuple[str, ...]:
     return tuple(f.name for f in dataclasses.fields(cls))
 
 
-def params_record(geometry, operating, rig, scene, level, reason, settings, defects, extra):
+def params_record(
+    geometry: BearingGeometry,
+    operating: OperatingCondition,
+    rig: Rig,
+    scene: Scene,
+    level: str,
+    reason: str,
+    settings: SimulationSettings,
+    defects: tuple[Defect, ...],
+    extra: dict,
+) -> dict:
     """Every parameter of a run as a JSON-serialisable dict (the result's ``parameters``)."""
     clean = _plain
 
@@ -186,8 +197,11 @@ class Prepared:
     max_ball_load: float
 
 
+T = TypeVar("T")
+
+
 @functools.cache
-def default_instance(cls: type):
+def default_instance(cls: type[T]) -> T:
     """The default instance of a frozen parameter class (built and validated once)."""
     return cls()
 

@@ -21,7 +21,7 @@ step that covers its last record, past the next block's first record time).
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,6 +31,7 @@ from . import _kernels as K
 from ._validate import ParameterError
 from .decimation import DIFFERENTIATOR_HALF_LENGTH, decimate, record_columns
 from .kinematics import BearingFrequencies
+from .packing import Defect
 from .params import CHANNELS, BearingGeometry, OperatingCondition, Rig, Scene, SimulationSettings
 from .prepared import Prepared, diverged_error, params_record, plan_run, prepare
 
@@ -234,7 +235,7 @@ def _margin_records(q: int) -> int:
 def simulate_stream(
     bearing: BearingGeometry,
     operating: OperatingCondition,
-    defects=None,
+    defects: Defect | Sequence[Defect] | None = None,
     *,
     scene: Scene | None = None,
     rig: Rig | None = None,

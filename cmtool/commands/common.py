@@ -6,6 +6,10 @@ import argparse
 import logging
 import math
 import sys
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from tqdm import tqdm
 
 logger = logging.getLogger("cmtool")
 
@@ -49,11 +53,11 @@ def positive_float(text: str) -> float:
 
 def progress_bar(
     total: int, desc: str, unit: str = "run", *, initial: int = 0, unit_scale: bool = False
-):
+) -> tqdm:
     """The progress bar of every command: tqdm (count, rate, ETA) on stderr, quiet off a tty."""
-    from tqdm import tqdm
+    from tqdm import tqdm as bar
 
-    return tqdm(
+    return bar(
         total=total,
         desc=desc,
         unit=unit,

@@ -7,6 +7,10 @@ import json
 import logging
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 from .common import CliError, progress_bar
 
@@ -160,7 +164,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     return 0
 
 
-def check_training_overlap(bundle: dict, frame, args: argparse.Namespace) -> float:
+def check_training_overlap(bundle: dict, frame: pd.DataFrame, args: argparse.Namespace) -> float:
     """Refuse to score a model on its own training signals unless --allow-training-data.
 
     Returns the fraction of ``frame``'s signals the model was trained on (0 when none).

@@ -104,3 +104,25 @@ def test_the_readme_python_example_runs_and_gives_the_value_it_states():
     namespace: dict = {}
     exec("\n".join(body), namespace)  # noqa: S102 - the README's own example
     assert eval(expression, namespace) == pytest.approx(stated, rel=0.01)  # noqa: S307
+
+
+def test_public_functions_carry_type_hints():
+    """Every public function of the three packages' public modules annotates each parameter
+    and its return (the brief: type hints on public functions)."""
+    missing = []
+    for path in _modules():
+        if path.name.startswith("_") and path.name != "__init__.py":
+            continue
+        for node in ast.parse(path.read_text()).body:
+            if not isinstance(node, ast.FunctionDef) or node.name.startswith("_"):
+                continue
+            arguments = node.args.posonlyargs + node.args.args + node.args.kwonlyargs
+            arguments += [a for a in (node.args.vararg, node.args.kwarg) if a is not None]
+            bare = [
+                a.arg for a in arguments if a.annotation is None and a.arg not in ("self", "cls")
+            ]
+            if node.returns is None:
+                bare.append("return")
+            if bare:
+                missing.append(f"{path.relative_to(REPO)}:{node.lineno} {node.name} {bare}")
+    assert not missing, missing
