@@ -171,7 +171,9 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
         self.n_harmonics = n_harmonics
         self.signal_column = signal_column
 
-    def signals_with_context(self, X) -> Iterator[tuple[np.ndarray, dict[str, float]]]:
+    def signals_with_context(
+        self, X: pd.DataFrame | np.ndarray
+    ) -> Iterator[tuple[np.ndarray, dict[str, float]]]:
         """Each signal of ``X`` with its context, in order, as ``transform`` reads them.
 
         Parameters
@@ -216,7 +218,7 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
         for row in arr:
             yield row, ctx
 
-    def fit(self, X, y=None):
+    def fit(self, X: pd.DataFrame | np.ndarray, y: object = None) -> FeatureExtractor:
         """Check the input and record the feature names (the transform has no state)."""
         if not isinstance(X, pd.DataFrame):
             validate_data(self, X, dtype=np.float64, ensure_min_features=2)
@@ -235,7 +237,7 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
         self.feature_names_out_ = np.array(names, dtype=object)
         return self
 
-    def transform(self, X) -> np.ndarray:
+    def transform(self, X: pd.DataFrame | np.ndarray) -> np.ndarray:
         """Feature matrix, shape (n_signals, n_features)."""
         check_is_fitted(self, "feature_names_out_")
         if not isinstance(X, pd.DataFrame):
@@ -249,7 +251,7 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
         )
         return np.asarray(rows, dtype=float).reshape(len(items), len(names))
 
-    def get_feature_names_out(self, input_features=None) -> np.ndarray:
+    def get_feature_names_out(self, input_features: object = None) -> np.ndarray:
         """Names of the output features."""
         check_is_fitted(self, "feature_names_out_")
         return self.feature_names_out_.copy()

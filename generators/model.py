@@ -20,6 +20,7 @@ import dataclasses
 import logging
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -54,6 +55,9 @@ from .steps import (
     rk4_schedule,
     rk4_stability_radius,
 )
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = [
     "Prepared",
@@ -108,7 +112,7 @@ class SimulationResult:
         """Return one channel by name, e.g. ``result["housing_velocity_y"]``."""
         return self.signals[channel]
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """Return the signals as a pandas DataFrame with a ``time`` column [s]."""
         import pandas as pd
 

@@ -106,16 +106,28 @@ def test_the_readme_python_example_runs_and_gives_the_value_it_states():
     assert eval(expression, namespace) == pytest.approx(stated, rel=0.01)  # noqa: S307
 
 
+def _public_functions(tree: ast.Module):
+    """Module-level public functions and the public methods of public classes."""
+    for node in tree.body:
+        if isinstance(node, ast.FunctionDef) and not node.name.startswith("_"):
+            yield node
+        if isinstance(node, ast.ClassDef) and not node.name.startswith("_"):
+            yield from (
+                f
+                for f in node.body
+                if isinstance(f, ast.FunctionDef) and not f.name.startswith("_")
+            )
+
+
 def test_public_functions_carry_type_hints():
-    """Every public function of the three packages' public modules annotates each parameter
-    and its return (the brief: type hints on public functions)."""
+    """Every public function of the three packages' public modules, and every public method
+    of their public classes, annotates each parameter and its return (the brief: type hints
+    on public functions)."""
     missing = []
     for path in _modules():
         if path.name.startswith("_") and path.name != "__init__.py":
             continue
-        for node in ast.parse(path.read_text()).body:
-            if not isinstance(node, ast.FunctionDef) or node.name.startswith("_"):
-                continue
+        for node in _public_functions(ast.parse(path.read_text())):
             arguments = node.args.posonlyargs + node.args.args + node.args.kwonlyargs
             arguments += [a for a in (node.args.vararg, node.args.kwarg) if a is not None]
             bare = [
