@@ -412,11 +412,14 @@ def _pick(count: int, channel: str | int | None, path: Path) -> int:
     return index
 
 
-def _one_channel(x: np.ndarray, channel: str | int | None, path: Path) -> np.ndarray:
+def _one_channel(
+    x: np.ndarray, channel: str | int | None, path: Path, meta: dict[str, Any]
+) -> np.ndarray:
     """The asked channel of an array: its samples along the longer axis (default channel 0).
 
     A 2-D array holds its channels along its shorter axis (a record is longer than it is
-    wide): a column each (samples x channels) or a row each (channels x samples).
+    wide): a column each (samples x channels) or a row each (channels x samples). Their
+    count goes to ``meta["channels"]``.
     """
     squeezed = np.squeeze(x) if x.ndim > 2 else x
     if squeezed.ndim > 2:
@@ -424,6 +427,7 @@ def _one_channel(x: np.ndarray, channel: str | int | None, path: Path) -> np.nda
             f"{path}: an array of shape {x.shape}; give one record (1-D) or channels x samples"
         )
     if squeezed.ndim == 2 and min(squeezed.shape) > 1:
+        meta["channels"] = int(min(squeezed.shape))
         index = _pick(min(squeezed.shape), channel, path)
         rows_are_samples = squeezed.shape[0] >= squeezed.shape[1]
         return squeezed[:, index] if rows_are_samples else squeezed[index]
@@ -539,7 +543,7 @@ def read_recording(
             meta["unit"] = "g"
             meta["bearing"] = "mfpt"  # the MFPT layout: struct bearing.gs/sr/rate
         else:
-            x = _one_channel(np.asarray(value, dtype=float), channel, path)
+            x = _one_channel(np.asarray(value, dtype=float), channel, path, meta)
             prefix = variable.split("_")[0]
             rpm_key = f"{prefix}RPM"
             if rpm_key in data:
@@ -557,6 +561,7 @@ def read_recording(
         rate, data = wavfile.read(path)
         data = np.asarray(data)
         if data.ndim == 2:
+            meta["channels"] = int(data.shape[1])
             data = data[:, _pick(data.shape[1], channel, path)]
         else:
             _pick(1, channel, path)  # one channel: only 0 (or none) can be asked for
@@ -573,7 +578,7 @@ def read_recording(
                 raise RecordingError(f"{path}: choose a variable with --variable; it holds {keys}")
             loaded = loaded[key]
             meta["variable"] = key
-        x = _one_channel(np.asarray(loaded, dtype=float), channel, path)
+        x = _one_channel(np.asarray(loaded, dtype=float), channel, path, meta)
     elif suffix in (".csv", ".parquet"):
         info = None  # a cmtool simulate file's metadata: rate, speed, bearing, SI units
         if suffix == ".csv":
@@ -616,6 +621,7 @@ def read_recording(
             raise RecordingError(f"{path}: no numeric column")
         if channel is None or isinstance(channel, int) or str(channel).isdigit():
             col = numeric[_pick(len(numeric), channel, path)]
+            meta["channels"] = len(numeric)
         else:
             if channel not in frame.columns:
                 raise RecordingError(

@@ -34,6 +34,14 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
 
     x, meta = read_recording(args.recording, variable=args.variable, channel=args.channel)
     warnings = []
+    channels = meta.get("channels", 1)
+    channel = str(meta.get("variable") or args.channel or "first")
+    if channels > 1 and args.channel is None:  # the first picked for the user: say so
+        channel = str(meta.get("variable") or f"0 (the first of {channels})")
+        warnings.append(
+            f"{Path(args.recording).name} holds {channels} channels; channel {channel} was "
+            "diagnosed (--channel N for another)"
+        )
     fs = args.fs if args.fs is not None else meta.get("fs_hz")
     if fs is None:
         raise CliError(f"{args.recording}: the file holds no sample rate; give --fs")
@@ -77,7 +85,7 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
         geometry if geometry is not None else name,
         model,
         file=Path(args.recording).name,
-        channel=str(meta.get("variable") or args.channel or "first"),
+        channel=channel,
         source=str(args.recording),
         unit=args.unit or meta.get("unit"),
         baseline=baseline,

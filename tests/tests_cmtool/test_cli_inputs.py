@@ -772,3 +772,32 @@ def test_a_geometry_given_in_millimetres_is_told_the_unit(capsys):
         == 2
     )
     assert "diameters are in m" not in _one_line_error(capsys)  # a count error: no hint
+
+
+def test_a_file_of_several_channels_says_which_one_was_diagnosed(tmp_path, capsys):
+    """A stereo WAV, a channels x samples array, a CSV of two columns: without --channel the
+    first is diagnosed, and the output says so (it was stated only as "channel first")."""
+    from scipy.io import wavfile
+
+    rng = np.random.default_rng(8)
+    wavfile.write(
+        tmp_path / "two.wav", 12000, (3000 * rng.standard_normal((24000, 2))).astype(np.int16)
+    )
+    np.save(tmp_path / "two.npy", rng.standard_normal((2, 24000)))
+    pd.DataFrame({"ax": rng.standard_normal(24000), "ay": rng.standard_normal(24000)}).to_csv(
+        tmp_path / "two.csv", index=False
+    )
+    rate = {"two.wav": [], "two.npy": ["--fs", "12000"], "two.csv": ["--fs", "12000"]}
+    for name, extra in rate.items():
+        argv = ["diagnose", str(tmp_path / name), "--rpm", "1800", "--bearing", "6205", *extra]
+        assert main([*argv, "--json"]) == 0
+        data = json.loads(capsys.readouterr().out)
+        first = "ax" if name.endswith(".csv") else "0 (the first of 2)"
+        assert data["assumptions"]["channel"] == first
+        assert f"{name} holds 2 channels; channel {first} was diagnosed" in " ".join(
+            data["warnings"]
+        )
+        assert main([*argv, "--json", "--channel", "1"]) == 0
+        data = json.loads(capsys.readouterr().out)
+        assert data["assumptions"]["channel"] in ("1", "ay")
+        assert not any("channels;" in w for w in data["warnings"])
