@@ -58,11 +58,17 @@ def model_verdict_text(model_verdict: dict, *, bold: bool = False) -> str:
     return head
 
 
+def _quantity(diagnosis: Diagnosis) -> str:
+    """The waveform's axis label: acceleration in its unit where the diagnosis knows it."""
+    unit = diagnosis.assumptions.get("unit")
+    return f"acceleration [{unit}]" if unit else "signal"
+
+
 def write_report(
     diagnosis: Diagnosis, out: str | Path, *, title: str, x: np.ndarray, fs: float
 ) -> Path:
-    """Write ``report.md`` with the spectrum, envelope spectrum and kurtogram plots."""
-    from .plots import plot_kurtogram, plot_spectrum
+    """Write ``report.md`` with the spectrum, envelope spectrum, waveform and kurtogram plots."""
+    from .plots import plot_kurtogram, plot_spectrum, plot_waveform
     from .waviness import comparison_text
 
     out = Path(out)
@@ -90,7 +96,19 @@ def write_report(
         emphasis=_VERDICT_MARKERS.get(diagnosis.verdict),
         sidebands={"inner race": f["shaft"], "ball": f["ftf"]}.get(diagnosis.verdict),
     )
-    paths = [spec_png, env_png]
+    fault = _VERDICT_MARKERS.get(diagnosis.verdict)
+    wave_png = plot_waveform(
+        x[: diagnosis.assumptions.get("samples", x.size)],
+        fs,
+        out / "waveform.png",
+        title=title,
+        shaft_hz=f["shaft"],
+        band=tuple(sp.band) if sp.band is not None else None,
+        fault_hz=f[fault] if fault else None,
+        fault_name=diagnosis.verdict if fault else None,
+        ylabel=_quantity(diagnosis),
+    )
+    paths = [spec_png, env_png, wave_png]
     if sp.kurtogram is not None:
         paths.append(plot_kurtogram(sp.kurtogram, out / "kurtogram.png", title=title))
     lines = [

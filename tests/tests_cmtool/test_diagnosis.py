@@ -423,6 +423,8 @@ def test_cli_diagnose_csv_json_and_model(tmp_path, capsys, rng, bundle):
     assert data["frequencies"]["bpfo"] == pytest.approx(107.54, abs=0.01)
     report = (tmp_path / "rep" / "report.md").read_text()
     assert report.startswith("# Diagnosis")
+    assert "![waveform](waveform.png)" in report
+    assert (tmp_path / "rep" / "waveform.png").read_bytes().startswith(b"\x89PNG")
     # the model's verdict in words, its class named with what it was trained on, no raw dict
     verdict = data["model_verdict"]
     kind = {"waviness": " waviness", "localized": " local fault"}.get(

@@ -58,37 +58,6 @@ def test_figures_are_written_through_the_atomic_writer():
     assert not direct, direct
 
 
-def test_save_figure_keeps_the_previous_file_when_writing_fails(tmp_path):
-    from cmtool.plots import plt, save_figure
-
-    path = tmp_path / "spectrum.png"
-    fig, ax = plt.subplots()
-    ax.plot([0, 1], [1, 0])
-    assert save_figure(fig, path) == path
-    first = path.read_bytes()
-    assert first.startswith(b"\x89PNG")
-    fig, ax = plt.subplots()
-    ax.plot([0, 1], [0, 1])
-
-    def fail(target, *args, **kwargs):  # half a file written, then the disk is full
-        with open(target, "wb") as half:
-            half.write(first[:100])
-        raise OSError("disk full")
-
-    fig.savefig = fail
-    try:
-        save_figure(fig, path)
-    except OSError:
-        pass
-    else:
-        raise AssertionError("the failure was swallowed")
-    assert path.read_bytes() == first
-    assert [p.name for p in tmp_path.iterdir()] == ["spectrum.png"]
-    assert not plt.get_fignums()  # both figures closed
-    svg = save_figure(plt.figure(), tmp_path / "empty.svg")
-    assert b"<svg" in svg.read_bytes()[:400]
-
-
 def test_the_readme_python_example_runs_and_gives_the_value_it_states():
     """README.md's Python section is run as written; its last line's value is the one its
     comment states ("~8.7e-6 m/s", two significant digits: rounding up to 0.6 %, so 1 %)."""

@@ -1,0 +1,61 @@
+"""The figures cmtool writes: atomically, and the report's time waveform."""
+
+import numpy as np
+
+from cmtool.plots import plot_waveform, plt, save_figure, waveform_window
+
+
+def test_save_figure_keeps_the_previous_file_when_writing_fails(tmp_path):
+    path = tmp_path / "spectrum.png"
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [1, 0])
+    assert save_figure(fig, path) == path
+    first = path.read_bytes()
+    assert first.startswith(b"\x89PNG")
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0, 1])
+
+    def fail(target, *args, **kwargs):  # half a file written, then the disk is full
+        with open(target, "wb") as half:
+            half.write(first[:100])
+        raise OSError("disk full")
+
+    fig.savefig = fail
+    try:
+        save_figure(fig, path)
+    except OSError:
+        pass
+    else:
+        raise AssertionError("the failure was swallowed")
+    assert path.read_bytes() == first
+    assert [p.name for p in tmp_path.iterdir()] == ["spectrum.png"]
+    assert not plt.get_fignums()  # both figures closed
+    svg = save_figure(plt.figure(), tmp_path / "empty.svg")
+    assert b"<svg" in svg.read_bytes()[:400]
+
+
+def test_the_waveform_zooms_on_three_turns_about_the_largest_peak(tmp_path):
+    """The report's waveform.png: its zoom spans three shaft turns centred on the largest
+    |x| (cut to the record at its ends), and a band of the whole span or one edge plots."""
+    fs, shaft = 12000.0, 30.0
+    x = np.random.default_rng(2).standard_normal(24000)
+    for peak in (12000, 100, 23990):
+        y = x.copy()
+        y[peak] = -50.0
+        window = waveform_window(y, fs, shaft)
+        assert window.stop - window.start == 1200  # 3 turns of 1/30 s at 12 kHz
+        assert window.start <= peak < window.stop
+        assert 0 <= window.start and window.stop <= y.size
+    assert waveform_window(x[:500], fs, shaft) == slice(0, 500)  # a record under three turns
+    for band in ((500.0, 3000.0), (0.0, 6000.0), (0.0, 2000.0), (800.0, 6000.0), None):
+        path = plot_waveform(
+            x,
+            fs,
+            tmp_path / "w.png",
+            title="t",
+            shaft_hz=shaft,
+            band=band,
+            fault_hz=107.0,
+            fault_name="outer race",
+        )
+        assert path.read_bytes().startswith(b"\x89PNG")
