@@ -23,22 +23,50 @@ from generators import (  # noqa: E402
 )
 
 if TYPE_CHECKING:
-    from generators import SimulationResult, simulate
+    from generators import (
+        LocalizedDefect,
+        OperatingRangeWarning,
+        SimulationResult,
+        simulate,
+        waviness_passage_frequencies,
+    )
+
+    from .diagnose import Diagnosis, diagnose_signal
+    from .io import read_recording
+
+#: Public names loaded on first use (the model, numpy, scipy and numba with them), so that
+#: ``cmtool --help`` stays fast: name -> module.
+_LAZY = {
+    "SimulationResult": "generators",
+    "simulate": "generators",
+    "LocalizedDefect": "generators",
+    "OperatingRangeWarning": "generators",
+    "waviness_passage_frequencies": "generators",
+    "Diagnosis": "cmtool.diagnose",
+    "diagnose_signal": "cmtool.diagnose",
+    "read_recording": "cmtool.io",
+}
 
 
-def __getattr__(name: str):
-    # the model (numpy, scipy, numba) loads on first use: ``cmtool --help`` stays fast
-    if name in ("SimulationResult", "simulate"):
-        import generators
+def __getattr__(name: str) -> object:
+    if name in _LAZY:
+        import importlib
 
-        return getattr(generators, name)
+        return getattr(importlib.import_module(_LAZY[name]), name)
     raise AttributeError(f"module 'cmtool' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)
 
 
 __all__ = [
     "BEARINGS",
     "BearingGeometry",
+    "Diagnosis",
+    "LocalizedDefect",
     "OperatingCondition",
+    "OperatingRangeWarning",
     "ParameterError",
     "Rig",
     "Scene",
@@ -49,5 +77,8 @@ __all__ = [
     "__version__",
     "bearing",
     "characteristic_frequencies",
+    "diagnose_signal",
+    "read_recording",
     "simulate",
+    "waviness_passage_frequencies",
 ]

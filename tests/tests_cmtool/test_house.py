@@ -73,6 +73,26 @@ def test_the_readme_python_example_runs_and_gives_the_value_it_states():
     namespace: dict = {}
     exec("\n".join(body), namespace)  # noqa: S102 - the README's own example
     assert eval(expression, namespace) == pytest.approx(stated, rel=0.01)  # noqa: S307
+    # the next block diagnoses that signal through the top-level API, as written
+    block = text.split("## Python", 1)[1].split("```python", 2)[2].split("```", 1)[0]
+    *body, last = block.strip().splitlines()
+    exec("\n".join(body), namespace)  # noqa: S102
+    verdict, confidence, bands = eval(last.split("#", 1)[0], namespace)  # noqa: S307
+    assert verdict == "healthy" and 0.0 <= confidence <= 1.0  # waviness is no local fault
+    assert set(bands) == {"low", "medium", "high"}
+
+
+def test_every_public_name_of_cmtool_resolves():
+    """``cmtool.__all__``: each name resolves (the heavy ones on first use), and the lazy ones
+    are the objects of their own modules."""
+    import cmtool
+    import cmtool.diagnose
+    import cmtool.io
+
+    assert all(getattr(cmtool, name) is not None for name in cmtool.__all__)
+    assert cmtool.diagnose_signal is cmtool.diagnose.diagnose_signal
+    assert cmtool.read_recording is cmtool.io.read_recording
+    assert sorted(cmtool.__all__) == dir(cmtool)
 
 
 def _public_functions(tree: ast.Module):
