@@ -24,6 +24,7 @@ import os
 import queue
 import threading
 import tomllib
+import warnings
 from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -34,8 +35,9 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
+from generators import OperatingRangeWarning
 from generators.cases import CASE_COLUMNS, Case, case_count, column_kind, iter_cases
-from generators.recipe import validate_recipe
+from generators.recipe import recipe_rating_warnings, validate_recipe
 from generators.synthesis import GENERATOR_REVISION, bound_steps, generate_cases
 
 from . import __version__
@@ -225,6 +227,8 @@ def generate_dataset(
         Summary: counts of signals written, failed and skipped (already present).
     """
     recipe, text = load_recipe(recipe_path)
+    for message in recipe_rating_warnings(recipe):  # once, not per case
+        warnings.warn(message, OperatingRangeWarning, stacklevel=2)
     out = Path(out)
     digest = _recipe_hash(recipe)
     stamp = out / "recipe.toml"

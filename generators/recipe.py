@@ -19,15 +19,18 @@ from dataclasses import dataclass
 from typing import Any
 
 from ._validate import ParameterError
-from .catalog import BEARINGS
+from .catalog import BEARINGS, bearing
 from .params import (
     INTEGRATORS,
     MAX_SHAFT_SPEED_RPM,
     SCENE_LEVELS,
+    OperatingCondition,
+    operating_range_warnings,
 )
 
 __all__ = [
     "validate_recipe",
+    "recipe_rating_warnings",
     "schema_table",
     "RECIPE_SCHEMA",
     "Key",
@@ -647,6 +650,36 @@ def validate_recipe(recipe: dict) -> dict:
     for i, c in enumerate(conditions):
         _condition(c, f"conditions[{i}]", labels)
     return r
+
+
+def recipe_rating_warnings(recipe: dict) -> list[str]:
+    """Where a validated recipe's cases go beyond a bearing's catalogue ratings.
+
+    Each bearing at the recipe's largest radial load and its fastest speed, through
+    :func:`generators.params.operating_range_warnings` (basic static load rating C0r,
+    limiting speed); one message per bearing and rating exceeded, prefixed by the bearing.
+
+    Parameters
+    ----------
+    recipe : dict
+        :func:`validate_recipe`'s result.
+
+    Returns
+    -------
+    list of str
+    """
+
+    def largest(values: dict) -> float:
+        return max(values["grid"]) if "grid" in values else values["range"][1]
+
+    operating = OperatingCondition.from_rpm(
+        largest(recipe["operating"]["rpm"]), largest(recipe["operating"]["load_n"])
+    )
+    return [
+        f"recipe bearing {name}: {message}"
+        for name in recipe["bearings"]
+        for message in operating_range_warnings(bearing(name), operating)
+    ]
 
 
 def _noise_rules(sensor: dict) -> None:

@@ -532,3 +532,26 @@ def test_a_missing_or_empty_folder_is_not_a_complete_dataset(tmp_path):
     assert not dataset_complete(tmp_path)  # ours, interrupted
     (tmp_path / "_dataset.json").write_text("{}")
     assert dataset_complete(tmp_path)
+
+
+def test_a_recipe_beyond_its_bearings_ratings_is_warned_about_once(tmp_path):
+    """A recipe whose largest load passes a bearing's C0r (or whose fastest speed its limiting
+    speed) is warned about once, by bearing, before generation; the shipped recipes are
+    within every rating of their bearings."""
+    from generators import OperatingRangeWarning
+    from generators.recipe import recipe_rating_warnings
+
+    for recipe in sorted((REPO / "datasets").glob("*.toml")):
+        assert recipe_rating_warnings(validate_recipe(tomllib.loads(recipe.read_text()))) == []
+    text = (REPO / "datasets" / "small.toml").read_text()
+    heavy = text.replace("load_n = [300, 550, 800]", "load_n = [300, 550, 9000]")
+    heavy = heavy.replace("count = 48", "count = 1").replace(
+        'bearings = ["6205"]', 'bearings = ["6205", "6203"]'
+    )
+    messages = recipe_rating_warnings(validate_recipe(tomllib.loads(heavy)))
+    assert [m.split(":")[0] for m in messages] == ["recipe bearing 6205", "recipe bearing 6203"]
+    assert "C0r = 7850 N" in messages[0] and "C0r = 4750 N" in messages[1]
+    (tmp_path / "heavy.toml").write_text(heavy)
+    with pytest.warns(OperatingRangeWarning) as caught:
+        generate_dataset(tmp_path / "heavy.toml", tmp_path / "out")
+    assert len(caught) == 2  # once per bearing, not per case
