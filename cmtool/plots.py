@@ -258,9 +258,10 @@ def plot_waveform(
     panels = [zoom]
     if band:
         low, high = band
-        edges = [e for e in (low, high) if 0 < e < fs / 2]
-        filtered = x[window]  # a band of the whole span: nothing to filter
-        if edges:
+        # an edge within 1e-4 of 0 or of fs/2 is that end (a filter there is singular)
+        edges = [e for e in (low, high) if 1e-4 * fs < e < (0.5 - 1e-4) * fs]
+        filtered = x[window]  # the whole span, or no width: nothing to filter
+        if edges and high > low:
             kind = "bandpass" if len(edges) == 2 else ("highpass" if low > 0 else "lowpass")
             cutoff = edges if len(edges) == 2 else edges[0]
             sos = sp_signal.butter(4, cutoff, kind, fs=fs, output="sos")

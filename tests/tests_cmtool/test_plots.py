@@ -1,6 +1,8 @@
 """The figures cmtool writes: atomically, and the report's time waveform."""
 
 import numpy as np
+from hypothesis import example, given, settings
+from hypothesis import strategies as st
 
 from cmtool.plots import plot_waveform, plt, save_figure, waveform_window
 
@@ -59,3 +61,33 @@ def test_the_waveform_zooms_on_three_turns_about_the_largest_peak(tmp_path):
             fault_name="outer race",
         )
         assert path.read_bytes().startswith(b"\x89PNG")
+
+
+@settings(max_examples=12, deadline=None)
+@example(fs=200.0, rpm=6.0, samples=64, low=0.0, high=0.5, fault_orders=None)
+@example(fs=200.0, rpm=6.0, samples=64, low=0.25, high=0.25, fault_orders=None)  # no width
+@example(fs=54083.5, rpm=6.0, samples=5801, low=2.9e-193, high=2.9e-193, fault_orders=None)
+@example(fs=12000.0, rpm=1797.0, samples=12000, low=0.04, high=0.39, fault_orders=3.58)
+@given(
+    fs=st.floats(200.0, 200_000.0),
+    rpm=st.floats(6.0, 60_000.0),
+    samples=st.integers(64, 30_000),
+    low=st.floats(0.0, 0.5),
+    high=st.floats(0.0, 0.5),
+    fault_orders=st.floats(0.4, 8.0) | st.none(),
+)
+def test_the_waveform_plots_for_any_rate_speed_length_and_band(
+    tmp_path_factory, fs, rpm, samples, low, high, fault_orders
+):
+    """Whatever rate, speed, record length and band (fractions of fs, given in any order, a
+    zero or Nyquist edge included) the report's waveform is drawn, its zoom inside the
+    record."""
+    x = np.random.default_rng(samples).standard_normal(samples)
+    shaft = rpm / 60.0
+    window = waveform_window(x, fs, shaft)
+    assert 0 <= window.start < window.stop <= samples
+    band = (min(low, high) * fs, max(low, high) * fs)
+    fault = None if fault_orders is None else fault_orders * shaft
+    path = tmp_path_factory.mktemp("w") / "w.png"
+    plot_waveform(x, fs, path, title="t", shaft_hz=shaft, band=band, fault_hz=fault)
+    assert path.read_bytes().startswith(b"\x89PNG")
