@@ -474,6 +474,12 @@ def diagnose_signal(
     whole = x.size
     x = x[:MAX_RECORD_SAMPLES]
     rpm, freqs, ctx, warnings = rule_context(x, fs, rpm, geometry)
+    rating = geometry.static_load_rating
+    if load_n is not None and rating is not None and load_n > rating:
+        warnings.append(
+            f"--load {load_n:g} N is over the {geometry.name}'s static load rating C0r "
+            f"({rating:g} N): check --load; the healthy model's lines are beyond its rating"
+        )
     if whole > x.size:
         warnings.append(
             f"the record is {whole / fs:g} s ({whole} samples): its first {x.size / fs:g} s "

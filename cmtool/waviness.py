@@ -245,10 +245,14 @@ def healthy_model_spectrum(
     generators.ParameterError, generators.SimulationDivergedError
         The model cannot run this case.
     """
-    from generators import OperatingCondition, SimulationSettings, simulate
+    import warnings
+
+    from generators import OperatingCondition, OperatingRangeWarning, SimulationSettings, simulate
 
     settings = SimulationSettings(fs=fs, duration=duration, channels=("housing_acceleration_y",))
-    x = simulate(geometry, OperatingCondition.from_rpm(rpm, load_n), None, settings=settings)
+    with warnings.catch_warnings():  # the diagnosis says it of the speed and the load itself
+        warnings.simplefilter("ignore", OperatingRangeWarning)
+        x = simulate(geometry, OperatingCondition.from_rpm(rpm, load_n), None, settings=settings)
     return features.amplitude_spectrum(x["housing_acceleration_y"], fs)
 
 

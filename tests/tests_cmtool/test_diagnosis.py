@@ -1016,3 +1016,28 @@ def test_candidates_are_weighed_by_class_and_ranked_by_balanced_accuracy():
     score, predicted = _grouped_cv(X, y, groups, DummyClassifier(strategy="most_frequent"), 5)
     assert (predicted == "healthy").all()
     assert score == pytest.approx(1 / 3)  # plain accuracy would be 0.8
+
+
+def test_diagnosis_beyond_the_ratings_warns_in_its_own_words_once():
+    """Found by a property run of diagnose + report: the healthy model waviness is judged
+    against ran simulate above the 6205's limiting speed, whose OperatingRangeWarning came on
+    top of the diagnosis' own speed warning. Now the diagnosis alone says it, of the speed
+    and of a --load over C0r."""
+    import warnings
+
+    from generators import OperatingRangeWarning
+
+    x = np.random.default_rng(9).standard_normal(48000)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", OperatingRangeWarning)
+        fast = diagnose_signal(x, 48000.0, 14000.0, "6205")
+        heavy = diagnose_signal(x, 48000.0, 1800.0, "6205", load_n=9000.0)
+    assert fast.verdict == "healthy" and "waviness_reference" in fast.assumptions  # it ran
+    assert [w for w in fast.warnings if "limiting speed" in w] == [
+        "14000 rpm is above the catalogue limiting speed of the 6205 (13000 rpm): check --rpm "
+        "and --bearing"
+    ]
+    assert any(
+        "--load 9000 N is over the 6205's static load rating C0r (7850 N)" in w
+        for w in heavy.warnings
+    )
