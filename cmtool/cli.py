@@ -370,8 +370,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         format="%(levelname)s %(name)s: %(message)s",
     )
 
+    shown: set[str] = set()
+
     def show_warning(message, category, filename, lineno, file=None, line=None) -> None:
-        print(f"cmtool {args.command}: warning: {message}", file=sys.stderr)
+        if str(message) not in shown:  # once, wherever it comes from
+            shown.add(str(message))
+            print(f"cmtool {args.command}: warning: {message}", file=sys.stderr)
 
     try:
         with warnings.catch_warnings():  # a library warning as one line of the command's

@@ -168,3 +168,9 @@ def test_a_run_beyond_the_catalogue_ratings_is_warned_about_and_still_runs(capsy
     err = capsys.readouterr().err
     assert err.startswith("cmtool simulate: warning: shaft speed 20000 rpm is above"), err
     assert err.count("\n") == 1
+    # fidelity simulates the scene from three places: the same warning is printed once
+    argv = ["fidelity", "--rpm", "14000", "--duration", "0.01", "--settle", "0.005", "--fs"]
+    argv += ["12000", "--levels", "shaft", "--steps", "2e-5", "--rtols", "1e-3"]
+    assert main(argv) == 0
+    err = capsys.readouterr().err
+    assert err.count("warning: shaft speed 14000 rpm is above") == 1, err
