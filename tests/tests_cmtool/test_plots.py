@@ -63,7 +63,7 @@ def test_the_waveform_zooms_on_three_turns_about_the_largest_peak(tmp_path):
         assert path.read_bytes().startswith(b"\x89PNG")
 
 
-@settings(max_examples=12, deadline=None)
+@settings(max_examples=6, deadline=None)
 @example(fs=200.0, rpm=6.0, samples=64, low=0.0, high=0.5, fault_orders=None)
 @example(fs=200.0, rpm=6.0, samples=64, low=0.25, high=0.25, fault_orders=None)  # no width
 @example(fs=54083.5, rpm=6.0, samples=5801, low=2.9e-193, high=2.9e-193, fault_orders=None)
