@@ -14,7 +14,7 @@ from generators import (
 )
 from generators.params import check_shaft_speed_rpm
 
-from .common import CliError, progress_bar
+from .common import CliError, check_output_folder, progress_bar
 from .data import check_training_overlap
 
 logger = logging.getLogger("cmtool")
@@ -24,8 +24,7 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     """Diagnose a recording (or each recording a folder's MANIFEST.csv lists)."""
     from ..waviness import check_load_n
 
-    if args.report and Path(args.report).exists() and not Path(args.report).is_dir():
-        raise CliError(f"--report {args.report!r} is a file; give a folder for report.md")
+    check_output_folder("--report", args.report, "a folder for report.md")
     if args.load is not None:
         check_load_n(args.load, "--load")  # refused before any work
     if Path(args.recording).is_dir():
@@ -502,6 +501,7 @@ def _report_folder(file: str) -> str:
 
 def cmd_realism(args: argparse.Namespace) -> int:
     """Tell simulated from measured signals: ROC AUC and the features that give it away."""
+    check_output_folder("--out", args.out, "a folder for realism.json and realism.png")
     import numpy as np
 
     from ..datasets import read_dataset
@@ -564,9 +564,8 @@ def cmd_bench(args: argparse.Namespace) -> int:
     from .. import bench
     from ..plots import plot_confusion
 
+    check_output_folder("--out", args.out, "a folder for the tables and plots")
     out = Path(args.out) if args.out else None
-    if out is not None and out.exists() and not out.is_dir():
-        raise CliError(f"--out {args.out!r} is a file; give a folder for the tables and plots")
     for spec in args.detector:
         bench.load_callable(spec)  # a wrong plug-in is refused before any work
     model = None
@@ -706,6 +705,7 @@ def cmd_bench(args: argparse.Namespace) -> int:
 
 def cmd_demo(args: argparse.Namespace) -> int:
     """The main job on the embedded default."""
+    check_output_folder("--out", args.out, "a folder for the demo's results")
     from ..demo import run_demo
 
     return run_demo(Path(args.out))

@@ -21,6 +21,22 @@ class CliError(Exception):
 MAX_SEED = 2**32 - 1  # numpy's and scikit-learn's seeds
 
 
+def check_output_file(option: str, path: str | None, what: str = "a file") -> None:
+    """Refuse, before any work, an output file that is an existing folder."""
+    from pathlib import Path
+
+    if path and Path(path).is_dir():
+        raise CliError(f"{option} {path!r} is a folder; give {what}")
+
+
+def check_output_folder(option: str, path: str | None, what: str = "a folder") -> None:
+    """Refuse, before any work, an output folder that is an existing file."""
+    from pathlib import Path
+
+    if path and Path(path).exists() and not Path(path).is_dir():
+        raise CliError(f"{option} {path!r} is a file; give {what}")
+
+
 def seed_int(text: str) -> int:
     """An argparse type: a random seed, an integer in [0, 2**32 - 1]."""
     try:

@@ -12,13 +12,14 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     import pandas as pd
 
-from .common import CliError, progress_bar
+from .common import CliError, check_output_file, check_output_folder, progress_bar
 
 logger = logging.getLogger("cmtool")
 
 
 def cmd_generate(args: argparse.Namespace) -> int:
     """Generate a dataset from a recipe."""
+    check_output_folder("--out", args.out, "a folder for the dataset")
     from ..datasets import generate_dataset
 
     bar = None
@@ -69,6 +70,7 @@ def cmd_dataset_info(args: argparse.Namespace) -> int:
 
 def cmd_train(args: argparse.Namespace) -> int:
     """Train classifiers with grouped cross-validation and save the best."""
+    check_output_file("--out", args.out, "a model file, e.g. model.skops")
     import numpy as np
 
     from ..classifier import save_model, train
@@ -127,6 +129,7 @@ def cmd_train(args: argparse.Namespace) -> int:
 
 def cmd_evaluate(args: argparse.Namespace) -> int:
     """Accuracy, per-class precision/recall and confusion matrix of a model on a dataset."""
+    check_output_folder("--out", args.out, "a folder for confusion.png and evaluation.json")
     from ..classifier import evaluate, load_model
     from ..datasets import read_dataset
     from ..plots import plot_confusion

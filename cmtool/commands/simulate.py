@@ -28,7 +28,7 @@ from generators import (
 from generators.form import MAX_FORM_WAVINESS
 from generators.params import check_shaft_speed_rpm
 
-from .common import CliError, progress_bar, seed_int
+from .common import CliError, check_output_file, progress_bar, seed_int
 
 logger = logging.getLogger("cmtool")
 
@@ -650,6 +650,8 @@ def _number_list(option: str, text: str | None) -> tuple[float, ...] | None:
 
 def cmd_fidelity(args: argparse.Namespace) -> int:
     """Run the speed/accuracy study and print, write and plot the table."""
+    check_output_file("--out", args.out, "a CSV file")
+    check_output_file("--plot", args.plot, "a PNG file")
     from ..fidelity import fidelity_study, plot_fidelity, recommend
 
     geometry, operating, defects, _, rig, settings = _model_inputs(args)

@@ -801,3 +801,35 @@ def test_a_file_of_several_channels_says_which_one_was_diagnosed(tmp_path, capsy
         data = json.loads(capsys.readouterr().out)
         assert data["assumptions"]["channel"] in ("1", "ay")
         assert not any("channels;" in w for w in data["warnings"])
+
+
+@pytest.mark.parametrize(
+    ("argv", "kind", "message"),
+    [
+        (["train", "SMALL", "--out", "OUT"], "dir", "is a folder; give a model file"),
+        (["evaluate", "MODEL", "SMALL", "--out", "OUT"], "file", "is a file; give a folder"),
+        (["realism", "SMALL", "SMALL", "--out", "OUT"], "file", "is a file; give a folder"),
+        (["fidelity", "--levels", "shaft", "--out", "OUT"], "dir", "is a folder; give a CSV"),
+        (["fidelity", "--levels", "shaft", "--plot", "OUT"], "dir", "is a folder; give a PNG"),
+        (["generate", "RECIPE", "--out", "OUT"], "file", "is a file; give a folder"),
+        (["demo", "--out", "OUT"], "file", "is a file; give a folder"),
+        (["bench", "SMALL", "--out", "OUT"], "file", "is a file; give a folder"),
+    ],
+)
+def test_an_output_of_the_wrong_kind_is_refused_before_any_work(
+    argv, kind, message, tmp_path, capsys
+):
+    """Found by probing: train --out DIR failed with a traceback after training, fidelity
+    --out DIR after the whole study, evaluate/realism/generate/demo --out FILE with
+    FileExistsError or NotADirectoryError tracebacks."""
+    out = tmp_path / "out"
+    out.mkdir() if kind == "dir" else out.write_text("keep me")
+    names = {
+        "OUT": str(out),
+        "SMALL": str(REPO / "datasets" / "small"),
+        "MODEL": str(tmp_path / "absent.skops"),
+        "RECIPE": str(REPO / "datasets" / "small.toml"),
+    }
+    assert main([names.get(a, a) for a in argv]) == 2
+    assert message in _one_line_error(capsys)
+    assert out.is_dir() if kind == "dir" else out.read_text() == "keep me"
