@@ -35,9 +35,11 @@ from typing import Any
 import numpy as np
 
 import features
-from generators import BearingGeometry, bearing, characteristic_frequencies
+from generators import BearingGeometry, characteristic_frequencies
 from generators.kinematics import BearingFrequencies
 from generators.params import check_shaft_speed_rpm
+
+from .inputs import checked_geometry, checked_model, checked_rate, checked_record
 
 __all__ = [
     "diagnose_signal",
@@ -462,7 +464,8 @@ def diagnose_signal(
         [0, 1], candidates ranked with their evidence, characteristic frequencies [Hz],
         warnings, and the model's verdict when a model is given.
     """
-    geometry = bearing(geometry) if isinstance(geometry, str) else geometry
+    x, fs, geometry = checked_record(x), checked_rate(fs), checked_geometry(geometry)
+    model = checked_model(model)
     scale = None if unit is None else ACCELERATION_UNITS.get(unit)
     if unit is not None and scale is None:
         raise ValueError(f"unit = {unit!r} is not one of {', '.join(ACCELERATION_UNITS)}")

@@ -27,6 +27,7 @@ from cmtool.diagnose import (
     write_report,
 )
 from cmtool.io import read_recording
+from generators import ParameterError
 
 REPO = Path(__file__).resolve().parents[2]
 SMALL = REPO / "datasets" / "small"
@@ -1041,3 +1042,34 @@ def test_diagnosis_beyond_the_ratings_warns_in_its_own_words_once():
         "--load 9000 N is over the 6205's static load rating C0r (7850 N)" in w
         for w in heavy.warnings
     )
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "message"),
+    [
+        (dict(fs="12k"), ParameterError, r"fs = '12k' is not a number"),
+        (dict(geometry=6205), ParameterError, r"geometry = 6205 is neither a catalog name"),
+        (dict(x=np.zeros((12000, 2))), ValueError, r"x has shape \(12000, 2\): give one record"),
+        (dict(x=np.array([])), ValueError, r"x is empty"),
+        (dict(x=["a", "b"]), ValueError, r"x is not an array of numbers"),
+        (dict(model={"a": 1}), ValueError, r"model has no 'pipeline'"),
+        (dict(model=object()), ValueError, r"model = object is not a model bundle"),
+    ],
+)
+def test_the_python_api_names_a_bad_argument(call, error, message):
+    """Found by calling cmtool.diagnose_signal as a Python user would: a str rate, an int
+    bearing, a two-channel array, an empty one or a dict that is no bundle failed inside
+    numpy or with AttributeError/KeyError."""
+    arguments = dict(
+        x=np.random.default_rng(0).standard_normal(12000), fs=12000.0, rpm=1800.0, geometry="6205"
+    )
+    model = call.pop("model", None)
+    arguments.update(call)
+    with pytest.raises(error, match=message):
+        diagnose_signal(**arguments, model=model)
+
+
+def test_the_python_api_takes_one_column_as_one_record():
+    x = np.random.default_rng(0).standard_normal(12000)
+    column = diagnose_signal(x[:, None], 12000.0, 1800.0, "6205")
+    assert column.candidates == diagnose_signal(x, 12000.0, 1800.0, "6205").candidates

@@ -1,0 +1,86 @@
+"""The checks :func:`cmtool.diagnose.diagnose_signal` makes of what a Python caller gives it.
+
+The command line checks its own options; these name the Python parameters, their values and
+what is allowed, before any work.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from generators import BearingGeometry, ParameterError, bearing
+
+__all__ = ["checked_record", "checked_rate", "checked_geometry", "checked_model"]
+
+
+def checked_record(x: Any, name: str = "x") -> np.ndarray:
+    """One record as a 1-D float array (a single row or column is taken as one record).
+
+    Raises
+    ------
+    ValueError
+        Not numbers, empty, or several records (the message gives the shape).
+    """
+    try:
+        arr = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} is not an array of numbers") from None
+    if arr.ndim > 1 and sum(n > 1 for n in arr.shape) <= 1:
+        arr = arr.ravel()  # one row or one column
+    if arr.ndim != 1:
+        raise ValueError(
+            f"{name} has shape {arr.shape}: give one record (1-D); for one channel of a file "
+            "use cmtool.read_recording(path, channel=N)"
+        )
+    if arr.size == 0:
+        raise ValueError(f"{name} is empty: nothing to diagnose")
+    return arr
+
+
+def checked_rate(fs: Any, name: str = "fs") -> float:
+    """A sample rate [Hz]: a finite number above 0."""
+    try:
+        value = float(fs)
+    except (TypeError, ValueError):
+        raise ParameterError(
+            f"{name} = {fs!r} is not a number; allowed range (0, inf) Hz"
+        ) from None
+    if not (math.isfinite(value) and value > 0.0):
+        raise ParameterError(f"{name} = {fs!r} Hz is outside the allowed range (0, inf) Hz")
+    return value
+
+
+def checked_geometry(geometry: Any) -> BearingGeometry:
+    """A catalog name or a :class:`generators.BearingGeometry`, as the geometry."""
+    if isinstance(geometry, BearingGeometry):
+        return geometry
+    if isinstance(geometry, str):
+        return bearing(geometry)
+    raise ParameterError(
+        f"geometry = {geometry!r} is neither a catalog name (a str such as '6205') nor a "
+        "generators.BearingGeometry"
+    )
+
+
+def checked_model(model: Any) -> Any:
+    """A model: a bundle of ``cmtool train`` (``cmtool.classifier.load_model``), or None.
+
+    A fitted scikit-learn pipeline is taken too.
+    """
+    if model is None:
+        return None
+    if isinstance(model, dict):
+        if "pipeline" not in model:
+            raise ValueError(
+                f"model has no 'pipeline' (keys {sorted(model)[:6]}): give the bundle "
+                "cmtool.classifier.load_model returns for a file of `cmtool train`"
+            )
+        return model
+    if not (hasattr(model, "predict_proba") or hasattr(model, "predict")):
+        raise ValueError(
+            f"model = {type(model).__name__} is not a model bundle or a fitted pipeline"
+        )
+    return model
