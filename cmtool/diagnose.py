@@ -473,7 +473,6 @@ def diagnose_signal(
         from .waviness import check_load_n
 
         load_n = check_load_n(load_n)
-    x = np.asarray(x, dtype=float)
     whole = x.size
     x = x[:MAX_RECORD_SAMPLES]
     rpm, freqs, ctx, warnings = rule_context(x, fs, rpm, geometry)
