@@ -280,7 +280,6 @@ def plot_fidelity(
     from .plots import plt, save_figure
 
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     fig, ax = plt.subplots(figsize=(8, 5), dpi=110)
     stable = table[table["stable"]]
     colors = plt.get_cmap("tab20").colors

@@ -119,7 +119,6 @@ def plot_spectrum(
         The written PNG.
     """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     markers = dict(markers or {})
     if fmax is None:
         fmax = min(float(frequencies[-1]), 10 * max(markers.values(), default=frequencies[-1]))
@@ -308,7 +307,6 @@ def plot_kurtogram(result: KurtogramResult, path: str | Path, *, title: str = "k
         The written PNG.
     """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     fig, ax = plt.subplots(figsize=(8, 4.5), dpi=110)
     extent = (0.0, result.fs / 2, len(result.levels) - 0.5, -0.5)
     im = ax.imshow(
@@ -363,7 +361,6 @@ def plot_trend(
         The written PNG.
     """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(10, 6), dpi=110, sharex=True)
     colors = {
         "outer race": _COLORS["bpfo"],
@@ -403,7 +400,6 @@ def plot_confusion(
     ``columns``: the predicted labels when they differ from the true ones (``labels``).
     """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     m = np.asarray(matrix)
     columns = list(labels) if columns is None else list(columns)
     fig, ax = plt.subplots(figsize=(5.5, 4.8), dpi=110)

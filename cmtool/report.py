@@ -76,6 +76,7 @@ def write_report(
     sp = diagnosis.spectra
     f = diagnosis.frequencies
     markers = {"shaft": f["shaft"], "bpfo": f["bpfo"], "bpfi": f["bpfi"], "two_bsf": f["two_bsf"]}
+    fault = _VERDICT_MARKERS.get(diagnosis.verdict)  # the verdict's marker, None if healthy
     spec_png = plot_spectrum(
         sp.frequencies,
         sp.amplitude,
@@ -93,10 +94,9 @@ def write_report(
         ylabel="envelope amplitude",
         markers=markers,
         fmax=min(fs / 2, 5 * f["bpfi"]),
-        emphasis=_VERDICT_MARKERS.get(diagnosis.verdict),
+        emphasis=fault,
         sidebands={"inner race": f["shaft"], "ball": f["ftf"]}.get(diagnosis.verdict),
     )
-    fault = _VERDICT_MARKERS.get(diagnosis.verdict)
     wave_png = plot_waveform(
         x[: diagnosis.assumptions.get("samples", x.size)],
         fs,
