@@ -1,8 +1,8 @@
 """The ``cmtool`` command line.
 
-Subcommands: ``simulate`` (one signal from the dynamic model), ``frequencies`` (characteristic
-frequencies of a catalog bearing), ``demo`` (the main job on the embedded default).
-Units at the edge: ``--rpm`` in rev/min, everything else SI (m, N, s, Hz, Pa s).
+Each subcommand is one job of a vibration analyst's (``cmtool COMMAND --help``); ``demo`` runs
+the main job on the embedded default. Units at the edge: ``--rpm`` in rev/min, everything else
+SI (m, N, s, Hz, Pa s).
 """
 
 from __future__ import annotations
@@ -67,12 +67,14 @@ class _Parser(argparse.ArgumentParser):
 class _DefaultsHelp(argparse.ArgumentDefaultsHelpFormatter):
     """Each option's default in --help, unless its help already says it or there is none.
 
-    None is an option without a default, False a flag that is off unless given.
+    None is an option without a default, False a flag that is off unless given; a flag that
+    turns something off (``--no-ehl``) says so in its words, not as "(default: True)".
     """
 
     def _get_help_string(self, action: argparse.Action) -> str | None:
         text = action.help or ""
-        if "default" in text.lower() or action.default in (None, False, argparse.SUPPRESS):
+        flag = isinstance(action, (argparse._StoreTrueAction, argparse._StoreFalseAction))
+        if flag or "default" in text.lower() or action.default in (None, False, argparse.SUPPRESS):
             return text
         return super()._get_help_string(action)
 
@@ -85,11 +87,25 @@ GEOMETRY_HELP = (
 )
 
 
+#: What ``cmtool --help`` says first and last.
+DESCRIPTION = (
+    "Condition monitoring of rolling-element bearings: simulate a lubricated ball bearing, "
+    "generate labelled datasets, train and evaluate classifiers, diagnose measured recordings, "
+    "benchmark detectors."
+)
+EPILOG = (
+    "Start with 'cmtool demo'; 'cmtool COMMAND --help' gives each command's options. Units: "
+    "--rpm in rev/min, everything else SI (m, N, s, Hz)."
+)
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of ``cmtool``."""
-    parser = _Parser(prog="cmtool", description=(__doc__ or "").strip().split("\n")[0])
+    parser = _Parser(prog="cmtool", description=DESCRIPTION, epilog=EPILOG)
     parser.add_argument("--version", action="version", version=f"cmtool {__version__}")
-    parser.add_argument("-v", "--verbose", action="count", default=0)
+    parser.add_argument(
+        "-v", "--verbose", action="count", default=0, help="more log messages (-v info, -vv debug)"
+    )
     commands = parser.add_subparsers(dest="command", required=True)
 
     class _Commands:
@@ -123,7 +139,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("frequencies", help="characteristic frequencies of a catalog bearing")
     which = p.add_mutually_exclusive_group()
-    which.add_argument("--bearing", default="6205", choices=sorted(BEARINGS))
+    which.add_argument(
+        "--bearing", default="6205", choices=sorted(BEARINGS), help="catalog bearing"
+    )
     which.add_argument("--geometry", default=None, help=GEOMETRY_HELP)
     p.add_argument("--rpm", type=float, required=True, help="shaft speed [rev/min]")
     p.add_argument(
@@ -136,14 +154,16 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--harmonics", type=_positive_int, default=3, help="ball-pass harmonics q for --wpf"
     )
-    p.add_argument("--json", action="store_true")
+    p.add_argument("--json", action="store_true", help="print the frequencies as JSON")
     p.set_defaults(func=cmd_frequencies)
 
     p = sub.add_parser(
         "fidelity", help="speed against accuracy of every model level and integrator setting"
     )
     add_model_arguments(p)
-    p.add_argument("--levels", default="shaft,shaft+housing,full")
+    p.add_argument(
+        "--levels", default="shaft,shaft+housing,full", help="comma-separated model levels"
+    )
     p.add_argument("--steps", default=None, help="comma-separated RK4 steps [s]")
     p.add_argument("--rtols", default=None, help="comma-separated DOPRI5 tolerances")
     p.add_argument("--f-max", type=positive_float, default=5000.0, help="spectrum error band [Hz]")

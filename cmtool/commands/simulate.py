@@ -221,7 +221,13 @@ def add_model_arguments(p: argparse.ArgumentParser) -> None:
         "[rad], spin-axis drift [rad/s]",
     )
     s = p.add_argument_group("model")
-    s.add_argument("--scene", default=_default(Scene, "level"), choices=SCENE_LEVELS)
+    s.add_argument(
+        "--scene",
+        default=_default(Scene, "level"),
+        choices=SCENE_LEVELS,
+        help="shaft: 2 DOF on massless balls; shaft+housing: 4 DOF; full: a DOF per ball as "
+        "well; auto: the cheapest whose dropped physics is within --auto-error-bound",
+    )
     s.add_argument(
         "--ehl",
         dest="ehl",
@@ -230,8 +236,13 @@ def add_model_arguments(p: argparse.ArgumentParser) -> None:
         help="include the EHL film (default)",
     )
     s.add_argument("--no-ehl", dest="ehl", action="store_false", help="dry contacts")
-    s.add_argument("--auto-error-bound", type=float, default=_default(Scene, "auto_error_bound"))
-    r = p.add_argument_group("rig (docs/model.md 6.3 defaults)")
+    s.add_argument(
+        "--auto-error-bound",
+        type=float,
+        default=_default(Scene, "auto_error_bound"),
+        help="relative error the auto scene may drop [-]",
+    )
+    r = p.add_argument_group("rig (as docs/model.md 6.3 unless given)")
     d = Rig()
     r.add_argument("--shaft-mass", type=float, default=d.shaft_mass, help="[kg]")
     r.add_argument("--housing-mass", type=float, default=d.housing_mass, help="[kg]")
@@ -244,11 +255,17 @@ def add_model_arguments(p: argparse.ArgumentParser) -> None:
         default=d.contact_damping_time,
         help="dry contact damping c = tau dQ/d delta [s]",
     )
-    r.add_argument("--film-damping-factor", type=float, default=d.film_damping_factor)
+    r.add_argument(
+        "--film-damping-factor",
+        type=float,
+        default=d.film_damping_factor,
+        help="multiplier on the EHL film's squeeze damping [-]",
+    )
     r.add_argument(
         "--lubricant",
         default=next(k for k, v in LUBRICANTS.items() if v == d.lubricant),
         choices=sorted(LUBRICANTS),
+        help="lubricant of the EHL film (ISO viscosity grade, or grease)",
     )
     r.add_argument(
         "--loading-stiffness",
@@ -257,7 +274,13 @@ def add_model_arguments(p: argparse.ArgumentParser) -> None:
         help="loading spring [N/m]; 0 = constant force",
     )
     r.add_argument("--unbalance", type=float, default=0.0, help="m_u e [kg m]")
-    r.add_argument("--no-gravity", dest="gravity", action="store_false", default=True)
+    r.add_argument(
+        "--no-gravity",
+        dest="gravity",
+        action="store_false",
+        default=True,
+        help="leave out gravity on the shaft, housing and balls",
+    )
     n = p.add_argument_group("integration and sampling")
     sim = SimulationSettings()
     n.add_argument("--fs", type=float, default=sim.fs, help="output sample rate [Hz]")
@@ -265,7 +288,12 @@ def add_model_arguments(p: argparse.ArgumentParser) -> None:
     n.add_argument(
         "--settle", type=float, default=sim.settle_time, help="settling time discarded [s]"
     )
-    n.add_argument("--integrator", default=sim.integrator, choices=INTEGRATORS)
+    n.add_argument(
+        "--integrator",
+        default=sim.integrator,
+        choices=INTEGRATORS,
+        help="rk4: fixed step; dopri5: adaptive Dormand-Prince 5(4)",
+    )
     n.add_argument("--step", type=float, default=None, help="RK4 step [s]; default per scene")
 
     n.add_argument("--rtol", type=float, default=sim.rtol, help="dopri5 relative tolerance")

@@ -398,3 +398,23 @@ def test_every_help_states_a_default_once_and_never_none(capsys):
             assert option.lower().count("default") <= 1, (name, option)
     train = " ".join(commands.choices["train"].format_help().split())
     assert "(default: evidence+scale-free" in train and "(default: -10.0)" not in train
+
+
+def test_help_says_what_the_tool_is_and_every_option_what_it_does():
+    """``cmtool --help`` opens with what the tool does and ends with where to start, not a
+    module docstring's reST (it said "The ``cmtool`` command line."); no help anywhere shows
+    reST markup, and every option of every command has words of its own."""
+    from cmtool.cli import build_parser
+
+    parser = build_parser()
+    top = " ".join(parser.format_help().split())
+    assert "Condition monitoring of rolling-element bearings" in top
+    assert "Start with 'cmtool demo'" in top
+    commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    for name, sub in [("cmtool", parser), *commands.choices.items()]:
+        assert "``" not in sub.format_help(), name
+        assert "(default: True)" not in sub.format_help(), name  # --no-ehl read "dry contacts
+        # (default: True)"
+        for action in sub._actions:
+            if action.option_strings and not isinstance(action, argparse._HelpAction):
+                assert action.help, (name, action.option_strings)
