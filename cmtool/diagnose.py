@@ -39,7 +39,6 @@ from generators import BearingGeometry, characteristic_frequencies
 from generators.kinematics import BearingFrequencies
 from generators.params import check_shaft_speed_rpm
 
-from .baseline import BASELINE_RISE_DB, fault_margins, set_aside_text, weigh_against_baseline
 from .inputs import checked_geometry, checked_model, checked_rate, checked_record
 
 __all__ = [
@@ -401,7 +400,7 @@ def rule_candidates(evidence: features.Evidence, ctx: dict[str, float]) -> list[
                     for line, other, k in weighed.get("explained", [])
                 ],
                 "confidence": round(
-                    confidence_of_margin(margin, CONFIDENCE_SCALE_DB, CONFIDENCE_OFFSET_DB), 4
+                    _logistic(margin, CONFIDENCE_SCALE_DB, CONFIDENCE_OFFSET_DB), 4
                 ),
             }
         )
@@ -495,10 +494,6 @@ def diagnose_signal(
     evidence = features.fault_evidence(x, fs, {**ctx, "ftf": freqs.ftf})
     selection, threshold = evidence.selection, evidence.threshold_db
     candidates = rule_candidates(evidence, ctx)
-    if baseline is not None:  # a fault stands only where it rises over the machine's healthy
-        base = features.fault_evidence(baseline, baseline_fs or fs, {**ctx, "ftf": freqs.ftf})
-        margins = fault_margins(rule_candidates(base, ctx), base.threshold_db)
-        weigh_against_baseline(candidates, threshold, margins)
     plain_f, plain_a = features.amplitude_spectrum(x, fs)
     spectra = features.Spectra(
         plain_f,
@@ -508,17 +503,13 @@ def diagnose_signal(
         selection.band,
         None,
     )
-    top = next((c for c in candidates if c["detected"]), None)  # the strongest that stands
-    if top is not None:
-        margin = top["evidence_db"] - threshold
-        verdict, confidence = (
-            top["fault"],
-            round(confidence_of_margin(margin, *FAULT_CONFIDENCE), 4),
-        )
+    top = candidates[0]
+    margin = top["evidence_db"] - threshold
+    if top["detected"]:
+        verdict, confidence = top["fault"], round(_logistic(margin, *FAULT_CONFIDENCE), 4)
     else:
-        margin = max(c.get("effective_margin_db", c["evidence_db"] - threshold) for c in candidates)
         verdict = "healthy"
-        confidence = round(1.0 - confidence_of_margin(margin, *HEALTHY_CONFIDENCE), 4)
+        confidence = round(1.0 - _logistic(margin, *HEALTHY_CONFIDENCE), 4)
     diagnosis = Diagnosis(
         verdict=verdict,
         confidence=confidence,
@@ -572,16 +563,10 @@ def diagnose_signal(
         )
     if baseline is not None:
         _against_baseline(diagnosis, baseline, baseline_fs or fs)
-        diagnosis.assumptions["fault_reference"] = (
-            "the baseline, a healthy recording of this machine at this speed: a fault stands "
-            f"only where its margin over the threshold rises {BASELINE_RISE_DB:g} dB or more "
-            "over the baseline's for the same fault"
-        )
     diagnosis.rule_verdict = {"label": verdict, "confidence": confidence}
     if model is not None:
         diagnosis.model_verdict = model_verdict(model, x, fs, freqs, context_extra or {})
         _combine(diagnosis)
-    diagnosis.basis += set_aside_text(candidates)
     if diagnosis.verdict != "healthy":
         diagnosis.severity = {"estimated": False, "reason": SEVERITY_NOT_ESTIMATED}
     return diagnosis
@@ -711,8 +696,8 @@ ACCELERATION_UNITS = {"g": 9.80665, "m/s^2": 1.0, "m/s2": 1.0}
 MAX_RECORD_SAMPLES = 2**22
 
 
-def confidence_of_margin(margin: float, scale: float, offset: float) -> float:
-    """A margin as a probability: 1 / (1 + exp(-(margin - offset) / scale)), all in dB."""
+def _logistic(margin: float, scale: float, offset: float) -> float:
+    """1 / (1 + exp(-(margin - offset) / scale)), margin and offset in dB."""
     return 1.0 / (1.0 + math.exp(-(margin - offset) / scale))
 
 

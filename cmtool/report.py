@@ -165,7 +165,7 @@ def write_report(
         lines.append(
             f"| {c['fault']} | {c['frequency_hz']} | {s[0]} | {s[1]} | {s[2]} | "
             f"{c['sideband_snr_db'] if c['sideband_snr_db'] is not None else '-'} | "
-            f"{c['evidence_db']} | {_detected_cell(c)} | {c['confidence']} | "
+            f"{c['evidence_db']} | {'yes' if c['detected'] else 'no'} | {c['confidence']} | "
             f"{explained_lines(c) or '-'} |"
         )
     lines += [
@@ -191,10 +191,3 @@ def write_report(
     data = json.dumps(diagnosis.to_dict(), indent=2)
     atomic_write(out / "diagnosis.json", lambda tmp: tmp.write_text(data))
     return report
-
-
-def _detected_cell(candidate: dict) -> str:
-    """The report's "detected" cell: yes, no, or no because the baseline shows it as well."""
-    if candidate.get("as_in_baseline"):
-        return f"no: as in the baseline ({candidate['over_baseline_db']:+.1f} dB over it)"
-    return "yes" if candidate["detected"] else "no"

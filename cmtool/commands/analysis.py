@@ -194,13 +194,7 @@ def _print_diagnosis(diagnosis) -> None:
             f"{c['envelope_snr_db'][2]:6.1f} dB (1x/2x/3x)"
             + (f", cage rate {cage[0]['snr_db']:.1f} dB" if cage else "")
             + f", weighed {c['evidence_db']:5.1f} dB"
-            + (
-                f", {c['over_baseline_db']:+.1f} dB over the baseline's margin"
-                if "over_baseline_db" in c
-                else ""
-            )
             + ("  DETECTED" if c["detected"] else "")
-            + ("  as in the baseline" if c.get("as_in_baseline") else "")
             + (f"  ({shared})" if (shared := explained_lines(c)) else "")
         )
     print(f"  basis: {diagnosis.basis}")
