@@ -460,26 +460,52 @@ def read_dataset(
 
 
 #: Columns whose ranges ``dataset_info`` reports.
+#: Columns whose range ``dataset info`` prints when the dataset varies them, in this order:
+#: the operating point, the bearing's state, the rig, the fault, the chain and the record.
 _RANGE_COLUMNS = (
     "rpm",
     "radial_load_n",
+    "load_angle_rad",
+    "radial_internal_clearance_m",
+    "random_slip",
+    "ball_jitter_rad",
+    "shaft_mass_kg",
+    "housing_mass_kg",
+    "pedestal_stiffness_n_m",
+    "housing_damping_ratio",
+    "shaft_damping_ratio",
+    "inner_form_waviness_m",
+    "outer_form_waviness_m",
+    "ball_form_waviness_m",
     "waviness_order",
     "waviness_amplitude_m",
     "defect_length_m",
     "defect_depth_m",
+    "defect_position_rad",
+    "fault_snr_db",
+    "background_db",
     "snr_db",
-    "fs_hz",
     "resonance_hz",
+    "fs_hz",
     "duration_s",
 )
+#: Columns that describe a fault: their range is over the faulty signals, and a column that is
+#: 0 for every one of them (a dataset without waviness, say) is not printed.
+_FAULT_COLUMNS = ("waviness", "defect", "fault_snr")
 
 
 def dataset_info(path: str | os.PathLike) -> str:
     """Counts per label and parameter ranges of a dataset, as text."""
     path = Path(path)
+    present = (
+        set(pq.read_schema(next((path / "data").glob("*.parquet"))).names)
+        if (path / "data").is_dir() and any((path / "data").glob("*.parquet"))
+        else set(_RANGE_COLUMNS)
+    )
+    ranged = [c for c in _RANGE_COLUMNS if c in present]
     frame = read_dataset(
         path,
-        columns=["label", "bearing", *_RANGE_COLUMNS, "operating_point_id"],
+        columns=["label", "bearing", *ranged, "operating_point_id"],
         allow_incomplete=True,
     )
     lines = [f"dataset {path}: {len(frame)} signals"]
@@ -499,11 +525,41 @@ def dataset_info(path: str | os.PathLike) -> str:
         f"operating points: {frame['operating_point_id'].nunique()}; bearings: "
         f"{', '.join(sorted(frame['bearing'].unique()))}"
     )
-    lines.append("parameter ranges:")
-    for col in _RANGE_COLUMNS:
-        values = frame[col].dropna()
-        if col.startswith(("waviness", "defect")):
-            values = values[frame["label"] != "healthy"]
-        if len(values):
-            lines.append(f"  {col:<22s} {values.min():.6g} .. {values.max():.6g}")
+    lines.append("parameter ranges (what the dataset varies):")
+    faulty = frame["label"] != "healthy"
+    fixed = []
+    for col in ranged:
+        values = frame[col]
+        if col.startswith(_FAULT_COLUMNS):
+            values = values[faulty]
+        values = values[np.isfinite(values)]
+        if not len(values) or (col.startswith(_FAULT_COLUMNS) and not (values != 0).any()):
+            continue
+        if values.min() < values.max():
+            lines.append(f"  {col:<28s} {values.min():.6g} .. {values.max():.6g}")
+        else:
+            fixed.append(f"{col} {values.min():.6g}")
+    if fixed:
+        lines.append("the same in every signal: " + ", ".join(fixed))
+    if "fault_snr_db" in frame.columns and frame.loc[faulty, "fault_snr_db"].notna().any():
+        lines.append(_visibility_line(frame[faulty]))
     return "\n".join(lines)
+
+
+def _visibility_line(faults: pd.DataFrame) -> str:
+    """How many faulty signals per label reach ``cmtool train``'s fault-SNR floor."""
+    from .classifier import MIN_FAULT_SNR_DB
+
+    snr = faults["fault_snr_db"]
+    kept = ~(snr < MIN_FAULT_SNR_DB)  # as classifier.visible_faults: no SNR (NaN) is kept
+    parts = [
+        f"{label} {int(kept[faults['label'] == label].sum())}/"
+        f"{int((faults['label'] == label).sum())}"
+        for label in sorted(faults["label"].unique())
+    ]
+    unmet = int(np.isneginf(snr).sum())
+    return (
+        f"faults at a fault SNR of {MIN_FAULT_SNR_DB:g} dB or more (what cmtool train keeps): "
+        + ", ".join(parts)
+        + (f"; {unmet} never met by the races (fault SNR -inf)" if unmet else "")
+    )

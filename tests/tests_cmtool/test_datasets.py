@@ -472,7 +472,16 @@ def test_localized_defect_recipe(tmp_path):
     # background: the same level relative to the healthy bearing for every case; a fault's
     # noise is at least that, and at least its signature over 10^(fault_snr/20)
     assert (frame["noise_rms"] > 0).all()
-    assert "defect_depth_m" in dataset_info(tmp_path / "ds")
+    # dataset info: what the recipe varies with its range, what it fixes on one line, no
+    # waviness columns for a dataset without waviness, and how many faults train would keep
+    text = dataset_info(tmp_path / "ds")
+    ranges = {ln.split()[0]: ln for ln in text.splitlines() if ln.startswith("  ")}
+    assert {"defect_depth_m", "radial_load_n", "fs_hz", "fault_snr_db"} <= set(ranges)
+    assert "waviness_order" not in text and "rpm" not in ranges
+    assert "the same in every signal: rpm 1797" in text and "duration_s 0.1" in text
+    faults = frame[frame["label"] != "healthy"]
+    kept = {k: int((v["fault_snr_db"] >= -10).sum()) for k, v in faults.groupby("label")}
+    assert f"keeps): ball {kept['ball']}/2, outer {kept['outer']}/2" in text
 
 
 def test_the_recipe_keys_in_the_readme_are_the_schema():
