@@ -35,6 +35,11 @@ Modes:
     ``comb``, FTF, 2 and 3 x FTF as a third test of their own, the ball's probability three
     times the least of the fundamental's, the family's and the comb's (Bonferroni).
 
+``shifted-bands DATASET [DATASET ...]``
+    As ``ball-odd``, the band tree as shipped and with each level's bands also shifted by half
+    a band (a resonance on a band edge gets a band centred on it; the threshold counts the
+    extra bands, as the selection does): stop 51, docs/diagnosis.md "Half-shifted bands".
+
 ``band-floor DATASET [DATASET ...]``
     As ``ball-odd``, the rule as shipped (every candidate band starting at 3 x the fastest
     fault rate, the highest envelope line weighed: ``features.separation.fault_band``) against
@@ -255,6 +260,47 @@ def ball_odd(paths: list[str], variants=None) -> None:
 
 
 _SHIPPED_EVIDENCE = evidence.fault_evidence
+_SHIPPED_CANDIDATE_BANDS = separation.candidate_bands
+
+
+def _shifted_candidate_bands(
+    fs, n, *, min_bandwidth, nlevel=6, max_frequency=None, min_frequency=0.0
+):
+    """The shipped tree's bands and each level's bands shifted by half a band (stop 51)."""
+    out = _SHIPPED_CANDIDATE_BANDS(
+        fs,
+        n,
+        min_bandwidth=min_bandwidth,
+        nlevel=nlevel,
+        max_frequency=max_frequency,
+        min_frequency=min_frequency,
+    )
+    top = fs / separation.ANALYSER_RATIO if max_frequency is None else max_frequency
+    splits = {1}
+    for k in range(1, int(nlevel) + 1):
+        splits |= {2**k, 3 * 2 ** (k - 1)}
+    for nb in sorted(splits):
+        bw = fs / 2 / nb
+        if bw < min_bandwidth or bw * n / fs < 64:
+            continue
+        for b in range(nb - 1):
+            low, high = max((b + 0.5) * bw, min_frequency), min((b + 1.5) * bw, top)
+            if high - low >= min_bandwidth and (low, high) not in out:
+                out.append((low, high))
+    return out
+
+
+def _with_shifted_bands(x, fs, fault_frequencies):
+    """The shipped evidence over the tree with half-shifted bands: a resonance on a band edge
+    then gets a band centred on it (every thread of a variant sets the same tree)."""
+    separation.candidate_bands = _shifted_candidate_bands
+    return _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
+
+
+def _with_shipped_bands(x, fs, fault_frequencies):
+    """The shipped evidence, the shipped tree put back."""
+    separation.candidate_bands = _SHIPPED_CANDIDATE_BANDS
+    return _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
 
 
 def _with_odd_ball_lines(x, fs, fault_frequencies):
@@ -441,6 +487,8 @@ if __name__ == "__main__":
                 "shipped (from 3 x the fastest rate)": _rule(cage=True, tree_from_zero=False),
             },
         )
+    elif mode == "shifted-bands" and len(sys.argv) > 2:
+        ball_odd(sys.argv[2:], {"shipped": _with_shipped_bands, "shifted": _with_shifted_bands})
     elif mode == "sideband-cap" and len(sys.argv) > 2:
         ball_odd(sys.argv[2:], {"shipped": _SHIPPED_EVIDENCE, "capped": _with_capped_sidebands})
     elif mode == "squared-envelope" and len(sys.argv) > 2:
