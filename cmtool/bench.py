@@ -55,6 +55,7 @@ from generators import bearing as catalog_bearing
 from .diagnose import CANONICAL, FAULTS, diagnose_signal
 from .io import read_recording
 from .manifest import read_manifest
+from .workers import WarningRelay, keeping_warnings
 
 __all__ = [
     "BUILTIN_DETECTORS",
@@ -310,6 +311,11 @@ def _init_worker(model, specs: tuple[str, ...]) -> None:
     _WORKER["detectors"] = {spec: load_callable(spec) for spec in specs}
 
 
+def _signal_rows_kept(record) -> tuple[list[dict], list]:
+    """:func:`_signal_rows` in a worker process, with the warnings it raised."""
+    return keeping_warnings(_signal_rows, record)
+
+
 def _signal_rows(record) -> list[dict]:
     sid, x, fs, rpm, brg, label, meta = record
     outputs = builtin_outputs(x, fs, rpm, brg, model=_WORKER.get("model"))
@@ -386,7 +392,10 @@ def run_bench(
             max_workers=workers, initializer=_init_worker, initargs=(model, specs)
         ) as pool:
             chunk = max(1, min(32, len(records) // (8 * workers) or 1))
-            for i, signal_rows in enumerate(pool.map(_signal_rows, records, chunksize=chunk)):
+            relay = WarningRelay()  # a worker's warnings, here and once
+            done = pool.map(_signal_rows_kept, records, chunksize=chunk)
+            for i, (signal_rows, caught) in enumerate(done):
+                relay(caught)
                 rows.extend(signal_rows)
                 if progress:
                     progress(i + 1, len(records))

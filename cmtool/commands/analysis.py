@@ -306,10 +306,14 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
     if workers > 1:
         from concurrent.futures import ProcessPoolExecutor
 
+        from ..workers import WarningRelay
+
+        relay = WarningRelay()  # a worker's warnings, here and once
         with ProcessPoolExecutor(
             max_workers=workers, initializer=_folder_worker, initargs=(model,)
         ) as pool:
-            for row, result in pool.map(_folder_row, tasks):
+            for (row, result), caught in pool.map(_folder_row_kept, tasks):
+                relay(caught)
                 rows.append(row)
                 results.append(result)
                 bar.update(1)
@@ -358,6 +362,13 @@ _FOLDER_WORKER: dict = {}
 
 def _folder_worker(model) -> None:
     _FOLDER_WORKER["model"] = model
+
+
+def _folder_row_kept(task) -> tuple[tuple[dict, dict], list]:
+    """:func:`_folder_row` in a worker process, with the warnings it raised."""
+    from ..workers import keeping_warnings
+
+    return keeping_warnings(_folder_row, task)
 
 
 def _folder_row(task) -> tuple[dict, dict]:

@@ -332,3 +332,32 @@ def test_a_plugin_that_raises_is_named_with_its_signal(capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert "RuntimeError: boom" in err and "Traceback" not in err
+
+
+def _warns(x, fs, rpm, bearing):
+    import warnings
+
+    warnings.warn("the plug-in's own caveat", UserWarning, stacklevel=2)
+    return "healthy"
+
+
+def test_a_warning_in_the_worker_processes_reaches_the_caller_once(tmp_path, capsys):
+    """A plug-in's warning raised in ``workers=2`` processes is the caller's, once: each worker
+    printed it itself (twice with two workers, out of reach of the caller's filters), and
+    ``cmtool bench`` showed it so."""
+    import shutil
+    import warnings
+
+    part = tmp_path / "part" / "data"
+    part.mkdir(parents=True)
+    for name in sorted((SMALL / "data").glob("*.parquet"))[::8]:  # 24 signals
+        shutil.copy(name, part / name.name)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        run_bench(part.parent, detectors=[f"{__name__}:_warns"], workers=2)
+    mine = [w for w in caught if "the plug-in's own caveat" in str(w.message)]
+    assert len(mine) == 1 and mine[0].category is UserWarning
+    argv = ["bench", str(part.parent), "--detector", f"{__name__}:_warns", "--workers", "2"]
+    assert main(argv) == 0
+    err = capsys.readouterr().err
+    assert err.count("the plug-in's own caveat") == 1, err

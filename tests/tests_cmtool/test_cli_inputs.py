@@ -472,7 +472,7 @@ def test_a_bearing_not_in_the_catalog_is_given_by_its_geometry(outer_race_csv, c
 
 
 def test_a_folder_with_a_manifest_is_diagnosed_recording_by_recording(
-    outer_race_csv, tmp_path, capsys
+    outer_race_csv, tmp_path, capsys, monkeypatch
 ):
     """Each listed recording is diagnosed with its own rate, speed and bearing; one that cannot
     be is reported in its row and the rest go on; --report writes a report each and a table."""
@@ -538,6 +538,21 @@ def test_a_folder_with_a_manifest_is_diagnosed_recording_by_recording(
     # two processes give the same answers, in the manifest's order
     assert main(["diagnose", str(folder), "--json", "--allow-clipping", "--workers", "2"]) == 0
     assert json.loads(capsys.readouterr().out) == batch
+    # a warning raised while a worker diagnoses is shown once by the command, not by each
+    # worker (the forked workers inherit this patch)
+    import warnings
+
+    import cmtool.commands.analysis as analysis
+
+    diagnose_one = analysis._diagnose_one
+
+    def warning_diagnose_one(*args, **kwargs):
+        warnings.warn("a caveat of every recording", UserWarning, stacklevel=2)
+        return diagnose_one(*args, **kwargs)
+
+    monkeypatch.setattr(analysis, "_diagnose_one", warning_diagnose_one)
+    assert main(["diagnose", str(folder), "--json", "--allow-clipping", "--workers", "2"]) == 0
+    assert capsys.readouterr().err.count("a caveat of every recording") == 1
     # the manifest gives rate, speed and bearing: the flags that would contradict it are refused
     for flag in (["--rpm", "1797"], ["--bearing", "6205"], ["--fs", "12000"]):
         assert main(["diagnose", str(folder), *flag]) == 2
