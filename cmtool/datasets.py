@@ -459,7 +459,6 @@ def read_dataset(
     return frame
 
 
-#: Columns whose ranges ``dataset_info`` reports.
 #: Columns whose range ``dataset info`` prints when the dataset varies them, in this order:
 #: the operating point, the bearing's state, the rig, the fault, the chain and the record.
 _RANGE_COLUMNS = (
@@ -540,7 +539,9 @@ def dataset_info(path: str | os.PathLike) -> str:
         else:
             fixed.append(f"{col} {values.min():.6g}")
     if fixed:
-        lines.append("the same in every signal: " + ", ".join(fixed))
+        lines.append(
+            "the same in every signal (a fault's columns: in every fault): " + ", ".join(fixed)
+        )
     if "fault_snr_db" in frame.columns and frame.loc[faulty, "fault_snr_db"].notna().any():
         lines.append(_visibility_line(frame[faulty]))
     return "\n".join(lines)

@@ -478,7 +478,7 @@ def test_localized_defect_recipe(tmp_path):
     ranges = {ln.split()[0]: ln for ln in text.splitlines() if ln.startswith("  ")}
     assert {"defect_depth_m", "radial_load_n", "fs_hz", "fault_snr_db"} <= set(ranges)
     assert "waviness_order" not in text and "rpm" not in ranges
-    assert "the same in every signal: rpm 1797" in text and "duration_s 0.1" in text
+    assert "in every fault): rpm 1797" in text and "defect_length_m 0.00018" in text
     faults = frame[frame["label"] != "healthy"]
     kept = {k: int((v["fault_snr_db"] >= -10).sum()) for k, v in faults.groupby("label")}
     assert f"keeps): ball {kept['ball']}/2, outer {kept['outer']}/2" in text
