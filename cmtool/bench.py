@@ -53,7 +53,7 @@ from generators import BearingGeometry, characteristic_frequencies
 from generators import bearing as catalog_bearing
 
 from .diagnose import CANONICAL, FAULTS, diagnose_signal
-from .io import read_recording
+from .io import atomic_write, read_recording
 from .manifest import read_manifest
 from .workers import WarningRelay, keeping_warnings
 
@@ -868,5 +868,6 @@ def write_report(
     for column, table in factors.items():
         name, unit, _ = FACTORS[column]
         lines += [f"## By {name}", "", _pivot(table, "bin", "value"), ""]
-    path.write_text("\n".join(lines))
+    text = "\n".join(lines)
+    atomic_write(path, lambda tmp: tmp.write_text(text))
     return path

@@ -314,6 +314,27 @@ def _table_and_rule(
     return array, names, rule
 
 
+def transform_in_chunks(
+    extractor: features.FeatureExtractor,
+    frame: pd.DataFrame,
+    stage: str,
+    progress: Progress | None = None,
+) -> np.ndarray:
+    """``extractor.transform(frame)``, chunk by chunk, reporting ``progress(stage, done, total)``.
+
+    Chunks of ``PROGRESS_CHUNK`` signals per worker (``extractor.n_jobs``); each signal's
+    features are its own, so the table is the one a single call makes.
+    """
+    if progress is None:
+        return extractor.transform(frame)
+    workers = extractor.n_jobs if isinstance(extractor.n_jobs, int) and extractor.n_jobs > 0 else 1
+    parts = []
+    for part in _chunks(len(frame), workers):
+        parts.append(extractor.transform(frame.iloc[part]))
+        progress(stage, part.stop, len(frame))
+    return np.concatenate(parts) if parts else extractor.transform(frame)
+
+
 def _grouped_cv(X, y, groups, estimator, n_splits: int) -> tuple[float, np.ndarray]:
     cv = GroupKFold(n_splits=n_splits)
     pred = np.empty_like(y)
@@ -632,16 +653,24 @@ def train(
     }
 
 
-def evaluate(bundle: dict[str, Any], frame: pd.DataFrame, *, workers: int = 1) -> dict[str, Any]:
+def evaluate(
+    bundle: dict[str, Any],
+    frame: pd.DataFrame,
+    *,
+    workers: int = 1,
+    progress: Progress | None = None,
+) -> dict[str, Any]:
     """Accuracy, per-class precision/recall and the confusion matrix of a model on a dataset.
 
-    ``workers`` processes extract the features (the result is the same for any count).
+    ``workers`` processes extract the features (the result is the same for any count);
+    ``progress(stage, done, total)`` is called after each chunk of signals.
     """
     y = frame["label"].astype(str).to_numpy()
     pipeline = bundle["pipeline"]
     extractor = copy.copy(pipeline[0])  # the bundle's own extractor is left as it came
     extractor.n_jobs = workers
-    pred = pipeline[1:].predict(extractor.transform(frame))
+    table = transform_in_chunks(extractor, frame, "features", progress)
+    pred = pipeline[1:].predict(table)
     labels = sorted(set(y) | set(pred))
     report = classification_report(y, pred, labels=labels, output_dict=True, zero_division=0)
     return {

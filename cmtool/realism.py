@@ -17,6 +17,7 @@ speed grid from the recordings' speeds however real the signals look.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -116,6 +117,7 @@ def realism(
     feature_set: str = "scale-free",
     random_state: int = 0,
     n_jobs: int | None = None,
+    progress: Callable[[str, int, int], None] | None = None,
 ) -> dict[str, Any]:
     """ROC AUC of telling ``measured`` segments from ``simulated`` signals, and why.
 
@@ -131,6 +133,8 @@ def realism(
         Seed of the forest.
     n_jobs : int, optional
         Workers of the feature extraction.
+    progress : callable, optional
+        ``progress(stage, done, total)`` after each chunk of signals whose features are done.
 
     Returns
     -------
@@ -156,6 +160,8 @@ def realism(
 
     from features import FeatureExtractor, feature_units
 
+    from .classifier import transform_in_chunks
+
     groups_measured = measured["group"].astype(str).to_numpy()
     recordings = len(set(groups_measured))
     if recordings < 2:
@@ -170,7 +176,7 @@ def realism(
     names = list(extractor.get_feature_names_out())
     keep = [i for i, name in enumerate(names) if units.get(name) not in CONTEXT_UNITS]
     left_out = [name for name in names if units.get(name) in CONTEXT_UNITS]
-    X = extractor.transform(both)[:, keep]
+    X = transform_in_chunks(extractor, both, "features", progress)[:, keep]
     names = [names[i] for i in keep]
     y = np.r_[np.zeros(len(simulated)), np.ones(len(measured))]
     groups = np.r_[[f"sim-{i}" for i in range(len(simulated))], groups_measured]

@@ -14,7 +14,7 @@ from generators import (
 )
 from generators.params import check_shaft_speed_rpm
 
-from .common import CliError, check_output_folder, progress_bar
+from .common import CliError, StageBars, check_output_folder, progress_bar
 from .data import check_training_overlap
 
 logger = logging.getLogger("cmtool")
@@ -521,7 +521,14 @@ def cmd_realism(args: argparse.Namespace) -> int:
     simulated = read_dataset(args.dataset, allow_incomplete=args.allow_incomplete)
     duration = float(np.median(simulated["duration_s"])) if "duration_s" in simulated else 1.0
     measured = recording_segments(args.recordings, duration)
-    result = realism(simulated, measured, feature_set=args.feature_set, n_jobs=args.workers)
+    with StageBars("realism") as progress:
+        result = realism(
+            simulated,
+            measured,
+            feature_set=args.feature_set,
+            n_jobs=args.workers,
+            progress=progress,
+        )
     print(
         f"measured vs simulated: ROC AUC {result['auc']:.3f} (0.5: indistinguishable, 1: "
         f"every recording recognised); {result['segments']} segments of {duration:g} s from "
@@ -561,9 +568,10 @@ def cmd_realism(args: argparse.Namespace) -> int:
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
-        (out / "realism.json").write_text(
-            json.dumps({k: v for k, v in result.items() if k != "scores"}, indent=2)
-        )
+        from ..io import atomic_write
+
+        text = json.dumps({k: v for k, v in result.items() if k != "scores"}, indent=2)
+        atomic_write(out / "realism.json", lambda tmp: tmp.write_text(text))
         print(f"wrote {plot_realism(result, out / 'realism.png')}")
     return 0
 
@@ -666,20 +674,24 @@ def cmd_bench(args: argparse.Namespace) -> int:
         if in_sample:
             for frame in (summary, labels):
                 frame["in_sample"] = True
-        results.to_csv(out / "results.csv", index=False)
-        summary.to_csv(out / "summary.csv", index=False)
-        labels.to_csv(out / "labels.csv")
-        confusion.assign(**({"in_sample": True} if in_sample else {})).to_csv(
-            out / "confusion.csv", index=False
-        )
+        from ..io import atomic_write
+
+        tables = {
+            "results.csv": results,
+            "summary.csv": summary,
+            "confusion.csv": confusion.assign(**({"in_sample": True} if in_sample else {})),
+        }
         if by_snr is not None:
             if in_sample:
                 by_snr = by_snr.assign(in_sample=True)
-            by_snr.drop(columns=["bin"]).to_csv(out / "by_snr.csv", index=False)
-            by_snr_fault.drop(columns=["bin"]).to_csv(out / "by_snr_fault.csv", index=False)
+            tables["by_snr.csv"] = by_snr.drop(columns=["bin"])
+            tables["by_snr_fault.csv"] = by_snr_fault.drop(columns=["bin"])
         if factors:
             table = pd.concat([t.assign(factor=c) for c, t in factors.items()], ignore_index=True)
-            table.to_csv(out / "by_factor.csv", index=False)
+            tables["by_factor.csv"] = table
+        for name, frame in tables.items():
+            atomic_write(out / name, lambda tmp, frame=frame: frame.to_csv(tmp, index=False))
+        atomic_write(out / "labels.csv", lambda tmp: labels.to_csv(tmp))
         title = f"{Path(args.dataset).name}{tag}"
         written = [bench.plot_roc(curves, out / "roc.png", title=f"ROC: {title}")]
         for (detector, rig), frame in frames.items():

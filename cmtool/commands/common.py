@@ -82,3 +82,33 @@ def progress_bar(
         disable=None,
         file=sys.stderr,
     )
+
+
+class StageBars:
+    """``progress(stage, done, total)`` shown as a progress bar per stage (``COMMAND: stage``).
+
+    A stage's bar is closed when the next stage reports; use as a context manager so that the
+    last one is closed too.
+    """
+
+    def __init__(self, command: str, unit: str = "signal") -> None:
+        self.command, self.unit = command, unit
+        self.bars: dict[str, tqdm] = {}
+
+    def __call__(self, stage: str, done: int, total: int) -> None:
+        """Move ``stage``'s bar to ``done`` of ``total``."""
+        if stage not in self.bars:
+            self.close()
+            self.bars[stage] = progress_bar(total, f"{self.command}: {stage}", self.unit)
+        self.bars[stage].update(done - self.bars[stage].n)
+
+    def close(self) -> None:
+        """Close every bar."""
+        for bar in self.bars.values():
+            bar.close()
+
+    def __enter__(self) -> StageBars:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()

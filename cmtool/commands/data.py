@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     import pandas as pd
 
-from .common import CliError, check_output_file, check_output_folder, progress_bar
+from .common import CliError, StageBars, check_output_file, check_output_folder, progress_bar
 
 logger = logging.getLogger("cmtool")
 
@@ -78,16 +78,7 @@ def cmd_train(args: argparse.Namespace) -> int:
 
     frame = read_dataset(args.dataset, allow_incomplete=args.allow_incomplete)
     recipe = Path(args.dataset, "recipe.toml")
-    bars: dict = {}
-
-    def progress(stage: str, done: int, total: int) -> None:
-        if stage not in bars:
-            for bar in bars.values():
-                bar.close()
-            bars[stage] = progress_bar(total, f"train: {stage}", "signal")
-        bars[stage].update(done - bars[stage].n)
-
-    try:
+    with StageBars("train") as progress:
         bundle = train(
             frame,
             recipe=recipe.read_text() if recipe.is_file() else "",
@@ -98,9 +89,6 @@ def cmd_train(args: argparse.Namespace) -> int:
             workers=args.workers,
             progress=progress,
         )
-    finally:
-        for bar in bars.values():
-            bar.close()
     print(
         f"trained on {len(frame) - bundle['left_out']} signals ({bundle['left_out']} faulty "
         f"ones below the fault SNR floor left out), {frame['operating_point_id'].nunique()} "
@@ -132,12 +120,14 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     check_output_folder("--out", args.out, "a folder for confusion.png and evaluation.json")
     from ..classifier import evaluate, load_model
     from ..datasets import read_dataset
+    from ..io import atomic_write
     from ..plots import plot_confusion
 
     bundle = load_model(args.model)
     frame = read_dataset(args.dataset, allow_incomplete=args.allow_incomplete)
     in_sample = check_training_overlap(bundle, frame, args)
-    result = evaluate(bundle, frame, workers=args.workers)
+    with StageBars("evaluate") as progress:
+        result = evaluate(bundle, frame, workers=args.workers, progress=progress)
     result["in_sample_fraction"] = in_sample
     tag = " (IN-SAMPLE: signals the model was trained on; not a measure of accuracy)"
     print(
@@ -160,9 +150,8 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
             title=f"{Path(args.model).name} on {Path(args.dataset).name}"
             + (" (in-sample)" if in_sample else ""),
         )
-        (out / "evaluation.json").write_text(
-            json.dumps({k: v for k, v in result.items() if k != "predictions"}, indent=2)
-        )
+        text = json.dumps({k: v for k, v in result.items() if k != "predictions"}, indent=2)
+        atomic_write(out / "evaluation.json", lambda tmp: tmp.write_text(text))
         print(f"wrote {png}")
     return 0
 

@@ -58,6 +58,29 @@ def test_figures_are_written_through_the_atomic_writer():
     assert not direct, direct
 
 
+def test_result_files_are_written_through_the_atomic_writer():
+    """Every JSON, CSV and text result cmtool writes goes through ``cmtool.io.atomic_write``
+    (written to a temporary file, then renamed): no ``write_text``, ``write_bytes`` or
+    ``to_csv`` straight onto a result's path (evaluation.json, realism.json and bench's CSVs
+    and report.md were, until stop 51). The writer's callbacks write to ``tmp`` (or the open
+    ``handle`` of it). (The numba cache's stamp in generators has its own temporary file.)"""
+    direct = []
+    for path in sorted((REPO / "cmtool").rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)):
+                continue
+            name = node.func.attr
+            if name in ("write_text", "write_bytes"):
+                target = node.func.value
+            elif name == "to_csv" and node.args:
+                target = node.args[0]
+            else:
+                continue
+            if not (isinstance(target, ast.Name) and target.id in ("tmp", "handle")):
+                direct.append(f"{path.relative_to(REPO)}:{node.lineno} {name}")
+    assert not direct, direct
+
+
 def test_the_readme_python_example_runs_and_gives_the_value_it_states():
     """README.md's Python section is run as written; its last line's value is the one its
     comment states ("~8.7e-6 m/s", two significant digits: rounding up to 0.6 %, so 1 %)."""

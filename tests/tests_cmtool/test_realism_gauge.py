@@ -93,7 +93,11 @@ def test_gauge_judges_signals_not_the_speed_grid(tmp_path):
         [1900.0] * 10,
         fs,
     )
-    result = realism(simulated, recording_segments(measured, 1.0))
+    reports: list = []
+    result = realism(
+        simulated, recording_segments(measured, 1.0), progress=lambda *r: reports.append(r)
+    )
+    assert reports[-1] == ("features", 90, 90)  # 60 simulated signals and 30 segments
     assert result["context_left_out"] == ["shaft_frequency"]
     assert "shaft_frequency" not in dict(result["features"])
     assert result["auc"] < 0.75, result["auc"]
