@@ -324,6 +324,22 @@ def transform_in_chunks(
 
     Chunks of ``PROGRESS_CHUNK`` signals per worker (``extractor.n_jobs``); each signal's
     features are its own, so the table is the one a single call makes.
+
+    Parameters
+    ----------
+    extractor : features.FeatureExtractor
+        A fitted extractor.
+    frame : DataFrame
+        Signals with their context columns (a dataset).
+    stage : str
+        The stage named to ``progress``.
+    progress : callable, optional
+        ``progress(stage, signals done, signals in all)``; None: one call, no reports.
+
+    Returns
+    -------
+    ndarray
+        The feature table, a row per signal of ``frame`` [each feature's unit].
     """
     if progress is None:
         return extractor.transform(frame)
