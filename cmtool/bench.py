@@ -49,13 +49,13 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from features.transformer import WarningRelay, keeping_warnings
 from generators import BearingGeometry, characteristic_frequencies
 from generators import bearing as catalog_bearing
 
 from .diagnose import CANONICAL, FAULTS, diagnose_signal
 from .io import atomic_write, read_recording
 from .manifest import read_manifest
-from .workers import WarningRelay, keeping_warnings
 
 __all__ = [
     "BUILTIN_DETECTORS",

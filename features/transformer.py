@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from typing import Any
 
@@ -103,6 +104,43 @@ def _feature_rows(items, faults, n_harmonics, names):
     return feature_rows_with_evidence(items, faults, n_harmonics, names, keep_evidence=False)[0]
 
 
+#: What a worker process sends back of one warning: its category and message.
+CaughtWarning = tuple[type[Warning], str]
+
+
+def keeping_warnings(function: Callable[..., Any], *args: Any) -> tuple[Any, list[CaughtWarning]]:
+    """``function(*args)`` and the warnings it raised (category, message), in order.
+
+    What a task run in a worker process returns, so that its warnings reach the caller
+    (:class:`WarningRelay`) instead of being shown by each worker, out of reach of the
+    caller's filters. The worker's own filters still apply (an ignored warning is not kept);
+    a warning kept is not shown by the worker.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> keeping_warnings(lambda v: warnings.warn(f"slow: {v}") or v, 3)
+    (3, [(<class 'UserWarning'>, 'slow: 3')])
+    """
+    with warnings.catch_warnings(record=True) as caught:
+        result = function(*args)
+    return result, [(w.category, str(w.message)) for w in caught]
+
+
+class WarningRelay:
+    """Raises the warnings workers kept in this process, each category and message once."""
+
+    def __init__(self) -> None:
+        self._seen: set[CaughtWarning] = set()
+
+    def __call__(self, caught: list[CaughtWarning]) -> None:
+        """Warn of each of ``caught`` not yet warned of."""
+        for category, message in caught:
+            if (category, message) not in self._seen:
+                self._seen.add((category, message))
+                warnings.warn(message, category, stacklevel=2)
+
+
 def map_in_processes(
     function: Callable[..., list], items: list, n_jobs: int | None, *args: Any
 ) -> list:
@@ -110,16 +148,21 @@ def map_in_processes(
 
     ``function`` takes a list of items and returns one result per item; each process gets
     every ``n_jobs``-th item (round robin, so that costly items spread), and the results are
-    put back in the items' order. ``None`` or 1: in this process.
+    put back in the items' order. ``None`` or 1: in this process. A warning raised in a
+    process is raised here, once (:func:`keeping_warnings`).
     """
     if n_jobs in (None, 1) or len(items) < 2:
         return function(items, *args)
     from joblib import Parallel, delayed, effective_n_jobs
 
     jobs = effective_n_jobs(n_jobs)
-    parts = Parallel(n_jobs=jobs)(delayed(function)(items[i::jobs], *args) for i in range(jobs))
+    parts = Parallel(n_jobs=jobs)(
+        delayed(keeping_warnings)(function, items[i::jobs], *args) for i in range(jobs)
+    )
     out: list = [None] * len(items)
-    for i, part in enumerate(parts):
+    relay = WarningRelay()
+    for i, (part, caught) in enumerate(parts):
+        relay(caught)
         out[i::jobs] = part
     return out
 

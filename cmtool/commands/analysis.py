@@ -306,7 +306,7 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
     if workers > 1:
         from concurrent.futures import ProcessPoolExecutor
 
-        from ..workers import WarningRelay
+        from features.transformer import WarningRelay
 
         relay = WarningRelay()  # a worker's warnings, here and once
         with ProcessPoolExecutor(
@@ -366,7 +366,7 @@ def _folder_worker(model) -> None:
 
 def _folder_row_kept(task) -> tuple[tuple[dict, dict], list]:
     """:func:`_folder_row` in a worker process, with the warnings it raised."""
-    from ..workers import keeping_warnings
+    from features.transformer import keeping_warnings
 
     return keeping_warnings(_folder_row, task)
 

@@ -258,3 +258,19 @@ def test_a_wrong_signal_length_is_refused_with_the_feature_count(rng):
         ValueError, match=f"X has 1 features, but FeatureExtractor is expecting {signals.shape[1]}"
     ):
         ext.transform(signals[:, :1])
+
+
+def test_a_warning_in_the_worker_processes_reaches_the_caller_once():
+    """``map_in_processes`` (what ``FeatureExtractor(n_jobs=2)`` and ``cmtool train --workers``
+    run in) raises a worker's warning in the calling process, once: each joblib worker showed it
+    itself, once per worker, out of reach of the caller's filters."""
+    import warnings
+
+    from features.transformer import map_in_processes
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        out = map_in_processes(np.log, [0.0, 1.0, 0.0, 1.0], 2)  # each worker gets a 0.0
+    assert np.isneginf(out[0]) and np.isneginf(out[2]) and out[1] == out[3] == 0.0
+    mine = [w for w in caught if "divide by zero" in str(w.message)]
+    assert len(mine) == 1 and mine[0].category is RuntimeWarning
