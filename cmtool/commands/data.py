@@ -137,6 +137,12 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     print(f"{'label':<12s} {'precision':>9s} {'recall':>7s} {'f1':>6s}")
     for label, m in result["per_class"].items():
         print(f"{label:<12s} {m['precision']:9.3f} {m['recall']:7.3f} {m['f1-score']:6.3f}")
+    for rig, part in result["by_rig"].items():
+        recalls = ", ".join(f"{c} {v:.3f}" for c, v in part["recall"].items())
+        print(
+            f"  bearing {rig}: accuracy {part['accuracy']:.3f} on {part['signals']} signals; "
+            f"recall {recalls}"
+        )
     labels = result["labels"]
     print("confusion matrix (rows true, columns predicted): " + ", ".join(labels))
     for label, row in zip(labels, result["confusion"], strict=True):

@@ -183,6 +183,18 @@ def test_evaluate_metrics(bundle, small):
     assert cm.sum() == len(small)
     assert result["accuracy"] == pytest.approx(np.trace(cm) / cm.sum())
     pickle.dumps(result)
+    assert result["by_rig"] == {}  # one bearing: nothing more than the totals
+    # a dataset of two rigs is also scored per rig (issue 17: per rig and per class); the
+    # features read the context columns, so renaming a bearing changes only the grouping
+    two = small.assign(bearing=np.where(np.arange(len(small)) % 3 == 0, "6203", "6205"))
+    by_rig = evaluate(bundle, two)["by_rig"]
+    assert {k: v["signals"] for k, v in by_rig.items()} == {"6203": 64, "6205": 128}
+    right = np.array(result["predictions"]) == small["label"].to_numpy()
+    for rig, every in (("6203", 3), ("6205", None)):
+        mine = (np.arange(len(small)) % 3 == 0) if every else (np.arange(len(small)) % 3 != 0)
+        assert by_rig[rig]["accuracy"] == pytest.approx(right[mine].mean())
+        inner = mine & (small["label"] == "inner").to_numpy()
+        assert by_rig[rig]["recall"]["inner"] == pytest.approx(right[inner].mean())
 
 
 def test_evaluate_on_two_workers_gives_the_same_result_and_leaves_the_bundle_as_it_came(
