@@ -701,22 +701,42 @@ def evaluate(
             if k in labels
         },
         "predictions": pred.tolist(),
-        "by_rig": _by_rig(frame, y, pred),
+        "by_rig": scores_by_rig(frame["bearing"] if "bearing" in frame else None, y, pred),
     }
 
 
-def _by_rig(frame: pd.DataFrame, y: np.ndarray, pred: np.ndarray) -> dict[str, dict]:
-    """Per bearing of a dataset of several: signals, accuracy, each class's recall ({} for one)."""
-    if "bearing" not in frame or frame["bearing"].nunique() < 2:
+def scores_by_rig(bearings: Any, truth: np.ndarray, predicted: np.ndarray) -> dict[str, dict]:
+    """Per bearing (rig) of signals from several: signals, accuracy and each class's recall.
+
+    Parameters
+    ----------
+    bearings : array_like of str, or None
+        Each signal's bearing.
+    truth, predicted : ndarray
+        Each signal's label and the model's.
+
+    Returns
+    -------
+    dict of str to dict
+        Per bearing: ``signals``, ``accuracy`` and ``recall`` (per true class); {} when the
+        signals come from one bearing (or none is given): the totals say it all.
+    """
+    if bearings is None:
         return {}
+    rigs = np.asarray(bearings).astype(str)
+    if len(set(rigs)) < 2:
+        return {}
+    truth, predicted = np.asarray(truth), np.asarray(predicted)
     out = {}
-    for rig in sorted(frame["bearing"].astype(str).unique()):
-        mine = (frame["bearing"].astype(str) == rig).to_numpy()
-        truth, said = y[mine], pred[mine]
+    for rig in sorted(set(rigs)):
+        mine = rigs == rig
+        truth_rig, said = truth[mine], predicted[mine]
         out[rig] = {
             "signals": int(mine.sum()),
-            "accuracy": float(np.mean(truth == said)),
-            "recall": {c: float(np.mean(said[truth == c] == c)) for c in sorted(set(truth))},
+            "accuracy": float(np.mean(truth_rig == said)),
+            "recall": {
+                c: float(np.mean(said[truth_rig == c] == c)) for c in sorted(set(truth_rig))
+            },
         }
     return out
 

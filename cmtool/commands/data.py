@@ -73,7 +73,7 @@ def cmd_train(args: argparse.Namespace) -> int:
     check_output_file("--out", args.out, "a model file, e.g. model.skops")
     import numpy as np
 
-    from ..classifier import save_model, train
+    from ..classifier import save_model, scores_by_rig, train, visible_faults
     from ..datasets import read_dataset
 
     frame = read_dataset(args.dataset, allow_incomplete=args.allow_incomplete)
@@ -104,6 +104,9 @@ def cmd_train(args: argparse.Namespace) -> int:
         f"{label} {np.mean(predicted[truth == label] == label):.2f}" for label in bundle["classes"]
     )
     print(f"  recall per class of the kept model (out of fold): {recalls}")
+    kept = visible_faults(frame, args.min_fault_snr)  # the rows train kept, in its order
+    for rig, part in scores_by_rig(frame.loc[kept.to_numpy(), "bearing"], truth, predicted).items():
+        print(f"  {_rig_line(rig, part)} (out of fold)")
     if bundle["extrapolation"]:
         print(
             "  accuracy at each end of the speed and load ranges, trained without it (the "
@@ -138,11 +141,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     for label, m in result["per_class"].items():
         print(f"{label:<12s} {m['precision']:9.3f} {m['recall']:7.3f} {m['f1-score']:6.3f}")
     for rig, part in result["by_rig"].items():
-        recalls = ", ".join(f"{c} {v:.3f}" for c, v in part["recall"].items())
-        print(
-            f"  bearing {rig}: accuracy {part['accuracy']:.3f} on {part['signals']} signals; "
-            f"recall {recalls}"
-        )
+        print(f"  {_rig_line(rig, part)}")
     labels = result["labels"]
     print("confusion matrix (rows true, columns predicted): " + ", ".join(labels))
     for label, row in zip(labels, result["confusion"], strict=True):
@@ -160,6 +159,15 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         atomic_write(out / "evaluation.json", lambda tmp: tmp.write_text(text))
         print(f"wrote {png}")
     return 0
+
+
+def _rig_line(rig: str, part: dict) -> str:
+    """One bearing's scores (``classifier.scores_by_rig``) as a line of text."""
+    recalls = ", ".join(f"{c} {v:.3f}" for c, v in part["recall"].items())
+    return (
+        f"bearing {rig}: accuracy {part['accuracy']:.3f} on {part['signals']} signals; recall "
+        f"{recalls}"
+    )
 
 
 def check_training_overlap(bundle: dict, frame: pd.DataFrame, args: argparse.Namespace) -> float:

@@ -1093,3 +1093,52 @@ def test_the_python_api_takes_one_column_as_one_record():
     x = np.random.default_rng(0).standard_normal(12000)
     column = diagnose_signal(x[:, None], 12000.0, 1800.0, "6205")
     assert column.candidates == diagnose_signal(x, 12000.0, 1800.0, "6205").candidates
+
+
+TWO_BEARINGS = """
+name = "two"
+seed = 12
+bearings = ["6205", "6203"]
+[operating]
+rpm = [1500, 2100]
+load_n = { min = 200, max = 800 }
+[sensor]
+fs_hz = 5120
+duration_s = 0.5
+settle_s = 0.02
+snr_db = 10
+[[conditions]]
+label = "healthy"
+count = 8
+[[conditions]]
+label = "outer"
+surface = "outer"
+order = { min = 8, max = 10 }
+amplitude_m = { min = 0.5e-6, max = 1e-6 }
+count = 8
+"""
+
+
+def test_train_and_evaluate_report_each_bearing_of_a_dataset_of_several(
+    tmp_path, capsys, light_forests
+):
+    """A dataset of two bearings: train's out-of-fold scores and evaluate's scores are printed
+    per bearing too, each with its own count of signals (issue 17: per rig and per class)."""
+    import re
+
+    from cmtool.datasets import generate_dataset
+
+    recipe = tmp_path / "two.toml"
+    recipe.write_text(TWO_BEARINGS)
+    generate_dataset(recipe, tmp_path / "ds", workers=1)
+    model = tmp_path / "m.skops"
+    assert main(["train", str(tmp_path / "ds"), "--out", str(model)]) == 0
+    out = capsys.readouterr().out
+    lines = [ln for ln in out.splitlines() if ln.strip().startswith("bearing ")]
+    assert [ln.split(":")[0].strip() for ln in lines] == ["bearing 6203", "bearing 6205"]
+    assert all(ln.endswith("(out of fold)") and "on 8 signals" in ln for ln in lines)
+    argv = ["evaluate", str(model), str(tmp_path / "ds"), "--allow-training-data"]
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    counts = re.findall(r"bearing (\d+): accuracy [0-9.]+ on (\d+) signals", out)
+    assert counts == [("6203", "8"), ("6205", "8")]
