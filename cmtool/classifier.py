@@ -701,11 +701,19 @@ def evaluate(
             if k in labels
         },
         "predictions": pred.tolist(),
-        "by_rig": scores_by_rig(frame["bearing"] if "bearing" in frame else None, y, pred),
+        "by_rig": scores_by_rig(
+            frame["bearing"] if "bearing" in frame else None, y, pred, labels=labels
+        ),
     }
 
 
-def scores_by_rig(bearings: Any, truth: np.ndarray, predicted: np.ndarray) -> dict[str, dict]:
+def scores_by_rig(
+    bearings: Any,
+    truth: np.ndarray,
+    predicted: np.ndarray,
+    *,
+    labels: list[str] | None = None,
+) -> dict[str, dict]:
     """Per bearing (rig) of signals from several: signals, accuracy and each class's recall.
 
     Parameters
@@ -714,12 +722,16 @@ def scores_by_rig(bearings: Any, truth: np.ndarray, predicted: np.ndarray) -> di
         Each signal's bearing.
     truth, predicted : ndarray
         Each signal's label and the model's.
+    labels : list of str, optional
+        With them, each bearing's ``confusion`` matrix too (rows true, columns predicted, in
+        this order).
 
     Returns
     -------
     dict of str to dict
-        Per bearing: ``signals``, ``accuracy`` and ``recall`` (per true class); {} when the
-        signals come from one bearing (or none is given): the totals say it all.
+        Per bearing: ``signals``, ``accuracy``, ``recall`` (per true class) and, with
+        ``labels``, ``confusion``; {} when the signals come from one bearing (or none is
+        given): the totals say it all.
     """
     if bearings is None:
         return {}
@@ -738,6 +750,9 @@ def scores_by_rig(bearings: Any, truth: np.ndarray, predicted: np.ndarray) -> di
                 c: float(np.mean(said[truth_rig == c] == c)) for c in sorted(set(truth_rig))
             },
         }
+        if labels is not None:
+            matrix = confusion_matrix(truth_rig, said, labels=labels)
+            out[rig]["confusion"] = matrix.tolist()
     return out
 
 

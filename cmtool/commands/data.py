@@ -121,6 +121,7 @@ def cmd_train(args: argparse.Namespace) -> int:
 def cmd_evaluate(args: argparse.Namespace) -> int:
     """Accuracy, per-class precision/recall and confusion matrix of a model on a dataset."""
     check_output_folder("--out", args.out, "a folder for confusion.png and evaluation.json")
+    from ..bench import confusion_plot_name
     from ..classifier import evaluate, load_model
     from ..datasets import read_dataset
     from ..io import atomic_write
@@ -148,16 +149,23 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         print(f"  {label:<12s} " + " ".join(f"{v:4d}" for v in row))
     if args.out:
         out = Path(args.out)
-        png = plot_confusion(
-            result["confusion"],
-            labels,
-            out / "confusion.png",
-            title=f"{Path(args.model).name} on {Path(args.dataset).name}"
-            + (" (in-sample)" if in_sample else ""),
-        )
         text = json.dumps({k: v for k, v in result.items() if k != "predictions"}, indent=2)
         atomic_write(out / "evaluation.json", lambda tmp: tmp.write_text(text))
-        print(f"wrote {png}")
+        # the whole dataset's matrix, and each bearing's when it has several
+        matrices = [("confusion.png", result["confusion"], "")]
+        matrices += [
+            (confusion_plot_name(rig), part["confusion"], f", bearing {rig}")
+            for rig, part in result["by_rig"].items()
+        ]
+        for name, matrix, which in matrices:
+            path = plot_confusion(
+                matrix,
+                labels,
+                out / name,
+                title=f"{Path(args.model).name} on {Path(args.dataset).name}{which}"
+                + (" (in-sample)" if in_sample else ""),
+            )
+            print(f"wrote {path}")
     return 0
 
 

@@ -1145,7 +1145,16 @@ def test_train_and_evaluate_report_each_bearing_of_a_dataset_of_several(
     assert [ln.split(":")[0].strip() for ln in lines] == ["bearing 6203", "bearing 6205"]
     assert all(ln.endswith("(out of fold)") and "on 8 signals" in ln for ln in lines)
     argv = ["evaluate", str(model), str(tmp_path / "ds"), "--allow-training-data"]
-    assert main(argv) == 0
+    assert main([*argv, "--out", str(tmp_path / "ev")]) == 0
     out = capsys.readouterr().out
     counts = re.findall(r"bearing (\d+): accuracy [0-9.]+ on (\d+) signals", out)
     assert counts == [("6203", "8"), ("6205", "8")]
+    # a confusion matrix per bearing beside the overall one, each in evaluation.json too
+    saved = json.loads((tmp_path / "ev" / "evaluation.json").read_text())
+    for rig in ("6203", "6205"):
+        assert (tmp_path / "ev" / f"confusion_{rig}.png").stat().st_size > 5000
+        assert np.sum(saved["by_rig"][rig]["confusion"]) == 8
+    overall = np.array(saved["confusion"])
+    assert (
+        np.add(*(np.array(saved["by_rig"][r]["confusion"]) for r in ("6203", "6205"))) == overall
+    ).all()
