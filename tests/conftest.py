@@ -14,6 +14,28 @@ import pytest
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
 SHARED_DATA = REPO.parent / "shared" / "data"
+#: Thread pools (OpenBLAS, OpenMP) capped at this session's share of the cores.
+_THREAD_LIMITS: list = []
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """Give each pytest-xdist worker its share of the cores for BLAS and OpenMP threads.
+
+    Every worker's OpenBLAS and OpenMP (scikit-learn's gradient boosting) start as many
+    threads as the machine has cores, and their threads spin while they wait: two workers on
+    two cores then wait for each other's spinning threads (``tests/tests_cmtool/
+    test_diagnosis.py`` on two workers: 159 s, 68 s with one thread each). The environment
+    variables carry the limit into the processes the tests start (the CLI, process pools).
+    """
+    workers = int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1"))
+    if workers <= 1:
+        return
+    from threadpoolctl import threadpool_limits
+
+    share = max(1, (os.cpu_count() or 1) // workers)
+    for name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(name, str(share))
+    _THREAD_LIMITS.append(threadpool_limits(limits=share))
 
 
 class KernelWarmer:
