@@ -3,15 +3,15 @@
 A loaded bearing's varying compliance, the shaft's harmonics, gear meshes and the mains are
 periodic: their spectra are lines, sharp at every harmonic. A local fault's impacts arrive with
 random jitter (ball-pocket play, slip: 1-2 %, Randall and Antoni 2011), so at the resonances
-where they ring their spectrum is continuous. :func:`separate_discrete` edits every bin that
-stands far above the local median of the amplitude spectrum down to that median (keeping its
-phase): the discrete part goes, the random part stays, and the envelope of what remains shows
-a fault's rate but not a periodic machine's (Antoni and Randall 2004 separate the same two parts
-with a delayed-correlation filter).
+where they ring their spectrum is continuous. :func:`separate_discrete` removes every bin that
+stands far above the local median of the amplitude spectrum, and its leakage (``NEIGHBOURS``
+bins each side): the discrete part goes, the random part stays, and the envelope of what
+remains shows a fault's rate but not a periodic machine's (Antoni and Randall 2004 separate
+the same two parts with a delayed-correlation filter).
 
 Threshold, fixed from noise statistics: the bins of a Gaussian noise's spectrum are Rayleigh
-distributed, P(|X| > k median) = exp(-(1.177 k)^2 / 2); ``LINE_DB = 10`` (k = 3.16) edits one
-noise bin in a thousand, and then only down to the median.
+distributed, P(|X| > k median) = exp(-(1.177 k)^2 / 2); ``LINE_DB = 10`` (k = 3.16) takes one
+noise bin in a thousand (with its two neighbours each side, 0.5 % of a noise's bins).
 
 :func:`select_band` chooses the demodulation band for given fault rates: of the bands of the
 kurtogram's 1/3-binary tree at least ``min_bandwidth`` wide (a band narrower than a fault's
