@@ -491,6 +491,9 @@ _RANGE_COLUMNS = (
 #: Columns that describe a fault: their range is over the faulty signals, and a column that is
 #: 0 for every one of them (a dataset without waviness, say) is not printed.
 _FAULT_COLUMNS = ("waviness", "defect", "fault_snr")
+#: Angles round the bearing [rad]: shown wrapped to -pi .. pi (a pit drawn relative to the
+#: load's direction is stored unwrapped: -4.4 .. 6.4 rad on the CWRU-rig recipe).
+_ANGLE_COLUMNS = ("load_angle_rad", "defect_position_rad")
 
 
 def dataset_info(path: str | os.PathLike) -> str:
@@ -532,6 +535,8 @@ def dataset_info(path: str | os.PathLike) -> str:
         if col.startswith(_FAULT_COLUMNS):
             values = values[faulty]
         values = values[np.isfinite(values)]
+        if col in _ANGLE_COLUMNS:
+            values = np.angle(np.exp(1j * values))
         if not len(values) or (col.startswith(_FAULT_COLUMNS) and not (values != 0).any()):
             continue
         if values.min() < values.max():
