@@ -562,7 +562,7 @@ def diagnose_signal(
             diagnosis, geometry, freqs, rpm, fs, x.size / fs, load_n, baseline, baseline_fs
         )
     if baseline is not None:
-        _against_baseline(diagnosis, baseline, baseline_fs or fs)
+        _against_baseline(diagnosis, baseline, baseline_fs or fs, rpm, geometry)
     diagnosis.rule_verdict = {"label": verdict, "confidence": confidence}
     if model is not None:
         diagnosis.model_verdict = model_verdict(model, x, fs, freqs, context_extra or {})
@@ -624,15 +624,31 @@ def _race_waviness(
     return race_waviness(spectra.frequencies, spectra.amplitude, freqs, geometry, reference)
 
 
-def _against_baseline(diagnosis: Diagnosis, baseline: np.ndarray, fs: float) -> None:
-    """The ISO 15242 bands and the waviness line of ``diagnosis`` over a healthy baseline [dB]."""
+def _against_baseline(
+    diagnosis: Diagnosis, baseline: np.ndarray, fs: float, rpm: float, geometry: BearingGeometry
+) -> None:
+    """The ISO 15242 bands, faults' margins and waviness line of ``diagnosis`` on a baseline.
+
+    Margins are shown, not weighed (docs/diagnosis.md, "Local faults against a baseline").
+    """
     bands = features.velocity_band_rms(baseline, fs)
     change = {}
     for name, value in diagnosis.velocity_bands.items():
         base = bands.get(name, float("nan"))
         ok = value > 0 and base > 0 and math.isfinite(value) and math.isfinite(base)
         change[name] = round(20 * math.log10(value / base), 2) if ok else None
-    diagnosis.baseline = {"velocity_bands": bands, "velocity_bands_change_db": change}
+    diagnosis.baseline = against = {"velocity_bands": bands, "velocity_bands_change_db": change}
+    try:  # the baseline in its own band, against its own threshold, if long enough
+        ctx = rule_context(baseline, fs, rpm, geometry)[2]
+        evidence = features.fault_evidence(baseline, fs, ctx)
+    except ValueError as error:
+        diagnosis.warnings.append(f"no fault margins for the baseline: {error}")
+    else:
+        for key, found, least in (
+            ("fault_margin_db", diagnosis.candidates, diagnosis.threshold_db),
+            ("baseline_fault_margin_db", rule_candidates(evidence, ctx), evidence.threshold_db),
+        ):
+            against[key] = {c["fault"]: round(c["evidence_db"] - least, 2) for c in found}
     if diagnosis.waviness:
         f, a = features.amplitude_spectrum(baseline, fs)
         line = diagnosis.waviness["line_hz"]

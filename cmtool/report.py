@@ -149,6 +149,23 @@ def write_report(
             name = f"overall (ISO 10816-3, {low:g}-{high:g} Hz)"
             lines.append(f"| {name} | {overall['rms']:.4g} | {mm_s} | - |")
         lines.append("")
+    if theirs := (diagnosis.baseline or {}).get("baseline_fault_margin_db"):
+        lines += [
+            "## Against the baseline",
+            "",
+            "Each fault's weighed evidence over its threshold, in this record and in the "
+            "baseline (in its own band, against its own threshold). Shown, not weighed in the "
+            "verdict: a bearing's own form errors can stand over the threshold in a healthy "
+            'baseline, and no rise over it tells them from a pit (docs/diagnosis.md, "Local '
+            'faults against a baseline").',
+            "",
+            "| fault | margin [dB] | baseline margin [dB] | rise [dB] |",
+            "|---|---|---|---|",
+        ]
+        for fault, margin in diagnosis.baseline["fault_margin_db"].items():
+            rise = margin - theirs[fault]
+            lines.append(f"| {fault} | {margin:+.1f} | {theirs[fault]:+.1f} | {rise:+.1f} |")
+        lines.append("")
     if diagnosis.severity:
         lines += ["## Fault size", "", diagnosis.severity["reason"], ""]
     if diagnosis.warnings:

@@ -198,6 +198,16 @@ def _print_diagnosis(diagnosis) -> None:
             + (f"  ({shared})" if (shared := explained_lines(c)) else "")
         )
     print(f"  basis: {diagnosis.basis}")
+    if theirs := (diagnosis.baseline or {}).get("baseline_fault_margin_db"):
+        ours = diagnosis.baseline["fault_margin_db"]
+        print(
+            "  against the baseline (margin over the threshold; the baseline's in its own "
+            "band; shown, not weighed): "
+            + ", ".join(
+                f"{f} {m:+.1f} dB (baseline {theirs[f]:+.1f}, rise {m - theirs[f]:+.1f})"
+                for f, m in ours.items()
+            )
+        )
     change = (diagnosis.baseline or {}).get("velocity_bands_change_db", {})
     in_mm_s = diagnosis.velocity_bands_mm_s
     bands = ", ".join(

@@ -107,6 +107,53 @@ def test_a_clipped_record_is_refused_unless_allowed(outer_race_csv, tmp_path, ca
     assert "signal is constant" in _one_line_error(capsys)
 
 
+def test_each_faults_margin_is_shown_against_a_baseline_and_not_weighed(
+    outer_race_csv, tmp_path, rng, capsys
+):
+    """With --baseline, each fault's margin over its threshold in the record and in the
+    baseline (its own band and threshold) are printed, written to the JSON and the report, and
+    left out of the verdict (docs/diagnosis.md, "Local faults against a baseline"): a record
+    against itself rises by 0 dB and keeps its verdict; a baseline too short for the rule gets
+    a warning instead."""
+    import json
+
+    from scipy import signal as sp_signal
+
+    ring = sp_signal.iirpeak(3000.0, 15.0, 12000.0)
+    noise = sp_signal.lfilter(*ring, 0.02 * rng.standard_normal(24000))
+    healthy = tmp_path / "healthy.npy"
+    np.save(healthy, noise + 0.05 * rng.standard_normal(24000))
+    base = [str(outer_race_csv), "--rpm", "1797", "--bearing", "6205", "--fs", "12000"]
+    report = tmp_path / "report"
+    assert main(["diagnose", *base, "--baseline", str(healthy), "--report", str(report)]) == 0
+    out = capsys.readouterr().out
+    assert "rec.csv: outer race (confidence" in out
+    assert "against the baseline (margin over the threshold" in out
+    assert (
+        "| fault | margin [dB] | baseline margin [dB] | rise [dB] |"
+        in (report / "report.md").read_text()
+    )
+    assert main(["diagnose", *base, "--baseline", str(healthy), "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    ours, theirs = d["baseline"]["fault_margin_db"], d["baseline"]["baseline_fault_margin_db"]
+    assert set(ours) == set(theirs) == {"outer race", "inner race", "ball"}
+    assert ours["outer race"] > 0 > theirs["outer race"]
+    assert ours["outer race"] - theirs["outer race"] > 10
+    assert main(["diagnose", *base, "--baseline", str(outer_race_csv), "--json"]) == 0
+    same = json.loads(capsys.readouterr().out)
+    assert same["verdict"] == "outer race"  # not weighed: no rise at all, the same verdict
+    assert same["baseline"]["fault_margin_db"] == same["baseline"]["baseline_fault_margin_db"]
+    short = tmp_path / "short.npy"
+    np.save(short, np.load(healthy)[:1200])
+    assert main(["diagnose", *base, "--baseline", str(short), "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert "fault_margin_db" not in d["baseline"]
+    assert any(
+        w.startswith("no fault margins for the baseline: the record is 0.1 s")
+        for w in d["warnings"]
+    )
+
+
 def test_a_quantised_tone_is_not_taken_for_clipping(tmp_path, capsys):
     """A clipped end is a plateau: a calibrator's 159.2 Hz tone of 100 counts on a 16-bit
     converter has 3.2 % of its samples at each extreme level but 2.3 % one count in, and is
