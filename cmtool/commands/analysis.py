@@ -258,6 +258,9 @@ VERDICT_COLUMNS = (
     "outer_race_margin_db",
     "inner_race_margin_db",
     "ball_margin_db",
+    "outer_race_baseline_margin_db",
+    "inner_race_baseline_margin_db",
+    "ball_baseline_margin_db",
     "velocity_low",
     "velocity_medium",
     "velocity_high",
@@ -442,6 +445,8 @@ def _folder_row(task) -> tuple[dict, dict]:
     row["velocity_unit"] = "mm/s" if diagnosis.velocity_bands_mm_s else "signal unit x s"
     for band, change in (diagnosis.baseline or {}).get("velocity_bands_change_db", {}).items():
         row[f"velocity_{band}_change_db"] = change
+    for fault, margin in (diagnosis.baseline or {}).get("baseline_fault_margin_db", {}).items():
+        row[f"{fault.replace(' ', '_')}_baseline_margin_db"] = margin
     if out is not None:
         _write_report(diagnosis, out / _report_folder(entry.file), x, entry.fs_hz)
     return row, diagnosis.to_dict()

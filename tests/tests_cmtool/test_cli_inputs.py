@@ -703,6 +703,11 @@ def test_dated_recordings_of_a_machine_give_its_trend(tmp_path, capsys):
     change = table.set_index("file")["velocity_high_change_db"]
     assert change["pump1.npy"] == 0.0 and 0.0 < change["pump2.npy"] < change["pump3.npy"]
     assert abs(change["fan3.npy"]) < 1.0 and (table["baseline"] == frame["baseline"]).all()
+    # and each fault's margin in the baseline: every pump recording's is pump1's own margin
+    rows = table.set_index("file")
+    for fault in ("outer_race", "inner_race", "ball"):
+        theirs = rows.loc[["pump1.npy", "pump2.npy", "pump3.npy"], f"{fault}_baseline_margin_db"]
+        assert (theirs == rows.loc["pump1.npy", f"{fault}_margin_db"]).all(), fault
     frame.loc[0, "baseline"] = "gone.npy"
     frame.to_csv(folder / "MANIFEST.csv", index=False)
     with pytest.raises(FileNotFoundError, match=r"line 2 \(pump1.npy\): baseline .*gone.npy"):
