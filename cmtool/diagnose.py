@@ -40,6 +40,12 @@ from generators.kinematics import BearingFrequencies
 from generators.params import check_shaft_speed_rpm
 
 from .inputs import checked_geometry, checked_model, checked_rate, checked_record
+from .quality import (  # the record's checks, kept importable from here
+    CLIPPING_ERROR_SHARE,
+    check_clipping,
+    check_signal_quality,
+    clipped_share,
+)
 
 __all__ = [
     "diagnose_signal",
@@ -169,113 +175,6 @@ class Diagnosis:
         if self.severity is not None:
             out["severity"] = self.severity
         return out
-
-
-#: Share of a record's samples at its full-scale values from which ``cmtool diagnose`` refuses
-#: it (``--allow-clipping`` overrides). Measured on simulation (the CWRU-rig recipe's seed-777
-#: draw, its 269 healthy and visible-fault signals; ``benchmarks/clipping.py``): with 0.1, 0.3
-#: and 1 % of the samples clipped the rule's verdict changes for 1.5, 3.0 and 4.8 % of them,
-#: with 3 % for 7.4 % (and 2 % of the healthy ones become faults), over the 5 % set before
-#: the run (docs/diagnosis.md, "Clipping").
-CLIPPING_ERROR_SHARE = 0.03
-
-
-#: How many times more samples a clipped end holds than the next value inward. An unclipped
-#: waveform's density rises toward its extremes at most as a sine's does (the arcsine law):
-#: quantised, its extreme level holds 1.37 times the next one's samples (sqrt(1 / A) against
-#: sqrt(3 / A) - sqrt(1 / A) at an amplitude of A counts), a Gaussian's fewer; a clipped end
-#: piles up the whole tail beyond the rail.
-PLATEAU_RATIO = 3.0
-
-
-def clipped_share(x: np.ndarray) -> float:
-    """Share of the samples on a plateau at the record's largest or smallest value.
-
-    At each end, the samples within 1e-6 of the range of the extreme value count when there
-    are at least two and ``PLATEAU_RATIO`` times as many as at the next distinct value inward:
-    a clipped end is a plateau, while a quantised record that is not clipped holds about as
-    many samples at its extreme level as at the next (a pure sine of 100 counts on a 16-bit
-    converter has 3.2 % of its samples at each extreme, 2.3 % one count in; until stop 46 it
-    counted as 6.4 % clipped). The two ends are judged apart, so a converter whose range is
-    not symmetric (a 16-bit one reads -32768 to 32767) or a record with an offset is judged
-    on both.
-
-    Parameters
-    ----------
-    x : numpy.ndarray
-        The record (any unit).
-
-    Returns
-    -------
-    float
-        The share [-], 0 for a constant record.
-    """
-    x = np.asarray(x, dtype=float)
-    top, bottom = float(np.max(x)), float(np.min(x))
-    tolerance = 1e-6 * (top - bottom)
-    if tolerance == 0.0:
-        return 0.0
-    interior = (x > bottom + tolerance) & (x < top - tolerance)
-    clipped = 0
-    for sign, extreme in ((1.0, top), (-1.0, bottom)):
-        depth = sign * (extreme - x)  # how far inside each sample lies, >= 0
-        count = int(np.count_nonzero(depth <= tolerance))
-        # the next value inward among the samples at neither end (none: a two-valued record)
-        next_level = float(depth[interior].min()) if interior.any() else math.inf
-        nearby = int(np.count_nonzero(np.abs(depth - next_level) <= tolerance))
-        if count >= 2 and count >= PLATEAU_RATIO * nearby:
-            clipped += count
-    return float(clipped) / x.size
-
-
-def check_clipping(x: np.ndarray, name: str = "signal") -> None:
-    """Refuse a record too clipped for the rule's verdict to be trusted.
-
-    Parameters
-    ----------
-    x : numpy.ndarray
-        The record.
-    name : str
-        What to call it in the error.
-
-    Raises
-    ------
-    ValueError
-        When at least ``CLIPPING_ERROR_SHARE`` of the samples sit on a plateau at the record's
-        largest or smallest value (:func:`clipped_share`), or a sample is NaN or infinite.
-    """
-    x = np.asarray(x, dtype=float)
-    bad = x.size - int(np.count_nonzero(np.isfinite(x)))
-    if bad:  # an inf would pass for the largest value of a 100 % clipped record
-        raise ValueError(f"{name} contains {bad} non-finite values (NaN or inf)")
-    share = clipped_share(x)  # 0 for a constant record: diagnose_signal says what that is
-    if share < CLIPPING_ERROR_SHARE:
-        return
-    raise ValueError(
-        f"{name} is clipped: {share:.1%} of its samples sit at its largest or smallest value "
-        f"({float(np.max(x)):.4g}, {float(np.min(x)):.4g}), over the {CLIPPING_ERROR_SHARE:.0%} "
-        "allowed (from there the rule's verdict changes for more than 5 % of simulated "
-        "records); record again with more headroom, or pass --allow-clipping to diagnose it "
-        "anyway"
-    )
-
-
-def check_signal_quality(x: np.ndarray, name: str = "signal") -> list[str]:
-    """Warnings for clipped signals; raises ValueError for a constant or non-finite one."""
-    bad = x.size - int(np.count_nonzero(np.isfinite(x)))
-    if bad:
-        raise ValueError(f"{name} contains {bad} non-finite values (NaN or inf)")
-    warnings = []
-    peak = float(np.max(np.abs(x)))
-    if peak == 0 or float(np.ptp(x)) == 0:
-        raise ValueError(f"{name} is constant: nothing to diagnose")
-    count = round(clipped_share(x) * x.size)
-    if count > max(3, 1e-4 * x.size):
-        warnings.append(
-            f"signal looks clipped: {count} samples ({count / x.size:.2%}) at its largest or "
-            f"smallest value ({float(np.max(x)):.4g}, {float(np.min(x)):.4g})"
-        )
-    return warnings
 
 
 def rule_context(
