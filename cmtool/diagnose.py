@@ -537,12 +537,15 @@ def _against_baseline(
         ok = value > 0 and base > 0 and math.isfinite(value) and math.isfinite(base)
         change[name] = round(20 * math.log10(value / base), 2) if ok else None
     diagnosis.baseline = against = {"velocity_bands": bands, "velocity_bands_change_db": change}
+    against.update(fs_hz=float(fs), record_s=round(baseline.size / fs, 6))
     try:  # the baseline in its own band, against its own threshold, if long enough
         ctx = rule_context(baseline, fs, rpm, geometry)[2]
         evidence = features.fault_evidence(baseline, fs, ctx)
     except ValueError as error:
         diagnosis.warnings.append(f"no fault margins for the baseline: {error}")
     else:
+        against["band_hz"] = [round(b, 2) for b in evidence.selection.band]
+        against["threshold_db"] = round(evidence.threshold_db, 2)
         for key, found, least in (
             ("fault_margin_db", diagnosis.candidates, diagnosis.threshold_db),
             ("baseline_fault_margin_db", rule_candidates(evidence, ctx), evidence.threshold_db),

@@ -157,7 +157,10 @@ def write_report(
             "baseline (in its own band, against its own threshold). Shown, not weighed in the "
             "verdict: a bearing's own form errors can stand over the threshold in a healthy "
             'baseline, and no rise over it tells them from a pit (docs/diagnosis.md, "Local '
-            'faults against a baseline").',
+            'faults against a baseline"). The baseline: '
+            f"{diagnosis.baseline['record_s']:g} s at {diagnosis.baseline['fs_hz']:g} Hz, "
+            f"band {diagnosis.baseline['band_hz'][0]:.0f}-{diagnosis.baseline['band_hz'][1]:.0f}"
+            f" Hz, threshold {diagnosis.baseline['threshold_db']:.1f} dB.",
             "",
             "| fault | margin [dB] | baseline margin [dB] | rise [dB] |",
             "|---|---|---|---|",

@@ -200,9 +200,11 @@ def _print_diagnosis(diagnosis) -> None:
     print(f"  basis: {diagnosis.basis}")
     if theirs := (diagnosis.baseline or {}).get("baseline_fault_margin_db"):
         ours = diagnosis.baseline["fault_margin_db"]
+        b = diagnosis.baseline
         print(
-            "  against the baseline (margin over the threshold; the baseline's in its own "
-            "band; shown, not weighed): "
+            f"  against the baseline ({b['record_s']:g} s at {b['fs_hz']:g} Hz, its band "
+            f"{b['band_hz'][0]:.0f}-{b['band_hz'][1]:.0f} Hz, threshold {b['threshold_db']:.1f} "
+            "dB; margins over each threshold, shown, not weighed): "
             + ", ".join(
                 f"{f} {m:+.1f} dB (baseline {theirs[f]:+.1f}, rise {m - theirs[f]:+.1f})"
                 for f, m in ours.items()

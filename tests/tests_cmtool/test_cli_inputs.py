@@ -128,7 +128,7 @@ def test_each_faults_margin_is_shown_against_a_baseline_and_not_weighed(
     assert main(["diagnose", *base, "--baseline", str(healthy), "--report", str(report)]) == 0
     out = capsys.readouterr().out
     assert "rec.csv: outer race (confidence" in out
-    assert "against the baseline (margin over the threshold" in out
+    assert "against the baseline (2 s at 12000 Hz, its band " in out
     assert (
         "| fault | margin [dB] | baseline margin [dB] | rise [dB] |"
         in (report / "report.md").read_text()
@@ -139,6 +139,9 @@ def test_each_faults_margin_is_shown_against_a_baseline_and_not_weighed(
     assert set(ours) == set(theirs) == {"outer race", "inner race", "ball"}
     assert ours["outer race"] > 0 > theirs["outer race"]
     assert ours["outer race"] - theirs["outer race"] > 10
+    said = d["baseline"]  # what the baseline's margins rest on
+    assert (said["record_s"], said["fs_hz"]) == (2.0, 12000.0) and said["threshold_db"] > 0
+    assert 0 <= said["band_hz"][0] < said["band_hz"][1] <= 6000
     assert main(["diagnose", *base, "--baseline", str(outer_race_csv), "--json"]) == 0
     same = json.loads(capsys.readouterr().out)
     assert same["verdict"] == "outer race"  # not weighed: no rise at all, the same verdict
@@ -147,7 +150,7 @@ def test_each_faults_margin_is_shown_against_a_baseline_and_not_weighed(
     np.save(short, np.load(healthy)[:1200])
     assert main(["diagnose", *base, "--baseline", str(short), "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
-    assert "fault_margin_db" not in d["baseline"]
+    assert "fault_margin_db" not in d["baseline"] and d["baseline"]["record_s"] == 0.1
     assert any(
         w.startswith("no fault margins for the baseline: the record is 0.1 s")
         for w in d["warnings"]
