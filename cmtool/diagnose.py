@@ -530,7 +530,8 @@ def _against_baseline(
 
     Margins are shown, not weighed (docs/diagnosis.md, "Local faults against a baseline").
     """
-    bands = features.velocity_band_rms(baseline, fs)
+    bands = features.velocity_band_rms(baseline, fs)  # a band above fs / 2 has no value:
+    bands = {k: float(v) for k, v in bands.items() if math.isfinite(v)}  # left out, as the record's
     change = {}
     for name, value in diagnosis.velocity_bands.items():
         base = bands.get(name, float("nan"))

@@ -157,6 +157,20 @@ def test_each_faults_margin_is_shown_against_a_baseline_and_not_weighed(
     )
 
 
+def test_a_baselines_band_above_half_the_rate_is_left_out_of_strict_json(rng):
+    """A slow machine recorded at 3 kHz: the ISO 15242 high band (1.8-10 kHz) lies above fs /
+    2 for the record and for its baseline, and is left out of both (the baseline's was NaN,
+    which is not JSON)."""
+    import json
+
+    from cmtool.diagnose import diagnose_signal
+
+    x, baseline = rng.standard_normal(30000), rng.standard_normal(30000)
+    d = diagnose_signal(x, 3000.0, 300.0, "6205", baseline=baseline)
+    json.dumps(d.to_dict(), allow_nan=False)
+    assert set(d.baseline["velocity_bands"]) == set(d.velocity_bands) == {"low", "medium"}
+
+
 def test_a_quantised_tone_is_not_taken_for_clipping(tmp_path, capsys):
     """A clipped end is a plateau: a calibrator's 159.2 Hz tone of 100 counts on a 16-bit
     converter has 3.2 % of its samples at each extreme level but 2.3 % one count in, and is
