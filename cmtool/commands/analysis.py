@@ -96,7 +96,9 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
         if not args.json:
             print(f"wrote {report}")
     if args.json:
-        print(json.dumps(diagnosis.to_dict(), indent=2))
+        from ..io import to_jsonable
+
+        print(json.dumps(to_jsonable(diagnosis.to_dict()), indent=2, allow_nan=False))
     else:
         _print_diagnosis(diagnosis)
     return 0
@@ -352,7 +354,9 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
         index = _index_text(table, trends, out)
         atomic_write(out / "index.md", lambda tmp: tmp.write_text(index))
     if args.json:
-        print(json.dumps(results, indent=2))
+        from ..io import to_jsonable
+
+        print(json.dumps(to_jsonable(results), indent=2, allow_nan=False))
     else:
         for row in rows:
             if row["error"]:

@@ -157,7 +157,7 @@ def test_each_faults_margin_is_shown_against_a_baseline_and_not_weighed(
     )
 
 
-def test_a_baselines_band_above_half_the_rate_is_left_out_of_strict_json(rng):
+def test_a_baselines_band_above_half_the_rate_is_left_out_of_strict_json(rng, tmp_path, capsys):
     """A slow machine recorded at 3 kHz: the ISO 15242 high band (1.8-10 kHz) lies above fs /
     2 for the record and for its baseline, and is left out of both (the baseline's was NaN,
     which is not JSON)."""
@@ -169,6 +169,19 @@ def test_a_baselines_band_above_half_the_rate_is_left_out_of_strict_json(rng):
     d = diagnose_signal(x, 3000.0, 300.0, "6205", baseline=baseline)
     json.dumps(d.to_dict(), allow_nan=False)
     assert set(d.baseline["velocity_bands"]) == set(d.velocity_bands) == {"low", "medium"}
+    # the command's JSON and diagnosis.json are strict JSON whatever a diagnosis holds
+    np.save(tmp_path / "x.npy", x)
+    np.save(tmp_path / "b.npy", baseline)
+    argv = [str(tmp_path / "x.npy"), "--fs", "3000", "--rpm", "300", "--bearing", "6205"]
+    argv += ["--baseline", str(tmp_path / "b.npy")]
+
+    def refuse(constant):
+        raise ValueError(f"{constant} in the JSON")
+
+    assert main(["diagnose", *argv, "--json"]) == 0
+    json.loads(capsys.readouterr().out, parse_constant=refuse)
+    assert main(["diagnose", *argv, "--report", str(tmp_path / "r")]) == 0
+    json.loads((tmp_path / "r" / "diagnosis.json").read_text(), parse_constant=refuse)
 
 
 def test_a_quantised_tone_is_not_taken_for_clipping(tmp_path, capsys):
