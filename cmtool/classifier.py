@@ -52,7 +52,7 @@ import features
 from generators import bearing
 
 from . import __version__
-from .io import atomic_write
+from .io import atomic_write, to_jsonable
 
 __all__ = [
     "candidate_classifiers",
@@ -783,7 +783,7 @@ def save_model(bundle: dict[str, Any], path: str | Path) -> Path:
     }
     atomic_write(
         path.with_suffix(path.suffix + ".json"),
-        lambda tmp: tmp.write_text(json.dumps(summary, indent=2)),
+        lambda tmp: tmp.write_text(json.dumps(to_jsonable(summary), indent=2, allow_nan=False)),
     )
     return path
 

@@ -297,7 +297,8 @@ def generate_dataset(
         "chunks": feed.chunks,
         **({"error_bound_steps": steps} if steps else {}),
     }
-    atomic_write(out / "_dataset.json", lambda tmp: tmp.write_text(json.dumps(summary, indent=2)))
+    text = json.dumps(to_jsonable(summary), indent=2, allow_nan=False)
+    atomic_write(out / "_dataset.json", lambda tmp: tmp.write_text(text))
     return summary
 
 

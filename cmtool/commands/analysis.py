@@ -589,9 +589,10 @@ def cmd_realism(args: argparse.Namespace) -> int:
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
-        from ..io import atomic_write
+        from ..io import atomic_write, to_jsonable
 
-        text = json.dumps({k: v for k, v in result.items() if k != "scores"}, indent=2)
+        kept = {k: v for k, v in result.items() if k != "scores"}
+        text = json.dumps(to_jsonable(kept), indent=2, allow_nan=False)
         atomic_write(out / "realism.json", lambda tmp: tmp.write_text(text))
         print(f"wrote {plot_realism(result, out / 'realism.png')}")
     return 0

@@ -124,7 +124,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     from ..bench import confusion_plot_name
     from ..classifier import evaluate, load_model
     from ..datasets import read_dataset
-    from ..io import atomic_write
+    from ..io import atomic_write, to_jsonable
     from ..plots import plot_confusion
 
     bundle = load_model(args.model)
@@ -149,7 +149,8 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         print(f"  {label:<12s} " + " ".join(f"{v:4d}" for v in row))
     if args.out:
         out = Path(args.out)
-        text = json.dumps({k: v for k, v in result.items() if k != "predictions"}, indent=2)
+        kept = {k: v for k, v in result.items() if k != "predictions"}
+        text = json.dumps(to_jsonable(kept), indent=2, allow_nan=False)
         atomic_write(out / "evaluation.json", lambda tmp: tmp.write_text(text))
         # the whole dataset's matrix, and each bearing's when it has several
         matrices = [("confusion.png", result["confusion"], "")]

@@ -640,7 +640,9 @@ def cmd_frequencies(args: argparse.Namespace) -> int:
         out["orders"] = f.orders()
         if wpf:
             out["waviness_passage_frequencies_hz"] = wpf
-        print(json.dumps(out, indent=2))
+        from ..io import to_jsonable
+
+        print(json.dumps(to_jsonable(out), indent=2, allow_nan=False))
         return 0
     for key, value in data.items():
         print(f"{key:>24s} {value:10.4f} Hz  {value / f.shaft:8.5f} x shaft")

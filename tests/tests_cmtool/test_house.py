@@ -81,6 +81,40 @@ def test_result_files_are_written_through_the_atomic_writer():
     assert not direct, direct
 
 
+def test_json_results_are_strict_json():
+    """Every JSON cmtool writes or prints for a person or another program (diagnosis.json and
+    ``--json``, evaluation.json, realism.json, the model's summary, _dataset.json, ``frequencies
+    --json``) goes through ``cmtool.io.to_jsonable`` (numpy values to Python, a value that is
+    not finite to null) and ``json.dumps(..., allow_nan=False)``: Python writes NaN otherwise,
+    which is not JSON (a baseline's band above fs / 2 was, until stop 52). Left out: the
+    recipe's hash and the recordings' own metadata (read back by cmtool itself)."""
+    loose = []
+    for path in sorted((REPO / "cmtool").rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)):
+                continue
+            if node.func.attr != "dumps" or not node.args:
+                continue
+            where = f"{path.relative_to(REPO)}:{node.lineno}"
+            if path.name == "io.py" or "sort_keys" in {k.arg for k in node.keywords}:
+                continue  # a recording's metadata, the recipe's hash
+            strict = any(
+                k.arg == "allow_nan"
+                and isinstance(k.value, ast.Constant)
+                and k.value.value is False
+                for k in node.keywords
+            )
+            first = node.args[0]
+            through = (
+                isinstance(first, ast.Call)
+                and isinstance(first.func, ast.Name)
+                and first.func.id == "to_jsonable"
+            )
+            if not (strict and through):
+                loose.append(where)
+    assert not loose, loose
+
+
 def test_the_readme_python_example_runs_and_gives_the_value_it_states():
     """README.md's Python section is run as written; its last line's value is the one its
     comment states ("~8.7e-6 m/s", two significant digits: rounding up to 0.6 %, so 1 %)."""
