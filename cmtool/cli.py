@@ -267,6 +267,14 @@ def build_parser() -> argparse.ArgumentParser:
         default=os.cpu_count() or 1,
         help="feature-extraction processes (default: all cores)",
     )
+    p.add_argument(
+        "--min-fault-snr",
+        type=finite_float,
+        default=-10.0,
+        metavar="DB",
+        help="leave out faulty signals whose fault SNR is below DB, as train does (nothing in "
+        "them shows the fault: a pit the balls never meet; default -10 dB)",
+    )
     _add_allow_incomplete(p)
     p.set_defaults(func=cmd_evaluate)
 

@@ -122,17 +122,43 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     """Accuracy, per-class precision/recall and confusion matrix of a model on a dataset."""
     check_output_folder("--out", args.out, "a folder for confusion.png and evaluation.json")
     from ..bench import confusion_plot_name
-    from ..classifier import evaluate, load_model
+    from ..classifier import class_kinds, evaluate, load_model, visible_faults
     from ..datasets import read_dataset
     from ..io import atomic_write, to_jsonable
     from ..plots import plot_confusion
 
     bundle = load_model(args.model)
     frame = read_dataset(args.dataset, allow_incomplete=args.allow_incomplete)
+    kept = visible_faults(frame, args.min_fault_snr).to_numpy()
+    if not kept.any():
+        raise CliError(
+            f"every signal of {args.dataset} is a fault below --min-fault-snr "
+            f"{args.min_fault_snr:g} dB: nothing to score"
+        )
+    frame = frame[kept].reset_index(drop=True)
     in_sample = check_training_overlap(bundle, frame, args)
+    theirs, ours = bundle.get("class_kinds") or {}, class_kinds(frame)
+    unlike = {
+        label: (theirs[label], kind)
+        for label, kind in ours.items()
+        if label in theirs and kind != theirs[label] and "none" not in (kind, theirs[label])
+    }
+    for label, (learnt, here) in unlike.items():
+        print(
+            f"warning: the model learnt {label!r} from {learnt} faults and this dataset's "
+            f"{label!r} signals are {here}: their scores compare different faults"
+        )
     with StageBars("evaluate") as progress:
         result = evaluate(bundle, frame, workers=args.workers, progress=progress)
     result["in_sample_fraction"] = in_sample
+    result["min_fault_snr_db"] = args.min_fault_snr
+    result["left_out"] = int((~kept).sum())
+    result["kinds_unlike"] = {k: {"model": m, "dataset": d} for k, (m, d) in unlike.items()}
+    if result["left_out"]:
+        print(
+            f"left out {result['left_out']} faulty signals below {args.min_fault_snr:g} dB "
+            "fault SNR (nothing in them shows the fault; --min-fault-snr)"
+        )
     tag = " (IN-SAMPLE: signals the model was trained on; not a measure of accuracy)"
     print(
         f"accuracy {result['accuracy']:.3f} on {len(result['predictions'])} signals"

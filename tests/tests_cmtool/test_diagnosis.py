@@ -1158,3 +1158,57 @@ def test_train_and_evaluate_report_each_bearing_of_a_dataset_of_several(
     assert (
         np.add(*(np.array(saved["by_rig"][r]["confusion"]) for r in ("6203", "6205"))) == overall
     ).all()
+
+
+PITS = """
+name = "pits"
+seed = 52
+[operating]
+rpm = [1797]
+load_n = { min = 100, max = 400 }
+[sensor]
+fs_hz = 12000
+duration_s = 0.5
+settle_s = 0.05
+background_db = 20
+fault_snr_db = { min = -20, max = 10 }
+[[conditions]]
+label = "healthy"
+count = 3
+[[conditions]]
+label = "outer"
+surface = "outer"
+defect = "localized"
+length_m = 0.3e-3
+depth_m = 0.1e-3
+count = 6
+"""
+
+
+def test_evaluate_leaves_out_invisible_faults_and_warns_of_other_fault_kinds(
+    tmp_path, capsys, bundle
+):
+    """As train does, evaluate leaves out faulty signals below the fault-SNR floor (-10 dB by
+    default: nothing in them shows the fault), says how many, and scores the rest; a model
+    that learnt its classes from waviness is warned of when the dataset's faults are local
+    ones (datasets/small's model on pits: the same label names, other faults)."""
+    from cmtool.datasets import generate_dataset, read_dataset
+
+    recipe = tmp_path / "pits.toml"
+    recipe.write_text(PITS)
+    generate_dataset(recipe, tmp_path / "ds", workers=1)
+    snr = read_dataset(tmp_path / "ds")["fault_snr_db"]
+    faint = int((snr < -10).sum())
+    assert 0 < faint < 6  # the recipe's draw has faults on both sides of the floor
+    model = save_model(bundle, tmp_path / "m.skops")
+    argv = ["evaluate", str(model), str(tmp_path / "ds"), "--workers", "1"]
+    assert main([*argv, "--out", str(tmp_path / "ev")]) == 0
+    out = capsys.readouterr().out
+    assert f"left out {faint} faulty signals below -10 dB fault SNR" in out
+    assert f"on {9 - faint} signals" in out
+    assert "the model learnt 'outer' from waviness faults and this dataset's 'outer'" in out
+    saved = json.loads((tmp_path / "ev" / "evaluation.json").read_text())
+    assert saved["left_out"] == faint and saved["min_fault_snr_db"] == -10
+    assert saved["kinds_unlike"] == {"outer": {"model": "waviness", "dataset": "localized"}}
+    assert main([*argv, "--min-fault-snr", "-1000"]) == 0  # every signal scored
+    assert "on 9 signals" in capsys.readouterr().out
