@@ -315,7 +315,13 @@ def add_model_arguments(p: argparse.ArgumentParser) -> None:
         default=None,
         help="comma-separated output channels (default all), e.g. housing_velocity_y",
     )
-    n.add_argument("--seed", type=seed_int, default=None, help="seed for random waviness phases")
+    n.add_argument(
+        "--seed",
+        type=seed_int,
+        default=None,
+        help="seed of the run's random draws (waviness phases, slip); default: one is drawn, "
+        "printed and written with the signal",
+    )
 
 
 def _model_inputs(args: argparse.Namespace):
@@ -453,6 +459,8 @@ def _check_run_size(args: argparse.Namespace, settings, n_samples: int) -> bool:
 
 def cmd_simulate(args: argparse.Namespace) -> int:
     """Run one simulation, write the signal and optionally the spectrum plot."""
+    import numpy as np
+
     import features
     from generators import simulate
     from generators.prepared import EHL_MIN_SHAFT_FREQUENCY
@@ -464,9 +472,14 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     geometry, operating, defects, scene, rig, settings = _model_inputs(args)
     n_samples = int(round(settings.duration * settings.fs))
     streams = _check_run_size(args, settings, n_samples)
+    drawn = args.seed is None  # a run's random draws (slip, phases) are always repeatable:
+    if drawn:  # a seed is drawn, said and written with the signal
+        args.seed = int(np.random.SeedSequence().generate_state(1)[0])
     film = scene.ehl and operating.shaft_frequency >= EHL_MIN_SHAFT_FREQUENCY
     if streams:
-        return _simulate_streamed(args, geometry, operating, defects, scene, rig, settings, film)
+        return _simulate_streamed(
+            args, geometry, operating, defects, scene, rig, settings, film, drawn
+        )
     result = simulate(
         geometry,
         operating,
@@ -476,7 +489,8 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         settings=settings,
         random_state=args.seed,
     )
-    _print_run(result, settings, geometry, operating, film)
+    result.parameters["seed"] = args.seed
+    _print_run(result, settings, geometry, operating, film, drawn)
     if args.out:
         path = write_signal(result, args.out, channels=_requested_channels(args))
         print(f"wrote {path}")
@@ -523,8 +537,11 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     return 0
 
 
-def _print_run(run, settings, geometry, operating, film: bool) -> None:
-    """The header of ``simulate``: what ran, and the bearing's frequencies."""
+def _print_run(run, settings, geometry, operating, film: bool, drawn: bool = False) -> None:
+    """The header of ``simulate``: what ran, its seed when drawn, the bearing's frequencies."""
+    if drawn:
+        seed = run.parameters["seed"]
+        print(f"random seed {seed} (drawn; --seed {seed} repeats this run)")
     level = run.parameters["scene"]["resolved_level"]
     contacts = "ehl" if film else "dry"
     if not film and run.parameters["scene"]["ehl"]:
@@ -558,7 +575,9 @@ def _print_run(run, settings, geometry, operating, film: bool) -> None:
     )
 
 
-def _simulate_streamed(args, geometry, operating, defects, scene, rig, settings, film) -> int:
+def _simulate_streamed(
+    args, geometry, operating, defects, scene, rig, settings, film, drawn
+) -> int:
     """A long run: integrated and written block by block, with a progress bar."""
     from generators.stream import simulate_stream
 
@@ -573,6 +592,7 @@ def _simulate_streamed(args, geometry, operating, defects, scene, rig, settings,
         settings=settings,
         random_state=args.seed,
     )
+    stream.parameters["seed"] = args.seed
     with progress_bar(stream.n_samples, "simulate", "sample", unit_scale=True) as bar:
         if args.out:
             path = write_signal_stream(
@@ -582,7 +602,7 @@ def _simulate_streamed(args, geometry, operating, defects, scene, rig, settings,
             path = None
             for block in stream:
                 bar.update(len(block.time))
-    _print_run(stream, settings, geometry, operating, film)
+    _print_run(stream, settings, geometry, operating, film, drawn)
     if path is not None:
         print(f"wrote {path} (streamed in blocks of {stream.block_samples:,} samples)")
     return 0

@@ -293,6 +293,31 @@ def test_an_interrupted_dataset_is_refused_unless_asked(tmp_path, capsys):
     assert "INCOMPLETE" in capsys.readouterr().out
 
 
+def test_a_run_without_a_seed_draws_one_says_it_and_writes_it(tmp_path, capsys):
+    """Slip makes a run random: without --seed one is drawn, printed and written with the
+    signal, and --seed with it repeats the run to the bit (until stop 52 such a run could not
+    be repeated)."""
+    from cmtool.io import read_signal
+
+    argv = ["simulate", "--duration", "0.2", "--random-slip", "0.01", "--fs", "12000"]
+    argv += ["--defect", "outer:length=0.3e-3:depth=0.1e-3", "--channels", "housing_acceleration_y"]
+    assert main([*argv, "--out", str(tmp_path / "first.parquet")]) == 0
+    said = capsys.readouterr().out.splitlines()[0]
+    seed = int(said.split()[2])
+    assert said == f"random seed {seed} (drawn; --seed {seed} repeats this run)"
+    first, meta = read_signal(tmp_path / "first.parquet")
+    assert meta["parameters"]["seed"] == seed
+    assert main([*argv, "--seed", str(seed), "--out", str(tmp_path / "again.parquet")]) == 0
+    assert "random seed" not in capsys.readouterr().out  # a seed given is not announced
+    again, _ = read_signal(tmp_path / "again.parquet")
+    np.testing.assert_array_equal(again["housing_acceleration_y"], first["housing_acceleration_y"])
+    assert (
+        main([*argv, "--seed", str((seed + 1) % 2**32), "--out", str(tmp_path / "o.parquet")]) == 0
+    )
+    other, _ = read_signal(tmp_path / "o.parquet")
+    assert not np.array_equal(other["housing_acceleration_y"], first["housing_acceleration_y"])
+
+
 @pytest.mark.parametrize("suffix", [".parquet", ".csv"])
 def test_long_runs_stream_to_the_same_file(tmp_path, monkeypatch, capsys, suffix):
     """Above STREAM_ABOVE_SAMPLES simulate writes block by block; the file is the same one."""
@@ -300,7 +325,7 @@ def test_long_runs_stream_to_the_same_file(tmp_path, monkeypatch, capsys, suffix
     import generators.stream as stream
     from cmtool.io import read_signal
 
-    argv = ["simulate", "--duration", "0.3", "--channels", "housing_acceleration_y"]
+    argv = ["simulate", "--duration", "0.3", "--channels", "housing_acceleration_y", "--seed", "7"]
     assert main([*argv, "--out", str(tmp_path / f"whole{suffix}")]) == 0
     monkeypatch.setattr(simulate_command, "STREAM_ABOVE_SAMPLES", 1000)
     monkeypatch.setitem(stream.simulate_stream.__kwdefaults__, "block_samples", 1000)
@@ -315,6 +340,7 @@ def test_long_runs_stream_to_the_same_file(tmp_path, monkeypatch, capsys, suffix
     # 8 blocks; the file's precision (CSV: 10 digits)
     np.testing.assert_allclose(x, reference, rtol=1e-9, atol=1e-9 * rms)  # the ends too
     assert meta_streamed["parameters"]["streamed_block_samples"] == 1000
+    assert meta_streamed["parameters"]["seed"] == 7
     meta_streamed["parameters"].pop("streamed_block_samples")
     assert meta_streamed["parameters"] == meta_whole["parameters"]
     if suffix == ".parquet":
