@@ -668,9 +668,14 @@ def pool_probabilities(
     p(class) proportional to sqrt(p_rule p_model): each source counts as much, and a class
     that either gives almost no chance stays unlikely. Model labels are read as verdicts
     (:func:`model_label_verdict`: by name, a class learnt from waviness as healthy when
-    ``class_kinds`` says so); the result sums to 1.
+    ``class_kinds`` says so); the result sums to 1. A verdict the model has no class for (a
+    model trained on waviness has none for any local fault) is one it cannot tell from
+    healthy: it gets the model's probability of healthy, so that the rule alone weighs it
+    (until stop 52 it got none, and such a model turned every local fault healthy).
     """
     model_p = verdict_probabilities(model_probabilities, class_kinds)
+    if "healthy" in model_p:
+        model_p = {k: model_p.get(k, model_p["healthy"]) for k in rule_p}
     floor = 1e-6
     pooled = {
         k: math.sqrt(max(rule_p.get(k, 0.0), floor) * max(model_p.get(k, 0.0), floor))
@@ -726,10 +731,15 @@ def _combine(diagnosis: Diagnosis) -> None:
             f"({float(probabilities.get(label, 0.0)):.2f}), no local fault"
         )
     calibration = diagnosis.model_verdict.get("pooled_calibration")
-    if calibration:
-        basis += "; confidence calibrated on the model's out-of-fold training signals"
+    if verdict not in model_p:  # the model has no class for it: the rule's verdict, and its
+        basis += f"; the model learnt no {verdict}: the verdict and confidence are the rule's"
+        confidence = diagnosis.rule_verdict["confidence"]
+    else:
+        if calibration:
+            basis += "; confidence calibrated on the model's out-of-fold training signals"
+        confidence = calibrated_confidence(pooled[verdict], calibration)
     diagnosis.verdict = verdict
-    diagnosis.confidence = round(calibrated_confidence(pooled[verdict], calibration), 4)
+    diagnosis.confidence = round(confidence, 4)
     diagnosis.basis = basis
     diagnosis.probabilities = {k: round(v, 4) for k, v in pooled.items()}
 

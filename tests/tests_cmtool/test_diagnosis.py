@@ -724,6 +724,34 @@ def test_a_model_trained_on_waviness_reads_it_as_no_local_fault(bundle):
     assert before.verdict == "inner race"  # what the demo said until stop 39
 
 
+def test_a_model_that_learnt_no_local_fault_does_not_hide_one(bundle):
+    """datasets/small's model learnt waviness only: it has no class for any local fault, so it
+    cannot weigh against one. A 0.3 mm inner-race pit that the rule finds keeps the rule's
+    verdict and confidence, and the basis says why (until stop 52 the pooled verdict was
+    "healthy", 0.50: with a model that learnt no local fault, none could be reported)."""
+    from generators import (
+        LocalizedDefect,
+        OperatingCondition,
+        SimulationSettings,
+        bearing,
+        simulate,
+    )
+
+    g = bearing("6205")
+    op = OperatingCondition.from_rpm(1797, 400.0, random_slip=0.01)
+    pit = LocalizedDefect(surface="inner", length=0.3e-3, depth=0.1e-3)
+    settings = SimulationSettings(fs=6400.0, duration=1.0, channels=("housing_acceleration_y",))
+    x = simulate(g, op, [pit], settings=settings, random_state=3)["housing_acceleration_y"]
+    alone = diagnose_signal(x, 6400.0, 1797, g)
+    assert alone.verdict == "inner race"
+    pooled = diagnose_signal(x, 6400.0, 1797, g, model=bundle)
+    assert pooled.model_verdict["label"] != "inner"  # the model reads some waviness
+    assert (pooled.verdict, pooled.confidence) == (alone.verdict, alone.confidence)
+    assert "the model learnt no inner race: the verdict and confidence are the rule's" in (
+        pooled.basis
+    )
+
+
 @pytest.mark.xfail(
     strict=True,
     raises=AssertionError,
@@ -922,11 +950,13 @@ def bundle_by_label_names(small_dataset):
 def test_the_pooled_verdicts_confidence_is_calibrated_at_training(bundle, bundle_by_label_names):
     """``cmtool train`` fits P(the pooled verdict is right) on its out-of-fold predictions and
     the rule evidence of every signal, the faint faults left out of training included. (On
-    ``datasets/small`` as it is, whose classes are waviness, every pooled verdict is healthy
-    and right: nothing to fit, and the bundle says so with None.)"""
+    ``datasets/small`` as it is, whose classes are waviness, the model learnt no local fault
+    and the rule alone weighs those: its local-fault calls on wavy bearings, 19 of the 144,
+    are the pooled verdicts that are wrong, and the calibration is fitted on all 192 signals;
+    until stop 52 every pooled verdict there was healthy, and none was fitted.)"""
     from cmtool.diagnose import calibrated_confidence
 
-    assert bundle["pooled_calibration"] is None
+    assert bundle["pooled_calibration"]["signals"] == 192
     calibration = bundle_by_label_names["pooled_calibration"]
     assert bundle_by_label_names["class_kinds"] == {}
     assert calibration["signals"] == 4 * 24
