@@ -419,6 +419,21 @@ def class_kinds(frame: pd.DataFrame) -> dict[str, str]:
     return out
 
 
+def training_ranges(frame: pd.DataFrame) -> dict[str, list]:
+    """What a model saw: shaft speeds [rpm], sample rates [Hz] (lowest, highest), bearings.
+
+    ``diagnose`` says when a record lies outside them (:func:`cmtool.diagnose.outside_training`).
+    """
+    out: dict[str, list] = {}
+    for column in ("rpm", "fs_hz"):
+        if column in frame.columns:
+            values = frame[column].astype(float)
+            out[column] = [float(values.min()), float(values.max())]
+    if "bearing" in frame.columns:
+        out["bearings"] = sorted({str(b) for b in frame["bearing"]})
+    return out
+
+
 def pooled_calibration(
     frame: pd.DataFrame,
     X: pd.DataFrame,
@@ -659,6 +674,7 @@ def train(
         else None,
         "pooled_calibration": calibration,
         "class_kinds": class_kinds(frame),
+        "training_ranges": training_ranges(frame),
         "cv_labels": y.tolist(),
         "cv_predictions": cv_predictions[best].tolist(),
         "versions": {
@@ -777,6 +793,7 @@ def save_model(bundle: dict[str, Any], path: str | Path) -> Path:
             "extrapolation",
             "versions",
             "training_fingerprint",
+            "training_ranges",
             "feature_names",
             "n_splits",
         )

@@ -465,6 +465,7 @@ def diagnose_signal(
     diagnosis.rule_verdict = {"label": verdict, "confidence": confidence}
     if model is not None:
         diagnosis.model_verdict = model_verdict(model, x, fs, freqs, context_extra or {})
+        diagnosis.warnings += outside_training(model, rpm, fs, geometry.name)
         _combine(diagnosis)
     if diagnosis.verdict != "healthy":
         diagnosis.severity = {"estimated": False, "reason": SEVERITY_NOT_ESTIMATED}
@@ -791,6 +792,46 @@ def model_verdict(
     else:
         labels, counts = np.unique(pipeline.predict(frame).astype(str), return_counts=True)
         out["label"] = str(labels[int(np.argmax(counts))])
+    return out
+
+
+def outside_training(model: Any, rpm: float, fs: float, bearing: str) -> list[str]:
+    """Where a record lies outside what a model was trained on (``training_ranges``).
+
+    Parameters
+    ----------
+    model : dict or estimator
+        A ``cmtool train`` bundle (older bundles and bare estimators say nothing).
+    rpm : float
+        The record's shaft speed [rev/min].
+    fs : float
+        Its sample rate [Hz].
+    bearing : str
+        Its bearing's name.
+
+    Returns
+    -------
+    list of str
+        One warning per way the record is new to the model (speed or rate more than 1 %
+        outside the model's, another bearing).
+    """
+    seen = model.get("training_ranges") if isinstance(model, dict) else None
+    if not seen:
+        return []
+    out = []
+    for value, key, unit in ((rpm, "rpm", "rpm"), (fs, "fs_hz", "Hz")):
+        low, high = seen.get(key, (value, value))
+        if not 0.99 * low <= value <= 1.01 * high:
+            span = f"{low:g}" if low == high else f"{low:g}-{high:g}"
+            out.append(
+                f"the model was trained at {span} {unit} and this record is at {value:g} "
+                f"{unit}: its probabilities are an extrapolation"
+            )
+    if seen.get("bearings") and bearing not in seen["bearings"]:
+        out.append(
+            f"the model was trained on the {', '.join(seen['bearings'])}, not the {bearing}: "
+            "its probabilities rest on features normalised by the bearing's rates"
+        )
     return out
 
 

@@ -1242,3 +1242,26 @@ def test_evaluate_leaves_out_invisible_faults_and_warns_of_other_fault_kinds(
     assert saved["kinds_unlike"] == {"outer": {"model": "waviness", "dataset": "localized"}}
     assert main([*argv, "--min-fault-snr", "-1000"]) == 0  # every signal scored
     assert "on 9 signals" in capsys.readouterr().out
+
+
+def test_a_record_outside_what_the_model_saw_is_said_to_be(bundle, rng):
+    """`cmtool train` records the speeds, rates and bearings a model saw (datasets/small: 1200
+    to 2400 rpm, 6400 Hz, the 6205); `diagnose --model` warns of each way a record is new to
+    it, and of none for a record inside them."""
+    assert bundle["training_ranges"] == {
+        "rpm": [1200.0, 2400.0],
+        "fs_hz": [6400.0, 6400.0],
+        "bearings": ["6205"],
+    }
+    inside = diagnose_signal(rng.standard_normal(6400), 6400.0, 1800.0, "6205", model=bundle)
+    assert not [w for w in inside.warnings if w.startswith("the model was trained")]
+    outside = diagnose_signal(rng.standard_normal(12000), 12000.0, 3000.0, "6203", model=bundle)
+    said = [w for w in outside.warnings if w.startswith("the model was trained")]
+    assert said == [
+        "the model was trained at 1200-2400 rpm and this record is at 3000 rpm: its "
+        "probabilities are an extrapolation",
+        "the model was trained at 6400 Hz and this record is at 12000 Hz: its "
+        "probabilities are an extrapolation",
+        "the model was trained on the 6205, not the 6203: its probabilities rest on features "
+        "normalised by the bearing's rates",
+    ]
