@@ -61,6 +61,7 @@ __all__ = [
     "model_label_verdict",
     "explained_lines",
     "calibrated_confidence",
+    "outside_training",
     "check_clipping",
     "clipped_share",
     "CLIPPING_ERROR_SHARE",
