@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import copy
 import hashlib
-import json
 import math
 import re
 import zipfile
@@ -52,7 +51,7 @@ import features
 from generators import bearing
 
 from . import __version__
-from .io import atomic_write, to_jsonable
+from .io import atomic_write, json_text
 
 __all__ = [
     "candidate_classifiers",
@@ -800,7 +799,7 @@ def save_model(bundle: dict[str, Any], path: str | Path) -> Path:
     }
     atomic_write(
         path.with_suffix(path.suffix + ".json"),
-        lambda tmp: tmp.write_text(json.dumps(to_jsonable(summary), indent=2, allow_nan=False)),
+        lambda tmp: tmp.write_text(json_text(summary)),
     )
     return path
 

@@ -41,7 +41,7 @@ from generators.recipe import recipe_rating_warnings, validate_recipe
 from generators.synthesis import GENERATOR_REVISION, bound_steps, generate_cases
 
 from . import __version__
-from .io import atomic_write, to_jsonable
+from .io import atomic_write, json_text, to_jsonable
 
 __all__ = [
     "load_recipe",
@@ -297,7 +297,7 @@ def generate_dataset(
         "chunks": feed.chunks,
         **({"error_bound_steps": steps} if steps else {}),
     }
-    text = json.dumps(to_jsonable(summary), indent=2, allow_nan=False)
+    text = json_text(summary)
     atomic_write(out / "_dataset.json", lambda tmp: tmp.write_text(text))
     return summary
 

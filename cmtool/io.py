@@ -32,6 +32,7 @@ __all__ = [
     "read_signal",
     "atomic_write",
     "to_jsonable",
+    "json_text",
     "read_recording",
     "RecordingError",
 ]
@@ -52,6 +53,15 @@ def to_jsonable(obj: Any) -> Any:
     if isinstance(obj, float) and not np.isfinite(obj):
         return None
     return obj
+
+
+def json_text(obj: Any) -> str:
+    """``obj`` as strict JSON text, indented: :func:`to_jsonable`, and no NaN or Infinity.
+
+    What every JSON result cmtool writes or prints goes through (``tests/tests_cmtool/
+    test_house.py::test_json_results_are_strict_json``).
+    """
+    return json.dumps(to_jsonable(obj), indent=2, allow_nan=False)
 
 
 def _process_umask() -> int:

@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import numpy as np
 
 from .diagnose import Diagnosis, explained_lines
-from .io import atomic_write, to_jsonable
+from .io import atomic_write, json_text
 
 __all__ = ["model_verdict_text", "write_report"]
 
@@ -208,6 +207,6 @@ def write_report(
     report = out / "report.md"
     text = "\n".join(lines) + "\n"
     atomic_write(report, lambda tmp: tmp.write_text(text))
-    data = json.dumps(to_jsonable(diagnosis.to_dict()), indent=2, allow_nan=False)
+    data = json_text(diagnosis.to_dict())
     atomic_write(out / "diagnosis.json", lambda tmp: tmp.write_text(data))
     return report

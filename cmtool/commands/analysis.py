@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import logging
 import math
 import sys
@@ -96,9 +95,9 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
         if not args.json:
             print(f"wrote {report}")
     if args.json:
-        from ..io import to_jsonable
+        from ..io import json_text
 
-        print(json.dumps(to_jsonable(diagnosis.to_dict()), indent=2, allow_nan=False))
+        print(json_text(diagnosis.to_dict()))
     else:
         _print_diagnosis(diagnosis)
     return 0
@@ -354,9 +353,9 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
         index = _index_text(table, trends, out)
         atomic_write(out / "index.md", lambda tmp: tmp.write_text(index))
     if args.json:
-        from ..io import to_jsonable
+        from ..io import json_text
 
-        print(json.dumps(to_jsonable(results), indent=2, allow_nan=False))
+        print(json_text(results))
     else:
         for row in rows:
             if row["error"]:
@@ -589,10 +588,10 @@ def cmd_realism(args: argparse.Namespace) -> int:
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
-        from ..io import atomic_write, to_jsonable
+        from ..io import atomic_write, json_text
 
         kept = {k: v for k, v in result.items() if k != "scores"}
-        text = json.dumps(to_jsonable(kept), indent=2, allow_nan=False)
+        text = json_text(kept)
         atomic_write(out / "realism.json", lambda tmp: tmp.write_text(text))
         print(f"wrote {plot_realism(result, out / 'realism.png')}")
     return 0

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import logging
 import sys
 from pathlib import Path
@@ -124,7 +123,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     from ..bench import confusion_plot_name
     from ..classifier import class_kinds, evaluate, load_model, visible_faults
     from ..datasets import read_dataset
-    from ..io import atomic_write, to_jsonable
+    from ..io import atomic_write, json_text
     from ..plots import plot_confusion
 
     bundle = load_model(args.model)
@@ -176,7 +175,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     if args.out:
         out = Path(args.out)
         kept = {k: v for k, v in result.items() if k != "predictions"}
-        text = json.dumps(to_jsonable(kept), indent=2, allow_nan=False)
+        text = json_text(kept)
         atomic_write(out / "evaluation.json", lambda tmp: tmp.write_text(text))
         # the whole dataset's matrix, and each bearing's when it has several
         matrices = [("confusion.png", result["confusion"], "")]

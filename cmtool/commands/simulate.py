@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
 import logging
 import sys
 from pathlib import Path
@@ -472,14 +471,12 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     geometry, operating, defects, scene, rig, settings = _model_inputs(args)
     n_samples = int(round(settings.duration * settings.fs))
     streams = _check_run_size(args, settings, n_samples)
-    drawn = args.seed is None  # a run's random draws (slip, phases) are always repeatable:
-    if drawn:  # a seed is drawn, said and written with the signal
-        args.seed = int(np.random.SeedSequence().generate_state(1)[0])
+    if args.seed is None:  # a run's random draws (slip, phases) are always repeatable: a seed
+        args.seed = int(np.random.SeedSequence().generate_state(1)[0])  # drawn, said, written
+        print(f"random seed {args.seed} (drawn; --seed {args.seed} repeats this run)")
     film = scene.ehl and operating.shaft_frequency >= EHL_MIN_SHAFT_FREQUENCY
     if streams:
-        return _simulate_streamed(
-            args, geometry, operating, defects, scene, rig, settings, film, drawn
-        )
+        return _simulate_streamed(args, geometry, operating, defects, scene, rig, settings, film)
     result = simulate(
         geometry,
         operating,
@@ -490,7 +487,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         random_state=args.seed,
     )
     result.parameters["seed"] = args.seed
-    _print_run(result, settings, geometry, operating, film, drawn)
+    _print_run(result, settings, geometry, operating, film)
     if args.out:
         path = write_signal(result, args.out, channels=_requested_channels(args))
         print(f"wrote {path}")
@@ -537,11 +534,8 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     return 0
 
 
-def _print_run(run, settings, geometry, operating, film: bool, drawn: bool = False) -> None:
-    """The header of ``simulate``: what ran, its seed when drawn, the bearing's frequencies."""
-    if drawn:
-        seed = run.parameters["seed"]
-        print(f"random seed {seed} (drawn; --seed {seed} repeats this run)")
+def _print_run(run, settings, geometry, operating, film: bool) -> None:
+    """The header of ``simulate``: what ran, and the bearing's frequencies."""
     level = run.parameters["scene"]["resolved_level"]
     contacts = "ehl" if film else "dry"
     if not film and run.parameters["scene"]["ehl"]:
@@ -575,9 +569,7 @@ def _print_run(run, settings, geometry, operating, film: bool, drawn: bool = Fal
     )
 
 
-def _simulate_streamed(
-    args, geometry, operating, defects, scene, rig, settings, film, drawn
-) -> int:
+def _simulate_streamed(args, geometry, operating, defects, scene, rig, settings, film) -> int:
     """A long run: integrated and written block by block, with a progress bar."""
     from generators.stream import simulate_stream
 
@@ -602,7 +594,7 @@ def _simulate_streamed(
             path = None
             for block in stream:
                 bar.update(len(block.time))
-    _print_run(stream, settings, geometry, operating, film, drawn)
+    _print_run(stream, settings, geometry, operating, film)
     if path is not None:
         print(f"wrote {path} (streamed in blocks of {stream.block_samples:,} samples)")
     return 0
@@ -660,9 +652,9 @@ def cmd_frequencies(args: argparse.Namespace) -> int:
         out["orders"] = f.orders()
         if wpf:
             out["waviness_passage_frequencies_hz"] = wpf
-        from ..io import to_jsonable
+        from ..io import json_text
 
-        print(json.dumps(to_jsonable(out), indent=2, allow_nan=False))
+        print(json_text(out))
         return 0
     for key, value in data.items():
         print(f"{key:>24s} {value:10.4f} Hz  {value / f.shaft:8.5f} x shaft")
