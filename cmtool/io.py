@@ -47,9 +47,9 @@ def to_jsonable(obj: Any) -> Any:
     if isinstance(obj, (list, tuple)):
         return [to_jsonable(v) for v in obj]
     if isinstance(obj, np.ndarray):
-        return obj.tolist()
+        return to_jsonable(obj.tolist())  # its values too: a NaN in an array is no JSON
     if isinstance(obj, np.generic):
-        return obj.item()
+        return to_jsonable(obj.item())  # a numpy inf becomes a float inf: null too
     if isinstance(obj, float) and not np.isfinite(obj):
         return None
     return obj

@@ -115,6 +115,20 @@ def test_json_results_are_strict_json():
     assert not loose, loose
 
 
+def test_json_text_writes_no_nan_from_arrays_or_numpy_scalars():
+    """``cmtool.io.json_text`` turns a value that is not finite into null wherever it sits: in
+    a numpy array (whose values it used to pass on as they were, NaN included), a numpy scalar
+    or a float."""
+    import json
+
+    import numpy as np
+
+    from cmtool.io import json_text
+
+    text = json_text({"a": np.array([[1.0, np.nan]]), "b": np.float32(np.inf), "c": -np.inf})
+    assert json.loads(text) == {"a": [[1.0, None]], "b": None, "c": None}
+
+
 def test_the_readme_python_example_runs_and_gives_the_value_it_states():
     """README.md's Python section is run as written; its last line's value is the one its
     comment states ("~8.7e-6 m/s", two significant digits: rounding up to 0.6 %, so 1 %)."""
