@@ -52,7 +52,8 @@ __all__ = [
     "DatasetError",
 ]
 
-DATASET_SCHEMA_VERSION = 5
+#: The metadata columns' version (``generators.cases.CaseRecord``): 6 added ``cage_slip``.
+DATASET_SCHEMA_VERSION = 6
 
 #: Arrow type per storage kind of a metadata column (``generators.cases.CaseRecord``).
 _ARROW = {
@@ -469,6 +470,7 @@ _RANGE_COLUMNS = (
     "radial_internal_clearance_m",
     "random_slip",
     "ball_jitter_rad",
+    "cage_slip",
     "shaft_mass_kg",
     "housing_mass_kg",
     "pedestal_stiffness_n_m",

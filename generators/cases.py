@@ -83,6 +83,7 @@ class CaseRecord:
     wpf_hz: float
     random_slip: float
     ball_jitter_rad: float
+    cage_slip: float
     inner_form_waviness_m: float
     outer_form_waviness_m: float
     ball_form_waviness_m: float
@@ -140,6 +141,7 @@ class Case:
     resonance_hz: float = math.nan
     random_slip: float = 0.0
     ball_jitter_rad: float = 0.0
+    cage_slip: float = 0.0
     inner_form_waviness_m: float = 0.0
     outer_form_waviness_m: float = 0.0
     ball_form_waviness_m: float = 0.0
@@ -285,6 +287,7 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                 key: _draw(r["model"][key], rng, k) if key in r["model"] else math.nan
                 for key in (*RIG_KEYS, *DAMPING_RATIO_KEYS)
             }
+            cage_slip = _draw(op["cage_slip"], rng, k) if "cage_slip" in op else 0.0  # last
             yield Case(
                 index=index,
                 label=cond["label"],
@@ -310,6 +313,7 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                 fault_snr_db=fault_snr,
                 random_slip=slip,
                 ball_jitter_rad=jitter,
+                cage_slip=cage_slip,
                 inner_form_waviness_m=form[0],
                 outer_form_waviness_m=form[1],
                 ball_form_waviness_m=form[2],

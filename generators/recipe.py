@@ -132,6 +132,15 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
         doc="direction of the radial load from the x axis (default -90: downward, along the "
         "sensor's y); outer-race pit positions are measured from it",
     ),
+    Key(
+        "operating.cage_slip",
+        "values",
+        0.0,
+        0.1,
+        "",
+        doc="mean cage slip: the cage runs at (1 - s) of its kinematic speed (rate columns "
+        "stay kinematic)",
+    ),
     Key("operating.random_slip", "values", 0.0, 0.1, "", doc="cage speed fluctuation, std"),
     Key("operating.ball_jitter_rad", "values", 0.0, 0.1, "rad", doc="cage pocket play, std"),
     Key(

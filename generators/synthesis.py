@@ -112,6 +112,7 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         random_slip=case.random_slip,
         ball_jitter=case.ball_jitter_rad,
         load_angle=case.load_angle_rad,
+        cage_slip=case.cage_slip,
     )
     # the bearing's own form errors come first: a case and its healthy twin draw the same
     # phases for them (generators.form)
@@ -165,10 +166,13 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
     freqs = characteristic_frequencies(
         geometry, operating.shaft_frequency, cage_slip=operating.cage_slip
     )
+    # the rate columns are the kinematic rates an analyst computes from the speed (what a
+    # detector is given); the run's cage lags them by cage_slip
+    nominal = characteristic_frequencies(geometry, operating.shaft_frequency)
     wpf = math.nan
     if case.defect_kind == "waviness":
         # waviness_passage_frequencies from the frequencies at hand (order checked by the recipe)
-        lines = passage_lines(freqs, geometry.ball_count, case.surface, case.waviness_order, 2)
+        lines = passage_lines(nominal, geometry.ball_count, case.surface, case.waviness_order, 2)
         strong = [ln.frequency for ln in lines if ln.strength == "strong"]
         wpf = strong[0] if strong else (lines[0].frequency if lines else math.nan)
     meta = {
@@ -208,14 +212,15 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         "fault_snr_db": case.fault_snr_db,
         "noise_rms": 0.0,
         "resonance_hz": case.resonance_hz,
-        "ftf_hz": freqs.ftf,
-        "bpfo_hz": freqs.bpfo,
-        "bpfi_hz": freqs.bpfi,
-        "bsf_hz": freqs.bsf,
-        "two_bsf_hz": freqs.two_bsf,
+        "ftf_hz": nominal.ftf,
+        "bpfo_hz": nominal.bpfo,
+        "bpfi_hz": nominal.bpfi,
+        "bsf_hz": nominal.bsf,
+        "two_bsf_hz": nominal.two_bsf,
         "wpf_hz": wpf,
         "random_slip": case.random_slip,
         "ball_jitter_rad": case.ball_jitter_rad,
+        "cage_slip": case.cage_slip,
         "inner_form_waviness_m": case.inner_form_waviness_m,
         "outer_form_waviness_m": case.outer_form_waviness_m,
         "ball_form_waviness_m": case.ball_form_waviness_m,

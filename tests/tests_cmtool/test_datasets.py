@@ -567,3 +567,45 @@ def test_a_recipe_beyond_its_bearings_ratings_is_warned_about_once(tmp_path):
     with pytest.warns(OperatingRangeWarning) as caught:
         generate_dataset(tmp_path / "heavy.toml", tmp_path / "out")
     assert len(caught) == 2  # once per bearing, not per case
+
+
+def test_a_recipes_cage_slip_lowers_the_ball_pass_and_leaves_the_rate_columns_kinematic(tmp_path):
+    """operating.cage_slip: the run's cage lags by it (its ball-pass line lies 1 - s lower), the
+    rate columns stay the kinematic rates a detector is given, and nothing else drawn moves."""
+    from generators import bearing, characteristic_frequencies
+
+    plain = """
+name = "slip"
+seed = 5
+[operating]
+rpm = [1800]
+load_n = { min = 400, max = 600 }
+[sensor]
+fs_hz = 12800
+duration_s = 1.0
+settle_s = 0.05
+[[conditions]]
+label = "healthy"
+count = 2
+"""
+    frames = {}
+    for slip in (None, 0.05):
+        path = tmp_path / f"slip{slip}.toml"
+        drawn = "" if slip is None else f"cage_slip = [{slip}]\n"
+        path.write_text(plain.replace("[sensor]", drawn + "[sensor]"))
+        generate_dataset(path, tmp_path / f"ds{slip}")
+        frames[slip] = read_dataset(tmp_path / f"ds{slip}")
+    kinematic = characteristic_frequencies(bearing("6205"), 30.0)
+    for slip, frame in frames.items():
+        assert frame["cage_slip"].eq(slip or 0.0).all()
+        assert frame["bpfo_hz"].eq(kinematic.bpfo).all()
+        assert frame["bpfi_hz"].eq(kinematic.bpfi).all()
+        for x in frame["signal"]:
+            x = np.asarray(x, dtype=float)
+            spec = np.abs(np.fft.rfft((x - x.mean()) * np.hanning(x.size)))
+            freqs = np.fft.rfftfreq(x.size, 1 / 12800)
+            near = (freqs > 0.9 * kinematic.bpfo) & (freqs < 1.05 * kinematic.bpfo)
+            found = freqs[near][np.argmax(spec[near])]
+            assert found == pytest.approx(kinematic.bpfo * (1 - (slip or 0.0)), abs=1.0)
+    for column in ("seed", "radial_load_n", "rpm", "label"):
+        assert frames[None][column].tolist() == frames[0.05][column].tolist()
