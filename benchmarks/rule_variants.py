@@ -65,6 +65,12 @@ Modes:
     band tree from 0 Hz. Since stop 44 the other modes' "shipped" has the cage rate and the
     band floor.
 
+``own-band DATASET [DATASET ...]``
+    As ``ball-odd``, each fault weighed in the band where its own rate shows most clearly (the
+    ball's: its 2 x BSF or the cage rate) instead of all three in the one band where any rate
+    does; the threshold is the same (it already counts every band for a fundamental's
+    maximum). A fault whose rate did not choose the band is read where it shows best.
+
 ``cage-feature CWRU MFPT CWRU777``
     The FTF line of the envelope over its floor (in the chosen band) as a model feature added
     to ``evidence+scale-free``: extra trees (``cmtool train``'s model for the rig recipes, three
@@ -80,6 +86,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import sys
+import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 
@@ -404,6 +411,38 @@ def _with_cage_lines(x, fs, fault_frequencies, comb_as_test: bool):
 
 _SHIPPED_FAULT_BAND = separation.fault_band
 
+#: Columns of the selection's scores that speak for each fault (the ball's cage rate too).
+_OWN_RATES = {"bpfo": ("bpfo",), "bpfi": ("bpfi",), "two_bsf": ("two_bsf", "ftf")}
+
+
+_OWN_BAND = threading.local()  # the band index one thread's next evidence is read in
+
+
+def _own_band_dispatch(*args, **options):
+    """``fault_band`` as shipped, or its candidate ``_OWN_BAND.index`` (per thread)."""
+    shipped = _SHIPPED_FAULT_BAND(*args, **options)
+    own = getattr(_OWN_BAND, "index", None)
+    return shipped if own is None else dataclasses.replace(shipped, band=shipped.bands[own])
+
+
+def _with_own_bands(x, fs, fault_frequencies):
+    """The shipped evidence, each fault's weighing taken in its own best band."""
+    evidence.fault_band = _own_band_dispatch  # the same in every thread
+    result = _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
+    selection = result.selection
+    chosen = selection.bands.index(selection.band)
+    for fault, names in _OWN_RATES.items():
+        columns = [selection.rates.index(n) for n in names if n in selection.rates]
+        own = int(np.argmax(selection.scores_db[:, columns].max(axis=1)))
+        if own == chosen:
+            continue
+        _OWN_BAND.index = own
+        try:
+            result.combined[fault] = _SHIPPED_EVIDENCE(x, fs, fault_frequencies).combined[fault]
+        finally:
+            _OWN_BAND.index = None
+    return result
+
 
 def _rule(cage: bool, tree_from_zero: bool):
     """The rule's evidence with or without the cage rate (band choice and the ball's family)
@@ -507,6 +546,8 @@ if __name__ == "__main__":
                 "B14 (the cage rate)": _rule(cage=True, tree_from_zero=True),
             },
         )
+    elif mode == "own-band" and len(sys.argv) > 2:
+        ball_odd(sys.argv[2:], {"shipped": _SHIPPED_EVIDENCE, "own band": _with_own_bands})
     elif mode == "cage-feature" and len(sys.argv) == 5:
         cage_feature(*sys.argv[2:])
     elif mode == "ball-cage" and len(sys.argv) > 2:
