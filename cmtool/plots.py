@@ -100,9 +100,10 @@ def plot_spectrum(
     title, ylabel : str
         Labels.
     markers : mapping of str to float, optional
-        Name -> frequency [Hz]; each is drawn at 1 .. ``harmonics`` times its value.
+        Name -> frequency [Hz]; each is drawn at 1 .. ``harmonics`` times its value, the
+        verdict's (``emphasis``) at every harmonic up to ``fmax``: the comb an analyst reads.
     harmonics : int
-        Harmonics marked per frequency.
+        Harmonics marked per frequency (and sidebands drawn about the verdict's).
     fmax : float, optional
         Upper frequency limit [Hz]; default 10 times the largest marker or the Nyquist.
     log : bool
@@ -138,10 +139,11 @@ def plot_spectrum(
             else {"ls": "--", "lw": 0.9, "alpha": 0.7}
         )
         label = f"{name} (verdict)" if chosen else name
-        for h in range(1, harmonics + 1):
+        shown = max(harmonics, int(fmax // f0)) if chosen else harmonics
+        for h in range(1, shown + 1):
             if h * f0 <= fmax:
                 ax.axvline(h * f0, color=color, label=label if h == 1 else None, **style)
-            if chosen and sidebands:
+            if chosen and sidebands and h <= harmonics:
                 for side in (h * f0 - sidebands, h * f0 + sidebands):
                     if 0 < side <= fmax:
                         ax.axvline(

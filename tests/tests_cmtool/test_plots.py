@@ -91,3 +91,34 @@ def test_the_waveform_plots_for_any_rate_speed_length_and_band(
     path = tmp_path_factory.mktemp("w") / "w.png"
     plot_waveform(x, fs, path, title="t", shaft_hz=shaft, band=band, fault_hz=fault)
     assert path.read_bytes().startswith(b"\x89PNG")
+
+
+def test_the_verdicts_comb_is_marked_across_the_span_and_the_others_at_three_harmonics(
+    tmp_path, monkeypatch
+):
+    """An analyst reads the verdict's whole comb of harmonics; the other rates keep three."""
+    import cmtool.plots as plots
+
+    captured = {}
+
+    def keep(fig, path):
+        captured["fig"] = fig
+        return path
+
+    monkeypatch.setattr(plots, "save_figure", keep)
+    f = np.arange(0.0, 1200.0, 0.5)
+    plots.plot_spectrum(
+        f,
+        np.ones_like(f),
+        tmp_path / "e.png",
+        title="t",
+        ylabel="a",
+        markers={"bpfo": 100.0, "bpfi": 137.0},
+        fmax=1050.0,
+        emphasis="bpfo",
+        sidebands=10.0,
+    )
+    xs = [line.get_xdata()[0] for line in captured["fig"].axes[0].lines[1:]]
+    assert sorted(x for x in xs if x % 100.0 == 0) == [100.0 * k for k in range(1, 11)]
+    assert sorted(x for x in xs if x % 137.0 == 0) == [137.0, 274.0, 411.0]
+    assert sorted(x for x in xs if x % 10.0 == 0 and x % 100.0) == [90, 110, 190, 210, 290, 310]
