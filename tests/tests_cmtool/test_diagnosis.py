@@ -602,7 +602,8 @@ def test_an_inner_race_pits_lines_are_not_read_as_a_ball_fault(tmp_path, monkeyp
     report = write_report(d, tmp_path, title="inner race pit", x=x, fs=12000.0)
     monkeypatch.setattr(cmtool.plots.plt, "close", close)
     assert "3x: inner race 3x" in report.read_text()
-    # the envelope plot marks the verdict's lines, solid, and their shaft-rate sidebands
+    # the envelope plot marks the verdict's lines, solid, over its whole span (to 5 x BPFI),
+    # and the shaft-rate sidebands of the first three
     envelope = next(f for f in figures if "envelope spectrum" in f.axes[0].get_title())
     ax = envelope.axes[0]
     assert [t.get_text() for t in ax.get_legend().get_texts()].count("bpfi (verdict)") == 1
@@ -610,7 +611,9 @@ def test_an_inner_race_pits_lines_are_not_read_as_a_ball_fault(tmp_path, monkeyp
     solid = sorted(line.get_xdata()[0] for line in lines if line.get_linestyle() == "-")
     dotted = sorted(line.get_xdata()[0] for line in lines if line.get_linestyle() == ":")
     bpfi, shaft = d.frequencies["bpfi"], d.frequencies["shaft"]
-    np.testing.assert_allclose(solid, [bpfi, 2 * bpfi, 3 * bpfi])
+    span = ax.get_xlim()[1]
+    assert span == pytest.approx(5 * bpfi)
+    np.testing.assert_allclose(solid, [k * bpfi for k in range(1, 6)])
     np.testing.assert_allclose(
         dotted, sorted(h * bpfi + s * shaft for h in (1, 2, 3) for s in (-1, 1))
     )
