@@ -154,6 +154,14 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--harmonics", type=_positive_int, default=3, help="ball-pass harmonics q for --wpf"
     )
+    p.add_argument(
+        "--cage-slip",
+        type=float,
+        default=0.0,
+        help="the cage's mean slip s [-], 0 to 0.5: the cage turns at 1 - s of its kinematic "
+        "speed, so FTF, BPFO and BSF lie lower by s and BPFI higher by s BPFO/BPFI (real "
+        "bearings: up to 1-2 %%)",
+    )
     p.add_argument("--json", action="store_true", help="print the frequencies as JSON")
     p.set_defaults(func=cmd_frequencies)
 

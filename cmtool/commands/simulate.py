@@ -25,7 +25,7 @@ from generators import (
     waviness_passage_frequencies,
 )
 from generators.form import MAX_FORM_WAVINESS
-from generators.params import check_shaft_speed_rpm
+from generators.params import check_real, check_shaft_speed_rpm
 
 from .common import CliError, check_output_file, progress_bar, seed_int
 
@@ -627,18 +627,20 @@ def cmd_frequencies(args: argparse.Namespace) -> int:
     """Print a bearing's characteristic frequencies, and its WPF for ``--wpf``.
 
     The bearing is a catalog one or a given geometry; the waviness passage frequencies are
-    those of the orders asked for (docs/model.md 2.1).
+    those of the orders asked for (docs/model.md 2.1); with ``--cage-slip`` s, every rate is
+    the slipping cage's (docs/realism.md 1).
     """
     geometry = parse_geometry(args.geometry) if args.geometry else bearing(args.bearing)
     rpm = check_shaft_speed_rpm("--rpm", args.rpm)
-    f = characteristic_frequencies(geometry, rpm / 60.0)
+    slip = check_real("--cage-slip", args.cage_slip, low=0.0, high=0.5, high_inclusive=False)
+    f = characteristic_frequencies(geometry, rpm / 60.0, cage_slip=slip)
     data = f.as_dict()
     wpf = []
     for spec in args.wpf or []:
         surface, orders = parse_wpf(spec)
         for order in orders:
             lines = waviness_passage_frequencies(
-                geometry, rpm / 60.0, surface, order, max_harmonic=args.harmonics
+                geometry, rpm / 60.0, surface, order, max_harmonic=args.harmonics, cage_slip=slip
             )
             wpf.append(
                 {
@@ -648,7 +650,8 @@ def cmd_frequencies(args: argparse.Namespace) -> int:
                 }
             )
     if args.json:
-        out = {"bearing": geometry.name, "rpm": args.rpm, "frequencies_hz": data}
+        out = {"bearing": geometry.name, "rpm": args.rpm, "cage_slip": slip}
+        out["frequencies_hz"] = data
         out["orders"] = f.orders()
         if wpf:
             out["waviness_passage_frequencies_hz"] = wpf
@@ -656,6 +659,8 @@ def cmd_frequencies(args: argparse.Namespace) -> int:
 
         print(json_text(out))
         return 0
+    if slip:
+        print(f"cage slip {slip:g}: the cage at {1 - slip:g} of its kinematic speed")
     for key, value in data.items():
         print(f"{key:>24s} {value:10.4f} Hz  {value / f.shaft:8.5f} x shaft")
     if wpf:

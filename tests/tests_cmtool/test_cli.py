@@ -231,6 +231,30 @@ def test_frequencies_json(capsys):
     assert data["frequencies_hz"]["bpfo"] == pytest.approx(107.36, abs=0.01)
 
 
+def test_frequencies_with_a_slipping_cage(capsys):
+    """--cage-slip s: FTF, BPFO and the ball's spin lower by s, BPFI higher by s BPFO / BPFI
+    (the inner race meets lagging balls faster), the waviness lines with them; out of [0,
+    0.5) the flag, its value and the range are named."""
+    assert main(["frequencies", "--rpm", "1797", "--json"]) == 0
+    kinematic = json.loads(capsys.readouterr().out)["frequencies_hz"]
+    argv = ["frequencies", "--rpm", "1797", "--cage-slip", "0.02", "--wpf", "outer:9"]
+    assert main([*argv, "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    f = data["frequencies_hz"]
+    assert data["cage_slip"] == 0.02
+    for key in ("ftf", "bpfo", "bsf", "two_bsf"):
+        assert f[key] == pytest.approx(0.98 * kinematic[key], rel=1e-12)
+    assert f["bpfi"] == pytest.approx(kinematic["bpfi"] + 0.02 * kinematic["bpfo"], rel=1e-12)
+    assert f["shaft"] == kinematic["shaft"]
+    line = data["waviness_passage_frequencies_hz"][0]["lines"][0]["frequency"]
+    assert line == pytest.approx(f["bpfo"])
+    assert main(argv) == 0
+    assert "cage slip 0.02: the cage at 0.98 of its kinematic speed" in capsys.readouterr().out
+    assert main(["frequencies", "--rpm", "1797", "--cage-slip", "0.6"]) == 2
+    err = capsys.readouterr().err
+    assert "--cage-slip" in err and "0.6" in err and "0.5" in err
+
+
 def test_frequencies_gives_the_waviness_passage_frequencies_by_order(capsys):
     """--wpf: the lines of docs/model.md 2.1 at 1800 rpm (f_s 30 Hz) on a 6205 (Z = 9): outer
     orders at q BPFO, inner order k at q BPFI + (k - qZ) f_s, even ball orders 2p at 2p f_b
