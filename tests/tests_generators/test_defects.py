@@ -298,3 +298,33 @@ def test_rk4_shortcuts_near_pits_agree_with_dopri5(b6205, surface, length, split
     rk4, dopri5 = signatures
     assert np.linalg.norm(dopri5) > 30 * np.linalg.norm(healthy)  # the pit is met
     assert np.linalg.norm(rk4 - dopri5) <= 0.08 * np.linalg.norm(dopri5)
+
+
+@pytest.mark.parametrize("surface", ["outer", "inner"])
+def test_a_lagging_cage_moves_a_pits_impact_rate(b6205, surface):
+    """cage_slip s (the cage at 1 - s of its kinematic speed): an outer-race pit is struck at
+    (1 - s) BPFO, an inner-race pit at BPFI + s BPFO (the inner race meets lagging balls
+    faster). The envelope of the impacts' ringing (2-5 kHz) has its line there, 3 % of the
+    rate (3-5 Hz) from the kinematic one, within a bin of 1 Hz."""
+    from scipy import signal as sp_signal
+
+    from generators import characteristic_frequencies
+
+    slip, fs = 0.03, 12000.0
+    op = OperatingCondition.from_rpm(1797, 400.0, cage_slip=slip)
+    pit = LocalizedDefect(surface=surface, length=0.3e-3, depth=0.1e-3)
+    settings = SimulationSettings(fs=fs, duration=1.0, channels=("housing_acceleration_y",))
+    x = simulate(b6205, op, pit, settings=settings)["housing_acceleration_y"]
+    sos = sp_signal.butter(4, (2000.0, 5000.0), btype="bandpass", fs=fs, output="sos")
+    env = np.abs(sp_signal.hilbert(sp_signal.sosfiltfilt(sos, x)))
+    spec = np.abs(np.fft.rfft((env - env.mean()) * np.hanning(env.size)))
+    freqs = np.fft.rfftfreq(env.size, 1 / fs)
+    kinematic = characteristic_frequencies(b6205, 1797 / 60)
+    if surface == "outer":
+        expected, kinematic_rate = (1 - slip) * kinematic.bpfo, kinematic.bpfo
+    else:
+        expected, kinematic_rate = kinematic.bpfi + slip * kinematic.bpfo, kinematic.bpfi
+    near = (freqs > 0.9 * kinematic_rate) & (freqs < 1.1 * kinematic_rate)
+    found = freqs[near][np.argmax(spec[near])]
+    assert found == pytest.approx(expected, abs=1.0)
+    assert abs(found - kinematic_rate) > 2.5
