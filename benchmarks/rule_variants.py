@@ -71,6 +71,16 @@ Modes:
     does; the threshold is the same (it already counts every band for a fundamental's
     maximum). A fault whose rate did not choose the band is read where it shows best.
 
+``whitened DATASET [DATASET ...]``
+    As ``ball-odd``: the shipped evidence; the same evidence on the separation's random part
+    cepstrally pre-whitened (unit magnitude spectrum, phase kept: Borghesani et al. 2013, the
+    whitening of the benchmark method) before the band is chosen (``whitened only``); and
+    both, each fault's false-alarm probability the lesser of the two doubled (Bonferroni over
+    the two sets of bands: ``whitened union``); and the union with the bins the line editing
+    emptied kept empty in the whitened part (``whitened union, emptied bins kept empty``;
+    mode ``whitened-kept``: that one and the shipped evidence only). Stop 54,
+    docs/diagnosis.md "Pre-whitened bands".
+
 ``cage-feature CWRU MFPT CWRU777``
     The FTF line of the envelope over its floor (in the chosen band) as a model feature added
     to ``evidence+scale-free``: extra trees (``cmtool train``'s model for the rig recipes, three
@@ -444,6 +454,66 @@ def _with_own_bands(x, fs, fault_frequencies):
     return result
 
 
+_SHIPPED_SEPARATE = evidence.separate_discrete
+_WHITENED = threading.local()  # whether one thread's next evidence whitens its random part
+
+
+def _whitened_dispatch(x, fs, *args, **options):
+    """The separation as shipped, its random part pre-whitened when ``_WHITENED.on`` (per
+    thread): unit magnitude spectrum, phase kept (bins of zero magnitude stay zero)."""
+    random_part = _SHIPPED_SEPARATE(x, fs, *args, **options)
+    if not getattr(_WHITENED, "on", False):
+        return random_part
+    spectrum = np.fft.rfft(random_part - random_part.mean())
+    magnitude = np.abs(spectrum)
+    # bins the line editing emptied (rounding residues) stay empty when _WHITENED.keep_empty:
+    # at unit magnitude they would put back a comb at the removed lines' spacing
+    lowest = 1e-6 * np.median(magnitude) if getattr(_WHITENED, "keep_empty", False) else 0.0
+    unit = np.divide(spectrum, magnitude, out=np.zeros_like(spectrum), where=magnitude > lowest)
+    return np.fft.irfft(unit, n=random_part.size)
+
+
+def _whitened_evidence(x, fs, fault_frequencies):
+    evidence.separate_discrete = _whitened_dispatch  # the same in every thread
+    _WHITENED.on = True
+    try:
+        return _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
+    finally:
+        _WHITENED.on = False
+
+
+def _least_false_alarm(result) -> float:
+    return min(w["false_alarm"] for w in result.combined.values())
+
+
+def _with_whitened_union(x, fs, fault_frequencies, keep_empty: bool = False):
+    """The shipped evidence or the whitened one, whichever finds a fault more surely, every
+    probability doubled (two sets of bands searched); ``keep_empty``: the bins the line
+    editing emptied stay empty in the whitened part (variant 2)."""
+    evidence.separate_discrete = _whitened_dispatch
+    _WHITENED.keep_empty = keep_empty
+    shipped = _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
+    whitened = _whitened_evidence(x, fs, fault_frequencies)
+    result = min((shipped, whitened), key=_least_false_alarm)
+    for weighed in result.combined.values():
+        weighed["false_alarm"] = min(1.0, 2.0 * weighed["false_alarm"])
+        weighed["detected"] = weighed["false_alarm"] <= separation.FALSE_ALARM
+    # the verdict reads evidence_db against the threshold: the threshold of twice the bands
+    # is that of half the false-alarm probability per set
+    fundamentals = [result.families[fault][0][1] for fault in evidence.EVIDENCE_FAULTS]
+    threshold = separation.detection_threshold_db(
+        2 * len(result.selection.bands),
+        searched_bins=max(1, *(line[2] for line in fundamentals)),
+        floor_bins=min(line[3] for line in fundamentals),
+    )
+    return dataclasses.replace(result, threshold_db=threshold)
+
+
+def _with_whitened_union_kept(x, fs, fault_frequencies):
+    """Variant 2: the union, the bins the line editing emptied kept empty when whitened."""
+    return _with_whitened_union(x, fs, fault_frequencies, keep_empty=True)
+
+
 def _rule(cage: bool, tree_from_zero: bool):
     """The rule's evidence with or without the cage rate (band choice and the ball's family)
     and with the band tree from 0 Hz (as before stop 44) or from 3 x the fastest rate (shipped).
@@ -548,6 +618,24 @@ if __name__ == "__main__":
         )
     elif mode == "own-band" and len(sys.argv) > 2:
         ball_odd(sys.argv[2:], {"shipped": _SHIPPED_EVIDENCE, "own band": _with_own_bands})
+    elif mode == "whitened" and len(sys.argv) > 2:
+        ball_odd(
+            sys.argv[2:],
+            {
+                "shipped": _SHIPPED_EVIDENCE,
+                "whitened only": _whitened_evidence,
+                "whitened union": _with_whitened_union,
+                "whitened union, emptied bins kept empty": _with_whitened_union_kept,
+            },
+        )
+    elif mode == "whitened-kept" and len(sys.argv) > 2:
+        ball_odd(
+            sys.argv[2:],
+            {
+                "shipped": _SHIPPED_EVIDENCE,
+                "whitened union, emptied bins kept empty": _with_whitened_union_kept,
+            },
+        )
     elif mode == "cage-feature" and len(sys.argv) == 5:
         cage_feature(*sys.argv[2:])
     elif mode == "ball-cage" and len(sys.argv) > 2:
@@ -562,3 +650,4 @@ if __name__ == "__main__":
     else:
         sys.exit(__doc__)
     evidence.fault_band, evidence.CAGE_HARMONICS = separation.fault_band, (1, 2)
+    evidence.separate_discrete = _SHIPPED_SEPARATE
