@@ -254,3 +254,20 @@ def test_benchmark_scripts_use_names_that_exist():
             except ImportError:
                 missing.append(f"{path.name}:{line}: {module}.{name}")
     assert not missing, missing
+
+
+def test_documented_benchmark_commands_exist():
+    """Every ``benchmarks/NAME.py`` the docs, README and recipes cite exists, and every mode
+    they give ``rule_variants.py`` is one it runs."""
+    import re
+
+    texts = [p.read_text() for p in (REPO / "docs").glob("*.md")]
+    texts += [(REPO / "README.md").read_text()]
+    texts += [p.read_text() for p in (REPO / "datasets").glob("*.toml")]
+    cited = {m for text in texts for m in re.findall(r"benchmarks/([a-z_0-9]+)\.py", text)}
+    assert len(cited) > 20
+    missing = sorted(n for n in cited if not (REPO / "benchmarks" / f"{n}.py").is_file())
+    modes = {m for text in texts for m in re.findall(r"rule_variants\.py ([a-z][a-z-]+)", text)}
+    script = (REPO / "benchmarks" / "rule_variants.py").read_text()
+    unknown = sorted(m for m in modes if f'mode == "{m}"' not in script)
+    assert not missing and not unknown, (missing, unknown)
