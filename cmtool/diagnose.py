@@ -40,6 +40,17 @@ from generators.kinematics import BearingFrequencies
 from generators.params import check_shaft_speed_rpm
 
 from .inputs import checked_geometry, checked_model, checked_rate, checked_record
+from .pooling import (  # the pooled verdict, kept importable from here
+    CANONICAL,
+    calibrated_confidence,
+    combine_verdicts,
+    model_label_verdict,
+    model_verdict,
+    outside_training,
+    pool_probabilities,
+    rule_probabilities,
+    verdict_probabilities,
+)
 from .quality import (  # the record's checks, kept importable from here
     CLIPPING_ERROR_SHARE,
     check_clipping,
@@ -49,6 +60,7 @@ from .quality import (  # the record's checks, kept importable from here
 
 __all__ = [
     "diagnose_signal",
+    "CANONICAL",
     "Diagnosis",
     "write_report",
     "DETECTION_DB",
@@ -467,7 +479,7 @@ def diagnose_signal(
     if model is not None:
         diagnosis.model_verdict = model_verdict(model, x, fs, freqs, context_extra or {})
         diagnosis.warnings += outside_training(model, rpm, fs, geometry.name)
-        _combine(diagnosis)
+        combine_verdicts(diagnosis)
     if diagnosis.verdict != "healthy":
         diagnosis.severity = {"estimated": False, "reason": SEVERITY_NOT_ESTIMATED}
     return diagnosis
@@ -566,18 +578,6 @@ def _against_baseline(
             diagnosis.waviness["over_baseline_db"] = round(rise, 2)
 
 
-#: Verdict names of labels (recipe labels, manifest fault locations, verdicts).
-CANONICAL = {
-    "healthy": "healthy",
-    "normal": "healthy",
-    "inner": "inner race",
-    "inner race": "inner race",
-    "outer": "outer race",
-    "outer race": "outer race",
-    "ball": "ball",
-}
-
-
 def overall_band(rpm: float) -> tuple[float, float]:
     """ISO 10816-3's broad band [Hz]: 10-1000 Hz, or 2-1000 Hz for shafts at 600 rpm or less.
 
@@ -620,220 +620,6 @@ MAX_RECORD_SAMPLES = 2**22
 def _logistic(margin: float, scale: float, offset: float) -> float:
     """1 / (1 + exp(-(margin - offset) / scale)), margin and offset in dB."""
     return 1.0 / (1.0 + math.exp(-(margin - offset) / scale))
-
-
-def rule_probabilities(candidates: list[dict]) -> dict[str, float]:
-    """The rule detector's evidence as probabilities over healthy and the three faults.
-
-    Each fault's confidence c_i (logistic in its margin over the threshold) is read as the
-    probability that its line is real; a fault alone: c_i prod_{j != i} (1 - c_j), healthy:
-    prod (1 - c_j); normalised.
-    """
-    conf = {c["fault"]: float(c["confidence"]) for c in candidates}
-    scores = {"healthy": float(np.prod([1.0 - v for v in conf.values()]))}
-    for fault, value in conf.items():
-        others = [1.0 - v for k, v in conf.items() if k != fault]
-        scores[fault] = value * float(np.prod(others))
-    total = sum(scores.values()) or 1.0
-    return {k: v / total for k, v in scores.items()}
-
-
-def model_label_verdict(label: str, class_kinds: dict | None = None) -> str | None:
-    """The verdict a model's class label stands for (``CANONICAL``), or None.
-
-    A class the model learnt from waviness (``class_kinds[label] == "waviness"``, recorded by
-    ``cmtool train`` from the dataset's ``defect_kind``) is no local fault: it stands for
-    ``healthy`` in the rule's verdicts (docs/diagnosis.md, "A model trained on waviness").
-    """
-    if class_kinds and class_kinds.get(str(label)) == "waviness":
-        return "healthy"
-    return CANONICAL.get(str(label))
-
-
-def verdict_probabilities(
-    model_probabilities: dict, class_kinds: dict | None = None
-) -> dict[str, float]:
-    """A model's class probabilities summed per verdict (:func:`model_label_verdict`)."""
-    out: dict[str, float] = {}
-    for label, value in model_probabilities.items():
-        name = model_label_verdict(str(label), class_kinds)
-        if name is not None:
-            out[name] = out.get(name, 0.0) + float(value)
-    return out
-
-
-def pool_probabilities(
-    rule_p: dict[str, float], model_probabilities: dict, class_kinds: dict | None = None
-) -> dict[str, float]:
-    """Log-linear pooling of the rule's and a model's probabilities over the verdicts.
-
-    p(class) proportional to sqrt(p_rule p_model): each source counts as much, and a class
-    that either gives almost no chance stays unlikely. Model labels are read as verdicts
-    (:func:`model_label_verdict`: by name, a class learnt from waviness as healthy when
-    ``class_kinds`` says so); the result sums to 1. A verdict the model has no class for (a
-    model trained on waviness has none for any local fault) is one it cannot tell from
-    healthy: it gets the model's probability of healthy, so that the rule alone weighs it
-    (until stop 52 it got none, and such a model turned every local fault healthy).
-    """
-    model_p = verdict_probabilities(model_probabilities, class_kinds)
-    if "healthy" in model_p:
-        model_p = {k: model_p.get(k, model_p["healthy"]) for k in rule_p}
-    floor = 1e-6
-    pooled = {
-        k: math.sqrt(max(rule_p.get(k, 0.0), floor) * max(model_p.get(k, 0.0), floor))
-        for k in rule_p
-    }
-    total = sum(pooled.values())
-    return {k: v / total for k, v in pooled.items()}
-
-
-def calibrated_confidence(probability: float, calibration: dict | None) -> float:
-    """The pooled verdict's probability through the model's calibration.
-
-    A logistic in the probability's log-odds, fitted by ``cmtool train``
-    (:func:`cmtool.classifier.pooled_calibration`); without one, the probability as it is.
-    """
-    if not calibration:
-        return probability
-    p = min(max(probability, 1e-9), 1.0 - 1e-9)
-    z = calibration["slope"] * math.log(p / (1.0 - p)) + calibration["intercept"]
-    return 1.0 / (1.0 + math.exp(-z))
-
-
-def _combine(diagnosis: Diagnosis) -> None:
-    """One verdict from the rule evidence and the model's probabilities (log-linear pooling).
-
-    The verdict follows :func:`pool_probabilities`; its confidence is calibrated when the
-    model carries a calibration of the pooled verdict (``pooled_calibration``: fitted by
-    ``cmtool train`` on its out-of-fold predictions and the rule evidence of the same
-    training signals). The headline says what the verdict rests on and whether the two agree.
-    """
-    probabilities = diagnosis.model_verdict.get("probabilities")
-    if not probabilities:
-        return
-    kinds = diagnosis.model_verdict.get("class_kinds")
-    model_p = verdict_probabilities(probabilities, kinds)
-    pooled = pool_probabilities(rule_probabilities(diagnosis.candidates), probabilities, kinds)
-    verdict = max(pooled, key=pooled.get)
-    rule_label = diagnosis.rule_verdict["label"]
-    model_label = max(model_p, key=model_p.get) if model_p else rule_label
-    if rule_label == model_label:
-        basis = f"the rule evidence and the model agree ({rule_label})"
-    else:
-        basis = (
-            f"the rule evidence says {rule_label} "
-            f"({diagnosis.rule_verdict['confidence']:.2f}) and the model {model_label} "
-            f"({model_p[model_label]:.2f}): they disagree; the verdict follows their pooled "
-            "probabilities"
-        )
-    label = str(diagnosis.model_verdict.get("label"))
-    if kinds and kinds.get(label) == "waviness":
-        basis += (
-            f"; the model reads {label} waviness "
-            f"({float(probabilities.get(label, 0.0)):.2f}), no local fault"
-        )
-    calibration = diagnosis.model_verdict.get("pooled_calibration")
-    if verdict not in model_p:  # the model has no class for it: the rule's verdict, and its
-        basis += f"; the model learnt no {verdict}: the verdict and confidence are the rule's"
-        confidence = diagnosis.rule_verdict["confidence"]
-    else:
-        if calibration:
-            basis += "; confidence calibrated on the model's out-of-fold training signals"
-        confidence = calibrated_confidence(pooled[verdict], calibration)
-    diagnosis.verdict = verdict
-    diagnosis.confidence = round(confidence, 4)
-    diagnosis.basis = basis
-    diagnosis.probabilities = {k: round(v, 4) for k, v in pooled.items()}
-
-
-def model_verdict(
-    model: Any, x: np.ndarray, fs: float, freqs: BearingFrequencies, extra: dict
-) -> dict:
-    """Class and probabilities from a trained pipeline (``cmtool train``).
-
-    A model trained on signals of T seconds (``signal_duration_s`` in the bundle) sees the
-    recording as consecutive segments of T seconds (the line-to-floor ratios it learnt depend
-    on the record length) and the segment probabilities are averaged; a recording shorter than
-    two segments is used whole. ``segments`` in the result says how many were used.
-    """
-    import pandas as pd
-
-    pipeline = model["pipeline"] if isinstance(model, dict) else model
-    duration = model.get("signal_duration_s") if isinstance(model, dict) else None
-    x = np.asarray(x, dtype=float)
-    segments = [x]
-    if duration:
-        n = int(round(duration * fs))
-        count = x.size // n if n > 0 else 0
-        if count >= 2:
-            segments = [x[i * n : (i + 1) * n] for i in range(count)]
-    context = {
-        "fs_hz": fs,
-        "shaft_frequency_hz": freqs.shaft,
-        "ftf_hz": freqs.ftf,
-        "bpfo_hz": freqs.bpfo,
-        "bpfi_hz": freqs.bpfi,
-        "bsf_hz": freqs.bsf,
-        "two_bsf_hz": freqs.two_bsf,
-        **extra,
-    }
-    frame = pd.DataFrame(
-        {"signal": segments, **{k: [v] * len(segments) for k, v in context.items()}}
-    )
-    out: dict = {"segments": len(segments)}
-    if isinstance(model, dict) and model.get("pooled_calibration"):
-        out["pooled_calibration"] = model["pooled_calibration"]
-    if isinstance(model, dict) and model.get("class_kinds"):
-        out["class_kinds"] = dict(model["class_kinds"])
-    if hasattr(pipeline, "predict_proba"):
-        proba = pipeline.predict_proba(frame).mean(axis=0)
-        classes = [str(c) for c in pipeline.classes_]
-        out["label"] = classes[int(np.argmax(proba))]
-        out["probabilities"] = {c: round(float(p), 4) for c, p in zip(classes, proba, strict=True)}
-    else:
-        labels, counts = np.unique(pipeline.predict(frame).astype(str), return_counts=True)
-        out["label"] = str(labels[int(np.argmax(counts))])
-    return out
-
-
-def outside_training(model: Any, rpm: float, fs: float, bearing: str) -> list[str]:
-    """Where a record lies outside what a model was trained on (``training_ranges``).
-
-    Parameters
-    ----------
-    model : dict or estimator
-        A ``cmtool train`` bundle (older bundles and bare estimators say nothing).
-    rpm : float
-        The record's shaft speed [rev/min].
-    fs : float
-        Its sample rate [Hz].
-    bearing : str
-        Its bearing's name.
-
-    Returns
-    -------
-    list of str
-        One warning per way the record is new to the model (speed or rate more than 1 %
-        outside the model's, another bearing).
-    """
-    seen = model.get("training_ranges") if isinstance(model, dict) else None
-    if not seen:
-        return []
-    out = []
-    for value, key, unit in ((rpm, "rpm", "rpm"), (fs, "fs_hz", "Hz")):
-        low, high = seen.get(key, (value, value))
-        if not 0.99 * low <= value <= 1.01 * high:
-            span = f"{low:g}" if low == high else f"{low:g}-{high:g}"
-            out.append(
-                f"the model was trained at {span} {unit} and this record is at {value:g} "
-                f"{unit}: its probabilities are an extrapolation"
-            )
-    if seen.get("bearings") and bearing not in seen["bearings"]:
-        out.append(
-            f"the model was trained on the {', '.join(seen['bearings'])}, not the {bearing}: "
-            "its probabilities rest on features normalised by the bearing's rates"
-        )
-    return out
 
 
 def explained_lines(candidate: dict) -> str:

@@ -680,9 +680,9 @@ def test_rule_and_model_give_one_verdict_that_says_what_it_rests_on(bundle, smal
     # disagreement is stated
     disagree = diagnose_signal(row["signal"], row["fs_hz"], row["rpm"], "6205")
     disagree.model_verdict = {"label": "outer", "probabilities": {"outer": 0.9, "healthy": 0.1}}
-    from cmtool.diagnose import _combine
+    from cmtool.pooling import combine_verdicts
 
-    _combine(disagree)
+    combine_verdicts(disagree)
     assert "disagree" in disagree.basis and "outer race (0.90)" in disagree.basis
 
 
