@@ -7,10 +7,11 @@ their high harmonics off the discrete lines. This prints the rule's weighed evid
 pit's fault against its threshold for records of 1, 2, 5 and 10 s (the first seconds of one
 10 s run), over a grid of slip and jitter: a 6205 with 5 um of clearance at 1797 rpm and 400 N
 (`shaft+housing`, EHL), a CWRU-size pit (0.18 mm long, 0.28 mm deep: bridged, the ball sinks
-0.8 um) in the load zone of the outer race or on the inner race, 12 kHz, white noise at
+0.8 um) in the load zone of the outer race, on the inner race, or on a ball on its rolling
+circle (latitude 0, no spin-axis drift: struck on every turn of the ball), 12 kHz, white noise at
 NOISE times the signal's RMS (default 3). Simulation only; nothing here is tuned.
 
-Run: .venv/bin/python benchmarks/rule_slip_length.py [--noise 3] [--surface outer|inner]
+Run: .venv/bin/python benchmarks/rule_slip_length.py [--noise 3] [--surface outer|inner|ball]
 """
 
 import argparse
@@ -26,17 +27,18 @@ RPM = 1797.0
 GRID = ((0.0, 0.0), (0.002, 0.0), (0.005, 0.0), (0.0, 0.003), (0.0, 0.01), (0.01, 0.005))
 GRID += ((0.02, 0.01),)
 LENGTHS = (1.0, 2.0, 5.0, 10.0)
-FAULT = {"outer": "outer race", "inner": "inner race"}
+FAULT = {"outer": "outer race", "inner": "inner race", "ball": "ball"}
 
 
 def main(noise: float, surface: str) -> None:
     geometry = bearing("6205", radial_internal_clearance=5e-6)
-    position = -math.pi / 2 if surface == "outer" else 0.3
+    position = {"outer": -math.pi / 2, "inner": 0.3, "ball": 0.3}[surface]
     defect = LocalizedDefect(surface=surface, length=1.8e-4, depth=2.8e-4, position=position)
     settings = SimulationSettings(
         fs=FS, duration=max(LENGTHS), channels=("housing_acceleration_y",)
     )
-    print(f"# {surface} race pit, noise {noise:g} x RMS: evidence / threshold [dB], verdict")
+    name = "ball" if surface == "ball" else f"{surface} race"
+    print(f"# {name} pit, noise {noise:g} x RMS: evidence / threshold [dB], verdict")
     print("| slip | jitter [rad] | " + " | ".join(f"{t:g} s" for t in LENGTHS) + " |")
     print("|---|---|" + "---|" * len(LENGTHS))
     for slip, jitter in GRID:
