@@ -23,6 +23,9 @@ if TYPE_CHECKING:
 
 __all__ = [
     "CANONICAL",
+    "SEGMENT_FALSE_ALARM",
+    "healthy_false_alarm",
+    "segment_probabilities",
     "calibrated_confidence",
     "combine_verdicts",
     "model_label_verdict",
@@ -170,6 +173,67 @@ def combine_verdicts(diagnosis: Diagnosis) -> None:
     diagnosis.probabilities = {k: round(v, 4) for k, v in pooled.items()}
 
 
+#: A long record's false-alarm probability when its segments vote (:func:`segment_probabilities`):
+#: three times the rule's per fault (``features.FALSE_ALARM``), one for each fault.
+SEGMENT_FALSE_ALARM = 3e-4
+
+
+def healthy_false_alarm(model: Any) -> float | None:
+    """A model's own rate of calling a healthy signal a local fault.
+
+    The share of its healthy training signals that its out-of-fold predictions
+    (``cv_labels``, ``cv_predictions``, kept by ``cmtool train``) call a local fault, at least
+    one over their number (a finite sample shows no model perfect); None for a bundle
+    without them or without a healthy class.
+    """
+    if not isinstance(model, dict) or "cv_labels" not in model or "cv_predictions" not in model:
+        return None
+    kinds = model.get("class_kinds")
+    truth = [model_label_verdict(str(v), kinds) for v in model["cv_labels"]]
+    called = [model_label_verdict(str(v), kinds) for v in model["cv_predictions"]]
+    healthy = [c for t, c in zip(truth, called, strict=True) if t == "healthy"]
+    if not healthy:
+        return None
+    wrong = sum(c not in (None, "healthy") for c in healthy)
+    return max(wrong / len(healthy), 1.0 / len(healthy))
+
+
+def segment_probabilities(
+    proba: np.ndarray, classes: list[str], class_kinds: dict | None, false_alarm: float | None
+) -> tuple[np.ndarray, int, bool]:
+    """One record's class probabilities from its segments' (rows of ``proba``).
+
+    A local fault strikes in bursts (a ball pit only while its spin axis keeps it on the
+    contact track), so in a long record it can show in a few segments and not in the others,
+    and the mean over all of them reads healthy (docs/realism.md 6, "Long records"). The
+    segments vote: k of the n segments whose most probable class is a local fault; when the
+    model's own false-alarm rate ``false_alarm`` (:func:`healthy_false_alarm`) makes k or more
+    of n less likely than ``SEGMENT_FALSE_ALARM`` (binomial), the record's probabilities are
+    the mean over those k segments, else the mean over all (as before stop 54, and always
+    for one segment or an unknown rate).
+
+    Returns
+    -------
+    (ndarray, int, bool)
+        The record's probabilities (in ``classes``' order), k, and whether the k decided.
+    """
+    from scipy.stats import binom
+
+    fault = np.array(
+        [model_label_verdict(c, class_kinds) not in (None, "healthy") for c in classes]
+    )
+    faulty = fault[np.argmax(proba, axis=1)]
+    k, n = int(faulty.sum()), len(proba)
+    if (
+        n >= 2
+        and k
+        and false_alarm is not None
+        and binom.sf(k - 1, n, false_alarm) <= SEGMENT_FALSE_ALARM
+    ):
+        return proba[faulty].mean(axis=0), k, True
+    return proba.mean(axis=0), k, False
+
+
 def model_verdict(
     model: Any, x: np.ndarray, fs: float, freqs: BearingFrequencies, extra: dict
 ) -> dict:
@@ -177,8 +241,11 @@ def model_verdict(
 
     A model trained on signals of T seconds (``signal_duration_s`` in the bundle) sees the
     recording as consecutive segments of T seconds (the line-to-floor ratios it learnt depend
-    on the record length) and the segment probabilities are averaged; a recording shorter than
-    two segments is used whole. ``segments`` in the result says how many were used.
+    on the record length); a recording shorter than two segments is used whole. The segments'
+    probabilities are combined by :func:`segment_probabilities` (the mean over those read as
+    a local fault when more are than the model's false-alarm rate explains, else over all).
+    ``segments`` in the result says how many were used, ``segments_read_as_fault`` how many
+    the model read as a local fault and ``segments_combined`` which were averaged.
     """
     import pandas as pd
 
@@ -210,8 +277,18 @@ def model_verdict(
     if isinstance(model, dict) and model.get("class_kinds"):
         out["class_kinds"] = dict(model["class_kinds"])
     if hasattr(pipeline, "predict_proba"):
-        proba = pipeline.predict_proba(frame).mean(axis=0)
         classes = [str(c) for c in pipeline.classes_]
+        rate = healthy_false_alarm(model)
+        kinds = model.get("class_kinds") if isinstance(model, dict) else None
+        proba, k, voted = segment_probabilities(pipeline.predict_proba(frame), classes, kinds, rate)
+        if len(segments) >= 2:
+            out["segments_read_as_fault"] = k
+            out["segments_combined"] = (
+                f"the {k} of {len(segments)} segments read as a local fault (more than the "
+                f"model's false-alarm rate {rate:.3g} makes likely)"
+                if voted
+                else "all"
+            )
         out["label"] = classes[int(np.argmax(proba))]
         out["probabilities"] = {c: round(float(p), 4) for c, p in zip(classes, proba, strict=True)}
     else:

@@ -20,7 +20,9 @@ def model_verdict_text(model_verdict: dict, *, bold: bool = False) -> str:
 
     "outer waviness (probability 0.93; inner waviness 0.05, healthy 0.02, ball waviness 0.00),
     2 segments of the record averaged": each class named with what it was trained on (the
-    bundle's ``class_kinds``: waviness or local fault), the others by falling probability.
+    bundle's ``class_kinds``: waviness or local fault), the others by falling probability;
+    where the segments voted, the ones averaged ("the 3 of 10 segments read as a local fault
+    (more than the model's false-alarm rate 0.01 makes likely) averaged").
 
     Parameters
     ----------
@@ -52,7 +54,10 @@ def model_verdict_text(model_verdict: dict, *, bold: bool = False) -> str:
         )
         head += f" (probability {probabilities[label]:.2f}{rest})"
     segments = model_verdict.get("segments")
-    if segments:
+    combined = model_verdict.get("segments_combined", "all")
+    if segments and combined != "all":  # the segments voted (cmtool.pooling)
+        head += f", {combined} averaged"
+    elif segments:
         head += f", {segments} segment{'s' if segments > 1 else ''} of the record averaged"
     return head
 
