@@ -25,6 +25,7 @@ import itertools
 from collections import Counter
 
 import numpy as np
+from sweep_waviness_verdicts import CHANNEL, RIGS  # the sweep's cases (benchmarks/ on the path)
 
 import cmtool.diagnose as diagnose
 from features.evidence import combine_lines, slip_line
@@ -32,19 +33,12 @@ from features.separation import FALSE_ALARM, line_false_alarm
 from generators import (
     LocalizedDefect,
     OperatingCondition,
-    Rig,
     SimulationSettings,
     Waviness,
     bearing,
     simulate,
 )
 
-CHANNEL = "housing_acceleration_y"
-RIGS = {
-    "default": Rig(),
-    "light": Rig(housing_mass=0.8, pedestal_stiffness=2e7),
-    "heavy": Rig(housing_mass=6.0, pedestal_stiffness=2e8, shaft_mass=2.5),
-}
 FORMS = {"check off": (), "form 1": ("outer race",), "form 2": ("outer race", "inner race")}
 SHIPPED_CANDIDATES = diagnose.rule_candidates
 
