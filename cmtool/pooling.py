@@ -212,6 +212,18 @@ def segment_probabilities(
     the mean over those k segments, else the mean over all (as before stop 54, and always
     for one segment or an unknown rate).
 
+    Parameters
+    ----------
+    proba : ndarray, shape (segments, classes)
+        Each segment's class probabilities.
+    classes : list of str
+        The model's class labels (columns of ``proba``).
+    class_kinds : dict, optional
+        What each class was learnt from (:func:`model_label_verdict`: waviness classes are
+        no local fault).
+    false_alarm : float, optional
+        The model's rate of calling a healthy signal a local fault; None: no vote.
+
     Returns
     -------
     (ndarray, int, bool)
