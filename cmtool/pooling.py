@@ -90,12 +90,20 @@ def verdict_probabilities(
 
 
 def pool_probabilities(
-    rule_p: dict[str, float], model_probabilities: dict, class_kinds: dict | None = None
+    rule_p: dict[str, float],
+    model_probabilities: dict,
+    class_kinds: dict | None = None,
+    segments: int = 1,
 ) -> dict[str, float]:
     """Log-linear pooling of the rule's and a model's probabilities over the verdicts.
 
-    p(class) proportional to sqrt(p_rule p_model): each source counts as much, and a class
-    that either gives almost no chance stays unlikely. Model labels are read as verdicts
+    p(class) proportional to p_rule^(n/(n+1)) p_model^(1/(n+1)), n the number of the model's
+    segments in the record: each source weighs as much as the signal its opinion rests on.
+    The rule reads the whole record; the model reads n segments as long as its training
+    signals and combines them into one segment's opinion (:func:`segment_probabilities`).
+    A record the model reads whole (n = 1, as its training signals): sqrt(p_rule p_model),
+    each source counts as much (until stop 55 on every record). A class that either gives
+    almost no chance stays unlikely. Model labels are read as verdicts
     (:func:`model_label_verdict`: by name, a class learnt from waviness as healthy when
     ``class_kinds`` says so); the result sums to 1. A verdict the model has no class for (a
     model trained on waviness has none for any local fault) is one it cannot tell from
@@ -105,11 +113,18 @@ def pool_probabilities(
     model_p = verdict_probabilities(model_probabilities, class_kinds)
     if "healthy" in model_p:
         model_p = {k: model_p.get(k, model_p["healthy"]) for k in rule_p}
+    if segments < 1:
+        raise ValueError(f"segments must be at least 1, got {segments}")
     floor = 1e-6
-    pooled = {
-        k: math.sqrt(max(rule_p.get(k, 0.0), floor) * max(model_p.get(k, 0.0), floor))
-        for k in rule_p
-    }
+    rule_weight = segments / (segments + 1.0)
+
+    def weighted(rule_value: float, model_value: float) -> float:
+        rule_value, model_value = max(rule_value, floor), max(model_value, floor)
+        if segments == 1:  # the equal-weight pool exactly as before stop 55
+            return math.sqrt(rule_value * model_value)
+        return rule_value**rule_weight * model_value ** (1.0 - rule_weight)
+
+    pooled = {k: weighted(rule_p.get(k, 0.0), model_p.get(k, 0.0)) for k in rule_p}
     total = sum(pooled.values())
     return {k: v / total for k, v in pooled.items()}
 
@@ -133,14 +148,19 @@ def combine_verdicts(diagnosis: Diagnosis) -> None:
     The verdict follows :func:`pool_probabilities`; its confidence is calibrated when the
     model carries a calibration of the pooled verdict (``pooled_calibration``: fitted by
     ``cmtool train`` on its out-of-fold predictions and the rule evidence of the same
-    training signals). The headline says what the verdict rests on and whether the two agree.
+    training signals). On a record the model reads as n segments (``segments`` in its
+    verdict) the rule weighs n / (n + 1). The headline says what the verdict rests on,
+    whether the two agree and how they were weighed.
     """
     probabilities = diagnosis.model_verdict.get("probabilities")
     if not probabilities:
         return
     kinds = diagnosis.model_verdict.get("class_kinds")
     model_p = verdict_probabilities(probabilities, kinds)
-    pooled = pool_probabilities(rule_probabilities(diagnosis.candidates), probabilities, kinds)
+    segments = int(diagnosis.model_verdict.get("segments") or 1)
+    pooled = pool_probabilities(
+        rule_probabilities(diagnosis.candidates), probabilities, kinds, segments
+    )
     verdict = max(pooled, key=pooled.get)
     rule_label = diagnosis.rule_verdict["label"]
     model_label = max(model_p, key=model_p.get) if model_p else rule_label
@@ -152,6 +172,12 @@ def combine_verdicts(diagnosis: Diagnosis) -> None:
             f"({diagnosis.rule_verdict['confidence']:.2f}) and the model {model_label} "
             f"({model_p[model_label]:.2f}): they disagree; the verdict follows their pooled "
             "probabilities"
+        )
+    if segments > 1:
+        basis += (
+            f"; the rule's evidence weighs {segments}/{segments + 1} against the model's (the "
+            f"rule reads the whole record, the model {segments} segments combined into one "
+            "opinion)"
         )
     label = str(diagnosis.model_verdict.get("label"))
     if kinds and kinds.get(label) == "waviness":

@@ -3,13 +3,17 @@ local fault that shows in more segments than the model's own false-alarm rate ex
 the record faulty, where the mean over every segment read it healthy (docs/realism.md 6,
 "Long records")."""
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
 from cmtool.pooling import (
     SEGMENT_FALSE_ALARM,
+    combine_verdicts,
     healthy_false_alarm,
     model_verdict,
+    pool_probabilities,
     segment_probabilities,
 )
 
@@ -94,3 +98,46 @@ def test_model_verdict_reads_a_fault_in_three_of_ten_segments(bursts, label):
         assert "the 3 of 10 segments read as a local fault" in text and "0.01" in text
     else:
         assert text.endswith("10 segments of the record averaged")
+
+
+RULE_OUTER = {"healthy": 0.02, "inner race": 0.02, "outer race": 0.9, "ball": 0.06}
+MODEL_BALL = {"ball": 0.97, "healthy": 0.01, "inner": 0.01, "outer": 0.01}
+
+
+def test_the_pool_weighs_each_source_by_the_signal_it_rests_on():
+    """On a record the model reads whole both count alike, sqrt(p_rule p_model); on one it
+    reads as n segments the rule, which reads all of it, weighs n / (n + 1) (stop 55)."""
+    one = pool_probabilities(RULE_OUTER, MODEL_BALL)
+    alike = {k: np.sqrt(RULE_OUTER[k] * MODEL_BALL[k.split()[0]]) for k in RULE_OUTER}
+    total = sum(alike.values())
+    assert one == {k: v / total for k, v in alike.items()}  # exactly as before stop 55
+    rng = np.random.default_rng(55)  # to the last bit, so that 1 s verdicts and the
+    for rule_p, model_p in rng.dirichlet(np.ones(4), size=(50, 2)):  # calibration stay
+        rule = dict(zip(RULE_OUTER, rule_p, strict=True))
+        model = dict(zip(MODEL_BALL, model_p, strict=True))
+        alike = {k: np.sqrt(rule[k] * model[k.split()[0]]) for k in rule}
+        total = sum(alike.values())
+        assert pool_probabilities(rule, model) == {k: v / total for k, v in alike.items()}
+    assert max(one, key=one.get) == "ball"  # a confident model outvotes the rule on 1 s
+    ten = pool_probabilities(RULE_OUTER, MODEL_BALL, segments=10)
+    weighted = {k: RULE_OUTER[k] ** (10 / 11) * MODEL_BALL[k.split()[0]] ** (1 / 11) for k in one}
+    total = sum(weighted.values())
+    assert ten == pytest.approx({k: v / total for k, v in weighted.items()}, rel=1e-12)
+    assert max(ten, key=ten.get) == "outer race"  # on 10 s the rule's evidence leads
+    with pytest.raises(ValueError, match="segments must be at least 1, got 0"):
+        pool_probabilities(RULE_OUTER, MODEL_BALL, segments=0)
+
+
+def test_the_pooled_verdict_takes_the_models_segment_count():
+    candidates = [{"fault": k, "confidence": v} for k, v in (("outer race", 0.9), ("ball", 0.1))]
+    verdicts = {}
+    for segments in (1, 10):
+        diagnosis = SimpleNamespace(
+            candidates=candidates,
+            rule_verdict={"label": "outer race", "confidence": 0.9},
+            model_verdict={"label": "ball", "probabilities": MODEL_BALL, "segments": segments},
+        )
+        combine_verdicts(diagnosis)
+        verdicts[segments] = (diagnosis.verdict, diagnosis.basis)
+    assert verdicts[1][0] == "ball" and verdicts[10][0] == "outer race"
+    assert "10 segments" in verdicts[10][1] and "segments" not in verdicts[1][1]
