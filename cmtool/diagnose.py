@@ -67,6 +67,8 @@ __all__ = [
     "FAULTS",
     "pool_probabilities",
     "rule_candidates",
+    "segment_scan",
+    "SCAN_SEGMENT_S",
     "rule_context",
     "rule_probabilities",
     "verdict_probabilities",
@@ -107,6 +109,11 @@ SLIP_SEARCH = features.evidence.SLIP_SEARCH
 #: Shortest record [periods of the slowest fault rate]: its envelope spectrum's bins are then
 #: 5 % of that rate apart, as far as the rates of a bearing lie from each other at the least.
 MIN_RATE_PERIODS = 20
+#: Segments a long record is scanned in when the whole shows no fault [s]: the length of the
+#: recipes' signals the rule was measured on (at least ``MIN_RATE_PERIODS`` of the slowest
+#: fault rate). A fault struck in some seconds only (a ball pit whose spin axis drifts) shows
+#: there at full strength, where the whole record's envelope spectrum dilutes its lines.
+SCAN_SEGMENT_S = 1.0
 #: verdict name -> characteristic frequency used as its evidence
 FAULTS = {"outer race": "bpfo", "inner race": "bpfi", "ball": "two_bsf"}
 FAULT_NAMES = {key: name for name, key in FAULTS.items()}
@@ -155,6 +162,7 @@ class Diagnosis:
     overall_velocity: dict | None = None
     baseline: dict | None = None
     severity: dict | None = None
+    segment_scan: dict | None = None
 
     def to_dict(self) -> dict:
         """JSON-serialisable form (without the spectra)."""
@@ -187,6 +195,8 @@ class Diagnosis:
             out["baseline"] = self.baseline
         if self.severity is not None:
             out["severity"] = self.severity
+        if self.segment_scan is not None:
+            out["segment_scan"] = self.segment_scan
         return out
 
 
@@ -264,7 +274,74 @@ def rule_context(
     return rpm, freqs, ctx, warnings
 
 
-def rule_candidates(evidence: features.Evidence, ctx: dict[str, float]) -> list[dict]:
+def segment_scan(x: np.ndarray, fs: float, ctx: dict[str, float]) -> dict | None:
+    """The rule's evidence in each segment of a long record (``SCAN_SEGMENT_S``).
+
+    Each segment is weighed as a record of its own (:func:`rule_candidates`) against the
+    threshold for a false alarm of ``features.FALSE_ALARM / segments`` (Bonferroni: a fault
+    counts in at most that share of healthy records over all the segments together).
+
+    Parameters
+    ----------
+    x : ndarray
+        The record [any unit].
+    fs : float
+        Its sample rate [Hz].
+    ctx : dict of str to float
+        The bearing's rates [Hz] (``rule_context``), ``ftf`` included.
+
+    Returns
+    -------
+    dict or None
+        None for a record shorter than two segments. Else ``segments``, ``segment_s`` [s] and
+        ``found``: None, or the fault of the segment where a detected fault stands furthest
+        over that threshold, with the segment's place [s], band [Hz], threshold and margin
+        [dB] and the fault's false-alarm probability in the segment; with a fault found,
+        ``candidates`` (that segment's, :func:`rule_candidates` on its threshold) and
+        ``envelope`` (its envelope spectrum: frequencies [Hz], amplitudes), for the verdict
+        and the plots.
+    """
+    slowest = min(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])
+    seconds = max(SCAN_SEGMENT_S, MIN_RATE_PERIODS / slowest)
+    n = int(round(seconds * fs))
+    count = x.size // n
+    if count < 2:
+        return None
+    out: dict = {"segments": count, "segment_s": round(n / fs, 6), "found": None}
+    best = None
+    for i in range(count):
+        evidence = features.fault_evidence(x[i * n : (i + 1) * n], fs, ctx)
+        selection = evidence.selection
+        threshold = features.detection_threshold_db(
+            len(selection.bands),
+            features.FALSE_ALARM / count,
+            selection.searched_bins,
+            selection.floor_bins,
+        )
+        candidates = rule_candidates(evidence, ctx, threshold)
+        margin = candidates[0]["evidence_db"] - threshold
+        if candidates[0]["detected"] and (best is None or margin > best[0]):
+            best = (margin, i, threshold, candidates, evidence)
+    if best is not None:
+        margin, i, threshold, candidates, evidence = best
+        out["found"] = {
+            "fault": candidates[0]["fault"],
+            "segment": i,
+            "start_s": round(i * n / fs, 6),
+            "end_s": round((i + 1) * n / fs, 6),
+            "false_alarm_probability": candidates[0]["false_alarm_probability"],
+            "band_hz": [round(b, 2) for b in evidence.selection.band],
+            "threshold_db": round(threshold, 2),
+            "margin_db": round(margin, 2),
+        }
+        out["candidates"] = candidates
+        out["envelope"] = (evidence.envelope_frequencies, evidence.envelope_amplitude)
+    return out
+
+
+def rule_candidates(
+    evidence: features.Evidence, ctx: dict[str, float], threshold_db: float | None = None
+) -> list[dict]:
     """The rule detector's candidates, one per fault, ranked by their weighed evidence.
 
     Parameters
@@ -273,6 +350,9 @@ def rule_candidates(evidence: features.Evidence, ctx: dict[str, float]) -> list[
         ``features.fault_evidence`` of the signal.
     ctx : dict of str to float
         The bearing's rates [Hz]: ``bpfo``, ``bpfi`` and ``two_bsf`` at least.
+    threshold_db : float, optional
+        Detection threshold [dB] (default the evidence's own: a false alarm of
+        ``features.FALSE_ALARM`` per fault).
 
     Returns
     -------
@@ -282,7 +362,7 @@ def rule_candidates(evidence: features.Evidence, ctx: dict[str, float]) -> list[
         detected (evidence at the threshold or above), the lines a stronger fault explains
         and its confidence; the strongest first (ties by the fundamental).
     """
-    threshold = evidence.threshold_db
+    threshold = evidence.threshold_db if threshold_db is None else threshold_db
     candidates = []
     for name, key in FAULTS.items():
         snr = [r for r, _ in evidence.lines[key]]
@@ -417,8 +497,16 @@ def diagnose_signal(
     )
     top = candidates[0]
     margin = top["evidence_db"] - threshold
+    scan = None if top["detected"] else segment_scan(x, fs, {**ctx, "ftf": freqs.ftf})
     if top["detected"]:
         verdict, confidence = top["fault"], round(_logistic(margin, *FAULT_CONFIDENCE), 4)
+    elif scan is not None and scan["found"]:
+        verdict = scan["found"]["fault"]
+        confidence = round(_logistic(scan["found"]["margin_db"], *FAULT_CONFIDENCE), 4)
+        spectra = features.Spectra(
+            plain_f, plain_a, *scan.pop("envelope"), tuple(scan["found"]["band_hz"]), None
+        )
+        candidates = scan.pop("candidates")
     else:
         verdict = "healthy"
         confidence = round(1.0 - _logistic(margin, *HEALTHY_CONFIDENCE), 4)
@@ -456,6 +544,25 @@ def diagnose_signal(
             "randomness": RANDOMNESS_ASSUMED,
         },
     )
+    if scan is not None:
+        diagnosis.segment_scan = scan
+        diagnosis.assumptions["segment_scan"] = (
+            f"the whole record shows no fault, so its {scan['segments']} segments of "
+            f"{scan['segment_s']:g} s were each weighed too; a fault counts when one segment's "
+            f"false-alarm probability times {scan['segments']} is at most "
+            f"{features.FALSE_ALARM:g} (the record's false-alarm probability per fault at most "
+            f"{2 * features.FALSE_ALARM:g}, whole record and segments)"
+        )
+        if scan["found"]:
+            found = scan["found"]
+            diagnosis.basis = (
+                f"the rule evidence in seconds {found['start_s']:g}-{found['end_s']:g} of the "
+                f"record ({found['fault']} lines at a false-alarm probability "
+                f"{found['false_alarm_probability']:.2g} for one of {scan['segments']} segments); "
+                "the whole record's envelope shows none: a fault struck in some seconds only"
+            )
+            diagnosis.band_hz = tuple(found["band_hz"])
+            diagnosis.threshold_db = found["threshold_db"]
     # the ISO 15242 bands and the overall band from one spectrum of the record
     broad = overall_band(rpm)
     bands = features.velocity_band_rms(x, fs, {**features.ISO_15242_BANDS, "overall": broad})

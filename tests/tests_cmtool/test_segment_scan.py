@@ -1,0 +1,79 @@
+"""A long record whose fault is struck in some seconds only (cmtool.diagnose.segment_scan,
+stop 55): when the whole record's envelope shows no fault, each segment is weighed against
+the threshold for FALSE_ALARM / segments (docs/diagnosis.md, "Faults struck in some seconds
+only")."""
+
+import json
+
+import numpy as np
+
+import features
+from cmtool.diagnose import SCAN_SEGMENT_S, diagnose_signal, rule_candidates, segment_scan
+from generators import bearing, characteristic_frequencies
+
+FS, RPM = 12000.0, 1797.0
+FREQS = characteristic_frequencies(bearing("6205"), RPM / 60.0)
+CTX = {
+    "bpfo": FREQS.bpfo,
+    "bpfi": FREQS.bpfi,
+    "two_bsf": FREQS.two_bsf,
+    "shaft": FREQS.shaft,
+    "ftf": FREQS.ftf,
+}
+
+
+def _record(amplitude: float, seconds: float = 10.0, burst=(0.0, 1.0), seed: int = 0):
+    """White noise of unit RMS, and a ball pit's impacts (2 x BSF, 1 % random spacing) ringing
+    at 3 kHz (5 % damping) during ``burst`` [s] only."""
+    rng = np.random.default_rng(seed)
+    x = rng.standard_normal(int(seconds * FS))
+    t = np.arange(int(0.01 * FS)) / FS
+    ring = np.exp(-2 * np.pi * 3000.0 * 0.05 * t) * np.sin(2 * np.pi * 3000.0 * t)
+    impact = burst[0]
+    while impact < burst[1]:
+        i = int(impact * FS)
+        part = x[i : i + ring.size]
+        part += amplitude * ring[: part.size]
+        impact += (1.0 + 0.01 * rng.standard_normal()) / FREQS.two_bsf
+    return x
+
+
+def test_a_ball_pit_struck_in_one_second_of_ten_is_found_in_that_second():
+    x = _record(2.5)
+    d = diagnose_signal(x, FS, RPM, "6205", waviness=False)
+    found = d.segment_scan["found"]
+    assert d.verdict == "ball" and found["fault"] == "ball" and found["segment"] == 0
+    assert (found["start_s"], found["end_s"]) == (0.0, 1.0) and d.segment_scan["segments"] == 10
+    # the whole record's envelope does not show it: the rule alone called it healthy
+    whole = features.fault_evidence(x, FS, CTX)
+    assert not any(c["detected"] for c in rule_candidates(whole, CTX))
+    # ten segments: the threshold is that of a false alarm of 1e-5 per segment, higher
+    one = features.fault_evidence(x[: int(FS)], FS, CTX).threshold_db
+    assert found["threshold_db"] > one + 1.0 and found["margin_db"] > 0
+    assert d.candidates[0]["fault"] == "ball" and d.candidates[0]["detected"]
+    assert "seconds 0-1 of the record" in d.basis and d.confidence > 0.9
+    out = json.loads(json.dumps(d.to_dict()))
+    assert out["segment_scan"]["found"]["segment"] == 0 and "segment_scan" in out["assumptions"]
+    # the same impacts over the whole record: the whole record shows them, no scan
+    spread = diagnose_signal(_record(2.5, burst=(0.0, 10.0)), FS, RPM, "6205", waviness=False)
+    assert spread.verdict == "ball" and spread.segment_scan is None
+
+
+def test_noise_stays_healthy_and_short_records_are_not_scanned():
+    d = diagnose_signal(_record(0.0, seed=1), FS, RPM, "6205", waviness=False)
+    assert d.verdict == "healthy" and d.segment_scan["found"] is None
+    assert d.segment_scan["segments"] == 10 and d.segment_scan["segment_s"] == SCAN_SEGMENT_S
+    # a record shorter than two segments is weighed whole, as before
+    assert segment_scan(_record(0.0, seconds=1.9), FS, CTX) is None
+    short = diagnose_signal(_record(2.5, seconds=1.9), FS, RPM, "6205", waviness=False)
+    assert short.segment_scan is None
+
+
+def test_a_burst_one_segment_alone_would_call_is_held_to_the_corrected_threshold():
+    """At 1.5 the first second's ball lines pass that second's own threshold (a false alarm
+    of 1e-4) but not the one for ten segments (1e-5): the record stays healthy."""
+    x = _record(1.5)
+    first = features.fault_evidence(x[: int(FS)], FS, CTX)
+    assert rule_candidates(first, CTX)[0]["detected"]
+    d = diagnose_signal(x, FS, RPM, "6205", waviness=False)
+    assert d.verdict == "healthy" and d.segment_scan["found"] is None
