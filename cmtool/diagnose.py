@@ -548,10 +548,10 @@ def diagnose_signal(
         diagnosis.segment_scan = scan
         diagnosis.assumptions["segment_scan"] = (
             f"the whole record shows no fault, so its {scan['segments']} segments of "
-            f"{scan['segment_s']:g} s were each weighed too; a fault counts when one segment's "
-            f"false-alarm probability times {scan['segments']} is at most "
-            f"{features.FALSE_ALARM:g} (the record's false-alarm probability per fault at most "
-            f"{2 * features.FALSE_ALARM:g}, whole record and segments)"
+            f"{scan['segment_s']:g} s were each weighed too, against the threshold for a false "
+            f"alarm of {features.FALSE_ALARM / scan['segments']:.3g} per fault and segment "
+            f"({features.FALSE_ALARM:g} over the segments; the record's false-alarm probability "
+            f"per fault at most {2 * features.FALSE_ALARM:g}, whole record and segments)"
         )
         if scan["found"]:
             found = scan["found"]
@@ -587,6 +587,12 @@ def diagnose_signal(
         diagnosis.model_verdict = model_verdict(model, x, fs, freqs, context_extra or {})
         diagnosis.warnings += outside_training(model, rpm, fs, geometry.name)
         combine_verdicts(diagnosis)
+        if scan is not None and scan["found"]:
+            found = scan["found"]
+            diagnosis.basis += (
+                f"; the rule's evidence is that of seconds {found['start_s']:g}-"
+                f"{found['end_s']:g} (the whole record's envelope shows no fault)"
+            )
     if diagnosis.verdict != "healthy":
         diagnosis.severity = {"estimated": False, "reason": SEVERITY_NOT_ESTIMATED}
     return diagnosis

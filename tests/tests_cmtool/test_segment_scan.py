@@ -38,6 +38,15 @@ def _record(amplitude: float, seconds: float = 10.0, burst=(0.0, 1.0), seed: int
     return x
 
 
+class _Unsure:
+    """A stand-in model that reads every segment as ball, 0.6 against healthy 0.4."""
+
+    classes_ = np.array(["ball", "healthy"])
+
+    def predict_proba(self, frame):
+        return np.tile([0.6, 0.4], (len(frame), 1))
+
+
 def test_a_ball_pit_struck_in_one_second_of_ten_is_found_in_that_second():
     x = _record(2.5)
     d = diagnose_signal(x, FS, RPM, "6205", waviness=False)
@@ -54,6 +63,11 @@ def test_a_ball_pit_struck_in_one_second_of_ten_is_found_in_that_second():
     assert "seconds 0-1 of the record" in d.basis and d.confidence > 0.9
     out = json.loads(json.dumps(d.to_dict()))
     assert out["segment_scan"]["found"]["segment"] == 0 and "segment_scan" in out["assumptions"]
+    assert "1e-05 per fault and segment" in out["assumptions"]["segment_scan"]
+    # with a model the headline says what the model adds, and still where the rule looked
+    with_model = diagnose_signal(x, FS, RPM, "6205", waviness=False, model=_Unsure())
+    assert with_model.verdict == "ball" and "agree (ball)" in with_model.basis
+    assert "the rule's evidence is that of seconds 0-1" in with_model.basis
     # the same impacts over the whole record: the whole record shows them, no scan
     spread = diagnose_signal(_record(2.5, burst=(0.0, 10.0)), FS, RPM, "6205", waviness=False)
     assert spread.verdict == "ball" and spread.segment_scan is None
