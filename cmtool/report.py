@@ -90,11 +90,13 @@ def write_report(
         markers=markers,
         fmax=min(fs / 2, 20 * f["bpfi"]),
     )
+    scanned = (diagnosis.segment_scan or {}).get("found")  # a fault found in one segment
+    seconds = f", seconds {scanned['start_s']:g}-{scanned['end_s']:g}" if scanned else ""
     env_png = plot_spectrum(
         sp.envelope_frequencies,
         sp.envelope_amplitude,
         out / "envelope.png",
-        title=f"{title}: envelope spectrum, band {sp.band[0]:.0f}-{sp.band[1]:.0f} Hz",
+        title=f"{title}: envelope spectrum, band {sp.band[0]:.0f}-{sp.band[1]:.0f} Hz{seconds}",
         ylabel="envelope amplitude",
         markers=markers,
         fmax=min(fs / 2, 5 * f["bpfi"]),

@@ -47,7 +47,7 @@ class _Unsure:
         return np.tile([0.6, 0.4], (len(frame), 1))
 
 
-def test_a_ball_pit_struck_in_one_second_of_ten_is_found_in_that_second():
+def test_a_ball_pit_struck_in_one_second_of_ten_is_found_in_that_second(tmp_path):
     x = _record(2.5)
     d = diagnose_signal(x, FS, RPM, "6205", waviness=False)
     found = d.segment_scan["found"]
@@ -68,6 +68,18 @@ def test_a_ball_pit_struck_in_one_second_of_ten_is_found_in_that_second():
     with_model = diagnose_signal(x, FS, RPM, "6205", waviness=False, model=_Unsure())
     assert with_model.verdict == "ball" and "agree (ball)" in with_model.basis
     assert "the rule's evidence is that of seconds 0-1" in with_model.basis
+    # the report: its envelope spectrum is that segment's, and says so
+    from unittest import mock
+
+    import cmtool.plots
+    from cmtool.report import write_report
+
+    with mock.patch.object(cmtool.plots, "plot_spectrum", return_value=tmp_path / "p.png") as plot:
+        write_report(d, tmp_path, title="t", x=x, fs=FS)
+    envelope = [c for c in plot.call_args_list if c.args[2].name == "envelope.png"][0]
+    assert envelope.kwargs["title"].endswith("seconds 0-1")
+    assert envelope.args[1] is d.spectra.envelope_amplitude
+    assert "seconds 0-1 of the record" in (tmp_path / "report.md").read_text()
     # the same impacts over the whole record: the whole record shows them, no scan
     spread = diagnose_signal(_record(2.5, burst=(0.0, 10.0)), FS, RPM, "6205", waviness=False)
     assert spread.verdict == "ball" and spread.segment_scan is None
