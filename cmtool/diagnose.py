@@ -561,7 +561,6 @@ def diagnose_signal(
                 f"{found['false_alarm_probability']:.2g} for one of {scan['segments']} segments); "
                 "the whole record's envelope shows none: a fault struck in some seconds only"
             )
-            diagnosis.band_hz = tuple(found["band_hz"])
             diagnosis.threshold_db = found["threshold_db"]
     # the ISO 15242 bands and the overall band from one spectrum of the record
     broad = overall_band(rpm)
