@@ -562,6 +562,10 @@ def diagnose_signal(
                 "the whole record's envelope shows none: a fault struck in some seconds only"
             )
             diagnosis.threshold_db = found["threshold_db"]
+            # the assumptions state what the verdict was weighed against: the segment's
+            # threshold, and the whole record's under its own key
+            diagnosis.assumptions["whole_record_threshold_db"] = round(threshold, 2)
+            diagnosis.assumptions["threshold_db"] = found["threshold_db"]
     # the ISO 15242 bands and the overall band from one spectrum of the record
     broad = overall_band(rpm)
     bands = features.velocity_band_rms(x, fs, {**features.ISO_15242_BANDS, "overall": broad})

@@ -64,6 +64,11 @@ def test_a_ball_pit_struck_in_one_second_of_ten_is_found_in_that_second(tmp_path
     out = json.loads(json.dumps(d.to_dict()))
     assert out["segment_scan"]["found"]["segment"] == 0 and "segment_scan" in out["assumptions"]
     assert "1e-05 per fault and segment" in out["assumptions"]["segment_scan"]
+    # every threshold the JSON states for the verdict is the segment's; the whole record's
+    # is kept under its own name
+    assert out["threshold_db"] == out["assumptions"]["threshold_db"] == found["threshold_db"]
+    assert out["envelope_band_hz"] == out["assumptions"]["band_hz"] == found["band_hz"]
+    assert out["assumptions"]["whole_record_threshold_db"] == round(whole.threshold_db, 2)
     # with a model the headline says what the model adds, and still where the rule looked
     with_model = diagnose_signal(x, FS, RPM, "6205", waviness=False, model=_Unsure())
     assert with_model.verdict == "ball" and "agree (ball)" in with_model.basis
