@@ -36,20 +36,17 @@ from generators._kernels import (
     W_SLIP_RATE,
     W_SURFACE,
     _advance,
-    _check,
     _clock_terms,
     _defect_clear_steps,
     _phase_steps,
     _phases,
-    _record,
-    _rhs,
-    _rhs_inline,
     _scratch,
     _slip_rate_bound,
     _time_terms,
     _time_terms_at,
     _trig,
 )
+from generators._rhs import _check, _record, _rhs, _rhs_inline
 
 # ---------------------------------------------------------------------------------- RK4
 
@@ -109,7 +106,7 @@ def _hermite_record(y0, f0, y1, f1, dt, theta, nd, k, out_state, out_accel, want
     derivative) O(dt^5), accelerations (its second derivative) O(dt^4) between the step's
     ends; RK4's own error at the ends is O(dt^4). At theta = 0 the record is exactly the
     step-start state and its right-hand side. ``wanted`` (``N_OUT_STATE + N_OUT_ACCEL``
-    flags, the columns of :func:`generators._kernels._record`): only those columns are
+    flags, the columns of :func:`generators._rhs._record`): only those columns are
     written (a call that decimates one channel interpolates one).
     """
     for c in range(N_OUT_STATE + N_OUT_ACCEL):

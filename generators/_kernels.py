@@ -10,13 +10,14 @@ Conventions (the Python side, :mod:`generators.model`, packs and unpacks):
 * State ``y``: displacements first, then velocities. Bodies: shaft (x_s, y_s), housing (x_h,
   y_h), then for the ``full`` scene one radial coordinate rho_j per ball.
 * ``scene`` and ``ehl`` are passed through :func:`numba.literally` by the integrators
-  (:mod:`generators._integrators`, with the compiled entry points) and by :func:`_rhs`, so
-  every combination is compiled (and cached) on its own and the branches that pick the scene
-  are constants removed at compile time: a scene without ball masses or without a film never
-  executes their code. The right-hand side (:func:`_rhs_inline`) and the small helpers that
-  take arrays are inlined (``inline="always"``: no call and no reference counting of the array
-  arguments per evaluation) at RK4's one call site; DOPRI5 and single evaluations call one
-  compiled copy per scene (:func:`_rhs`).
+  (:mod:`generators._integrators`, with the compiled entry points) and by
+  :func:`generators._rhs._rhs`, so every combination is compiled (and cached) on its own and
+  the branches that pick the scene are constants removed at compile time: a scene without
+  ball masses or without a film never executes their code. The right-hand side
+  (:func:`generators._rhs._rhs_inline`, in a module of its own since stop 56) and the small
+  helpers that take arrays are inlined (``inline="always"``: no call and no reference
+  counting of the array arguments per evaluation) at RK4's one call site; DOPRI5 and single
+  evaluations call one compiled copy per scene (:func:`generators._rhs._rhs`).
 * Time-only terms (cage angle, waviness per ball) are computed once per distinct stage time
   (:func:`_time_terms`), outside the right-hand side.
 
@@ -585,7 +586,7 @@ def _waviness(wav, z, theta0, shaft_angle, t, p, trig, out, defects):
 
 @numba.njit(**_JIT)
 def _scratch(z):
-    """Work array of :func:`_rhs`: waviness per ball and the time-only terms (time = NaN)."""
+    """Work array of :func:`generators._rhs._rhs`: waviness per ball, time-only terms (time NaN)."""
     scratch = np.zeros((11, max(z, 4)))
     scratch[8, 0] = np.nan
     return scratch
@@ -707,192 +708,6 @@ def _time_terms_at(t, p, wav, trig, scratch):
     """:func:`_phases` then :func:`_time_terms`: the time terms at ``t``, computed directly."""
     _phases(t, p, wav, trig)
     _time_terms(t, p, wav, trig, scratch, DEFECTS_ALL)
-
-
-@numba.njit(**_JIT_INLINE)
-def _rhs_inline(scene, ehl, y, p, wav, dydt, loads, scratch):
-    """First-order right-hand side dy/dt of a scene; fills ``loads[0/1, j]`` (inner/outer).
-
-    ``scratch`` (shape (11, max(Z, 4)), from :func:`_scratch`) must hold the time terms of the
-    evaluation time (:func:`_time_terms`): the waviness seen by each ball (rows 0-7) and, in
-    row 8, the time, the cage-angle cosine/sine and the shaft angle.
-    """
-    z = int(p[P_BALL_COUNT])
-    nd = 4 + z if scene == SCENE_FULL else 4
-    xs, ys, xh, yh = y[0], y[1], y[2], y[3]
-    vxs, vys, vxh, vyh = y[nd], y[nd + 1], y[nd + 2], y[nd + 3]
-    wc = p[P_CAGE_SPEED]
-    has_waviness = wav.shape[0] > 0
-    c0, s0 = scratch[8, 1], scratch[8, 2]
-    shaft_angle = scratch[8, 3]
-    cd, sd = p[P_PITCH_COS], p[P_PITCH_SIN]
-    gap = p[P_GAP]
-    tau = p[P_CONTACT_DAMPING_TIME]
-    floor = p[P_FILM_LOAD_FLOOR]
-    # parameters read once: the compiler cannot hoist them out of the ball loop itself (the
-    # loop's stores to dydt and loads might alias p)
-    k_inner, k_outer, k_series = p[P_K_INNER], p[P_K_OUTER], p[P_K_SERIES]
-    film_inner, film_outer = p[P_FILM_INNER], p[P_FILM_OUTER]
-    squeeze_inner, squeeze_outer = p[P_SQUEEZE_INNER], p[P_SQUEEZE_OUTER]
-    ref_inner, ref_outer = p[P_FILM_INNER_REF], p[P_FILM_OUTER_REF]
-    max_inner, max_outer = p[P_FILM_INNER_MAX], p[P_FILM_OUTER_MAX]
-    squeeze_series = p[P_SQUEEZE_SERIES]
-    inv_ball_mass = 1.0 / p[P_BALL_MASS] if scene == SCENE_FULL else 0.0
-    centripetal = wc * wc
-    pitch_radius = p[P_PITCH_RADIUS]
-    gravity = p[P_GRAVITY]
-    fxs = 0.0
-    fys = 0.0
-    fxh = 0.0
-    fyh = 0.0
-    ux, uy, vx, vy = xs, ys, vxs, vys  # massless balls: the shaft-to-housing displacement
-    if scene == SCENE_SHAFT_HOUSING:
-        ux, uy, vx, vy = xs - xh, ys - yh, vxs - vxh, vys - vyh
-    cj, sj = c0, s0
-    for j in range(z):
-        if j > 0:  # rotate by the ball pitch instead of calling cos/sin per ball
-            cj, sj = cj * cd - sj * sd, sj * cd + cj * sd
-        us = ux * cj + uy * sj
-        dus = vx * cj + vy * sj + wc * (-ux * sj + uy * cj)
-        if scene == SCENE_FULL:
-            uh = xh * cj + yh * sj
-            duh = vxh * cj + vyh * sj + wc * (-xh * sj + yh * cj)
-            rho = y[4 + j]
-            drho = y[nd + 4 + j]
-            di = us - rho - 0.5 * gap
-            ddi = dus - drho
-            do = rho - uh - 0.5 * gap
-            ddo = drho - duh
-            if has_waviness:
-                di += scratch[2, j] + scratch[6, j]
-                ddi += scratch[3, j] + scratch[7, j]
-                do += scratch[0, j] + scratch[4, j]
-                ddo += scratch[1, j] + scratch[5, j]
-            if ehl:
-                qi = _hertz_ehl_table(
-                    di,
-                    ddi,
-                    k_inner,
-                    tau,
-                    film_inner,
-                    squeeze_inner,
-                    floor,
-                    ref_inner,
-                    max_inner,
-                    p,
-                    TABLE_INNER,
-                )
-                qo = _hertz_ehl_table(
-                    do,
-                    ddo,
-                    k_outer,
-                    tau,
-                    film_outer,
-                    squeeze_outer,
-                    floor,
-                    ref_outer,
-                    max_outer,
-                    p,
-                    TABLE_OUTER,
-                )
-            else:
-                qi = _hertz_dry(di, ddi, k_inner, tau)
-                qo = _hertz_dry(do, ddo, k_outer, tau)
-            dydt[4 + j] = drho
-            dydt[nd + 4 + j] = (
-                (qi - qo) * inv_ball_mass + centripetal * (pitch_radius + rho) - gravity * sj
-            )
-        else:
-            d = us - gap
-            dd = dus
-            if has_waviness:
-                d += scratch[0, j] + scratch[2, j] + scratch[4, j] + scratch[6, j]
-                dd += scratch[1, j] + scratch[3, j] + scratch[5, j] + scratch[7, j]
-            if ehl:
-                qi = _hertz_ehl_table(
-                    d,
-                    dd,
-                    k_series,
-                    tau,
-                    film_inner + film_outer,
-                    squeeze_series,
-                    floor,
-                    ref_inner + ref_outer,
-                    max_inner + max_outer,
-                    p,
-                    TABLE_SERIES,
-                )
-            else:
-                qi = _hertz_dry(d, dd, k_series, tau)
-            qo = qi
-        loads[0, j] = qi
-        loads[1, j] = qo
-        fxs -= qi * cj
-        fys -= qi * sj
-        fxh += qo * cj
-        fyh += qo * sj
-    # external loads on the shaft: constant force, or a loading spring preloaded to it
-    kl = p[P_LOADING_STIFFNESS]
-    fxs += p[P_LOAD_X] - kl * (xs - p[P_LOADING_X0])
-    fys += p[P_LOAD_Y] - kl * (ys - p[P_LOADING_Y0])
-    mu = p[P_UNBALANCE]
-    if mu != 0.0:
-        ws = p[P_SHAFT_SPEED]
-        fxs += mu * ws * ws * math.cos(shaft_angle)
-        fys += mu * ws * ws * math.sin(shaft_angle)
-    ms = p[P_SHAFT_MASS]
-    mh = p[P_HOUSING_MASS]
-    g = p[P_GRAVITY]
-    dydt[0] = vxs
-    dydt[1] = vys
-    dydt[2] = vxh
-    dydt[3] = vyh
-    dydt[nd] = (fxs - p[P_SHAFT_DAMPING] * vxs) / ms
-    dydt[nd + 1] = (fys - p[P_SHAFT_DAMPING] * vys) / ms - g
-    kh = p[P_PEDESTAL_STIFFNESS]
-    ch = p[P_PEDESTAL_DAMPING]
-    dydt[nd + 2] = (fxh - ch * vxh - kh * xh) / mh
-    dydt[nd + 3] = (fyh - ch * vyh - kh * yh) / mh - g
-
-
-@numba.njit(**_JIT)
-def _rhs(scene, ehl, y, p, wav, dydt, loads, scratch):
-    """:func:`_rhs_inline` as an ordinary call.
-
-    One compiled copy per scene, shared by every call site (DOPRI5's stages, single
-    evaluations); RK4 inlines the body at its one call site instead.
-    """
-    numba.literally(scene)
-    numba.literally(ehl)
-    _rhs_inline(scene, ehl, y, p, wav, dydt, loads, scratch)
-
-
-@numba.njit(**_JIT_INLINE)
-def _record(y, dydt, nd, k, out_state, out_accel):
-    out_state[k, 0] = y[0]
-    out_state[k, 1] = y[1]
-    out_state[k, 2] = y[2]
-    out_state[k, 3] = y[3]
-    out_state[k, 4] = y[nd]
-    out_state[k, 5] = y[nd + 1]
-    out_state[k, 6] = y[nd + 2]
-    out_state[k, 7] = y[nd + 3]
-    out_accel[k, 0] = dydt[nd]
-    out_accel[k, 1] = dydt[nd + 1]
-    out_accel[k, 2] = dydt[nd + 2]
-    out_accel[k, 3] = dydt[nd + 3]
-
-
-@numba.njit(**_JIT_INLINE)
-def _check(y, nd, limit):
-    """Return a status code for the body displacements of ``y``."""
-    for i in range(y.shape[0]):
-        if not math.isfinite(y[i]):
-            return STATUS_NONFINITE
-    for i in range(nd):
-        if abs(y[i]) > limit:
-            return STATUS_RUNAWAY
-    return STATUS_OK
 
 
 # The cached machine code of every kernel module inlines functions of this one: drop it when

@@ -18,7 +18,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 #: The modules whose compiled code inlines each other's functions.
-KERNEL_MODULES = ("_kernels", "_integrators", "_lanes", "_static_kernels")
+KERNEL_MODULES = ("_kernels", "_rhs", "_integrators", "_lanes", "_static_kernels")
 #: File beside the cache that records the sources' hash.
 STAMP = "cmtool-kernels.sha256"
 

@@ -9,7 +9,7 @@ PACKAGES = ("generators", "features", "cmtool")
 MAX_LINES = 900
 # kernel-internal names shared between the numba kernel modules on purpose (compile-time
 # constants and inlined helpers cannot go through a public Python API)
-KERNEL_MODULES = {"_kernels", "_integrators", "_lanes"}
+KERNEL_MODULES = {"_kernels", "_rhs", "_integrators", "_lanes"}
 
 
 def _modules():
