@@ -293,13 +293,14 @@ def segment_scan(x: np.ndarray, fs: float, ctx: dict[str, float]) -> dict | None
     Returns
     -------
     dict or None
-        None for a record shorter than two segments. Else ``segments``, ``segment_s`` [s] and
-        ``found``: None, or the fault of the segment where a detected fault stands furthest
-        over that threshold, with the segment's place [s], band [Hz], threshold and margin
-        [dB] and the fault's false-alarm probability in the segment; with a fault found,
-        ``candidates`` (that segment's, :func:`rule_candidates` on its threshold) and
-        ``envelope`` (its envelope spectrum: frequencies [Hz], amplitudes), for the verdict
-        and the plots.
+        None for a record shorter than two segments. Else ``segments``, ``segment_s`` [s],
+        ``margins_db`` (each fault's weighed evidence over the segment's threshold, segment by
+        segment [dB]: above 0 detected there) and ``found``: None, or the fault of the segment
+        where a detected fault stands furthest over that threshold, with the segment's place
+        [s], band [Hz], threshold and margin [dB] and the fault's false-alarm probability in
+        the segment; with a fault found, ``candidates`` (that segment's,
+        :func:`rule_candidates` on its threshold) and ``envelope`` (its envelope spectrum:
+        frequencies [Hz], amplitudes), for the verdict and the plots.
     """
     slowest = min(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])
     seconds = max(SCAN_SEGMENT_S, MIN_RATE_PERIODS / slowest)
@@ -308,6 +309,7 @@ def segment_scan(x: np.ndarray, fs: float, ctx: dict[str, float]) -> dict | None
     if count < 2:
         return None
     out: dict = {"segments": count, "segment_s": round(n / fs, 6), "found": None}
+    margins: dict[str, list[float]] = {}
     best = None
     for i in range(count):
         evidence = features.fault_evidence(x[i * n : (i + 1) * n], fs, ctx)
@@ -319,9 +321,12 @@ def segment_scan(x: np.ndarray, fs: float, ctx: dict[str, float]) -> dict | None
             selection.floor_bins,
         )
         candidates = rule_candidates(evidence, ctx, threshold)
+        for c in candidates:
+            margins.setdefault(c["fault"], []).append(round(c["evidence_db"] - threshold, 2))
         margin = candidates[0]["evidence_db"] - threshold
         if candidates[0]["detected"] and (best is None or margin > best[0]):
             best = (margin, i, threshold, candidates, evidence)
+    out["margins_db"] = margins
     if best is not None:
         margin, i, threshold, candidates, evidence = best
         out["found"] = {

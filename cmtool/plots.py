@@ -389,6 +389,57 @@ def plot_trend(
     return save_figure(fig, path)
 
 
+def plot_segment_evidence(
+    segment_s: float,
+    margins: Mapping[str, Sequence[float]],
+    path: str | Path,
+    *,
+    title: str,
+    found: Mapping[str, Any] | None = None,
+) -> Path:
+    """Each fault's evidence over the threshold, segment by segment of a long record.
+
+    Parameters
+    ----------
+    segment_s : float
+        Length of a segment [s]; segment i spans i to i + 1 segment lengths.
+    margins : mapping of str to sequence of float
+        Fault -> its weighed evidence minus the segment's detection threshold [dB] per segment
+        (``Diagnosis.segment_scan["margins_db"]``; above 0: detected in that segment).
+    path : str or Path
+        PNG to write.
+    title : str
+        Title.
+    found : mapping, optional
+        The scan's ``found`` (fault, ``start_s``, ``end_s``): that segment is shaded.
+
+    Returns
+    -------
+    Path
+        The written PNG.
+    """
+    path = Path(path)
+    fig, ax = plt.subplots(figsize=(10, 3.6), dpi=110)
+    colors = {
+        "outer race": _COLORS["bpfo"],
+        "inner race": _COLORS["bpfi"],
+        "ball": _COLORS["two_bsf"],
+    }
+    for fault, values in margins.items():
+        edges = segment_s * np.arange(len(values) + 1)
+        ax.stairs(values, edges, color=colors.get(fault), label=fault, lw=1.6, baseline=None)
+    ax.axhline(0.0, color="0.3", ls="--", lw=1.0, label="detection threshold (per segment)")
+    if found:
+        ax.axvspan(found["start_s"], found["end_s"], color="0.85", zorder=0, label="found here")
+    ax.set_xlabel("time in the record [s]")
+    ax.set_ylabel("evidence over threshold [dB]")
+    ax.set_title(title)
+    ax.legend(loc="best", fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return save_figure(fig, path)
+
+
 def plot_confusion(
     matrix: np.ndarray,
     labels: Sequence[str],

@@ -72,7 +72,7 @@ def write_report(
     diagnosis: Diagnosis, out: str | Path, *, title: str, x: np.ndarray, fs: float
 ) -> Path:
     """Write ``report.md`` with the spectrum, envelope spectrum, waveform and kurtogram plots."""
-    from .plots import plot_kurtogram, plot_spectrum, plot_waveform
+    from .plots import plot_kurtogram, plot_segment_evidence, plot_spectrum, plot_waveform
     from .waviness import comparison_text
 
     out = Path(out)
@@ -117,6 +117,17 @@ def write_report(
     paths = [spec_png, env_png, wave_png]
     if sp.kurtogram is not None:
         paths.append(plot_kurtogram(sp.kurtogram, out / "kurtogram.png", title=title))
+    scan = diagnosis.segment_scan
+    if scan and scan.get("margins_db"):  # the whole record showed no fault: its segments
+        paths.append(
+            plot_segment_evidence(
+                scan["segment_s"],
+                scan["margins_db"],
+                out / "segments.png",
+                title=f"{title}: each fault's evidence by segment of {scan['segment_s']:g} s",
+                found=scanned,
+            )
+        )
     lines = [
         f"# Diagnosis: {title}",
         "",
@@ -179,6 +190,21 @@ def write_report(
         lines += ["## Fault size", "", diagnosis.severity["reason"], ""]
     if diagnosis.warnings:
         lines += ["## Warnings", ""] + [f"- {w}" for w in diagnosis.warnings] + [""]
+    if scan and scan.get("margins_db"):
+        lines += [
+            "## Segment by segment",
+            "",
+            f"The whole record's envelope showed no fault, so each of its {scan['segments']} "
+            f"segments of {scan['segment_s']:g} s was weighed as a record of its own, against "
+            "the threshold for the record's false-alarm probability shared over the segments "
+            "(figure segments.png: above 0 dB a fault is detected in that segment). "
+            + (
+                f"The verdict rests on seconds {scanned['start_s']:g}-{scanned['end_s']:g}."
+                if scanned
+                else "No segment shows a fault."
+            ),
+            "",
+        ]
     lines += [
         "## Evidence (envelope spectrum, dB above the local noise floor)",
         "",

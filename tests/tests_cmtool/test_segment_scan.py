@@ -60,6 +60,11 @@ def test_a_ball_pit_struck_in_one_second_of_ten_is_found_in_that_second(tmp_path
     one = features.fault_evidence(x[: int(FS)], FS, CTX).threshold_db
     assert found["threshold_db"] > one + 1.0 and found["margin_db"] > 0
     assert d.candidates[0]["fault"] == "ball" and d.candidates[0]["detected"]
+    # every fault's margin, segment by segment: the ball's over 0 in the first second only
+    margins = d.segment_scan["margins_db"]
+    assert set(margins) == {"ball", "inner race", "outer race"}
+    assert all(len(v) == 10 for v in margins.values())
+    assert margins["ball"][0] == found["margin_db"] and max(margins["ball"][1:]) < 0.0
     assert "seconds 0-1 of the record" in d.basis and d.confidence > 0.9
     out = json.loads(json.dumps(d.to_dict()))
     assert out["segment_scan"]["found"]["segment"] == 0 and "segment_scan" in out["assumptions"]
@@ -79,21 +84,41 @@ def test_a_ball_pit_struck_in_one_second_of_ten_is_found_in_that_second(tmp_path
     import cmtool.plots
     from cmtool.report import write_report
 
-    with mock.patch.object(cmtool.plots, "plot_spectrum", return_value=tmp_path / "p.png") as plot:
+    with (
+        mock.patch.object(cmtool.plots, "plot_spectrum", return_value=tmp_path / "p.png") as plot,
+        mock.patch.object(
+            cmtool.plots, "plot_segment_evidence", return_value=tmp_path / "s.png"
+        ) as by_segment,
+    ):
         write_report(d, tmp_path, title="t", x=x, fs=FS)
     envelope = [c for c in plot.call_args_list if c.args[2].name == "envelope.png"][0]
     assert envelope.kwargs["title"].endswith("seconds 0-1")
     assert envelope.args[1] is d.spectra.envelope_amplitude
-    assert "seconds 0-1 of the record" in (tmp_path / "report.md").read_text()
+    report = (tmp_path / "report.md").read_text()
+    assert "seconds 0-1 of the record" in report
+    # the segments' evidence is plotted, the found one marked, and the report says so
+    (segment_s, plotted, path), kwargs = by_segment.call_args
+    assert (segment_s, plotted, path.name) == (1.0, margins, "segments.png")
+    assert kwargs["found"] == found
+    assert "## Segment by segment" in report and "The verdict rests on seconds 0-1." in report
     # the same impacts over the whole record: the whole record shows them, no scan
     spread = diagnose_signal(_record(2.5, burst=(0.0, 10.0)), FS, RPM, "6205", waviness=False)
     assert spread.verdict == "ball" and spread.segment_scan is None
 
 
-def test_noise_stays_healthy_and_short_records_are_not_scanned():
-    d = diagnose_signal(_record(0.0, seed=1), FS, RPM, "6205", waviness=False)
+def test_noise_stays_healthy_and_short_records_are_not_scanned(tmp_path):
+    x = _record(0.0, seed=1)
+    d = diagnose_signal(x, FS, RPM, "6205", waviness=False)
     assert d.verdict == "healthy" and d.segment_scan["found"] is None
     assert d.segment_scan["segments"] == 10 and d.segment_scan["segment_s"] == SCAN_SEGMENT_S
+    assert max(max(v) for v in d.segment_scan["margins_db"].values()) < 0.0
+    # the report plots the segments' evidence (drawn for real here) and says none shows a fault
+    from cmtool.report import write_report
+
+    write_report(d, tmp_path, title="noise", x=x, fs=FS)
+    report = (tmp_path / "report.md").read_text()
+    assert "No segment shows a fault." in report and "![segments](segments.png)" in report
+    assert (tmp_path / "segments.png").stat().st_size > 1000
     # a record shorter than two segments is weighed whole, as before
     assert segment_scan(_record(0.0, seconds=1.9), FS, CTX) is None
     short = diagnose_signal(_record(2.5, seconds=1.9), FS, RPM, "6205", waviness=False)
