@@ -373,6 +373,22 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
     ),
     Key("background.floor_db", "values", -80.0, 80.0, "dB", doc="white floor"),
     Key(
+        "background.form_inner_db",
+        "values",
+        -80.0,
+        80.0,
+        "dB",
+        doc="the test bearing's inner-race form lines (BPFI, BPFI -/+ fs)",
+    ),
+    Key(
+        "background.form_ball_db",
+        "values",
+        -80.0,
+        80.0,
+        "dB",
+        doc="the test bearing's ball form lines (2 BSF, 2 BSF -/+ FTF)",
+    ),
+    Key(
         "background.rotor_force_db",
         "values",
         -80.0,

@@ -377,6 +377,50 @@ def _realistic(recipe: dict) -> bool:
     return "background" in recipe or "modes" in recipe["sensor"]
 
 
+#: The lines of a healthy bearing's own form errors in the plain spectrum, relative to the
+#: drawn level of their family [dB]: the inner race's orders Z - 1, Z, Z + 1 at BPFI - fs,
+#: BPFI, BPFI + fs, and the balls' order 2 at 2 BSF - FTF, 2 BSF, 2 BSF + FTF; the pattern the
+#: dynamic model gives (a 6205 at 1730-1797 rpm, 300 and 1000 N, form errors of 0.01-0.2 um
+#: from ``form_waviness``: docs/realism.md 9).
+FORM_LINE_PATTERN_DB = {
+    "form_inner_db": (
+        (("bpfi", "shaft", -1.0), -7.0),
+        (("bpfi", None, 0.0), 0.0),
+        (("bpfi", "shaft", 1.0), 4.0),
+    ),
+    "form_ball_db": (
+        (("two_bsf", "ftf", -1.0), 0.0),
+        (("two_bsf", None, 0.0), 0.0),
+        (("two_bsf", "ftf", 1.0), 0.0),
+    ),
+}
+
+
+def _form_lines(
+    background: dict, rng: np.random.Generator, reference: float, geometry, rpm: float
+) -> tuple[tuple[tuple[float, float], ...], dict]:
+    """The test bearing's own form-error lines (frequency [Hz], amplitude) and their levels.
+
+    Each family present in ``background`` (``form_inner_db``, ``form_ball_db``) has its level
+    drawn in dB over ``reference`` (the healthy bearing's RMS at the sensor) and its lines at
+    the kinematic rates (:data:`FORM_LINE_PATTERN_DB`); none drawn without the keys.
+    """
+    lines: list[tuple[float, float]] = []
+    drawn: dict[str, float] = {}
+    freqs = None
+    for key, pattern in FORM_LINE_PATTERN_DB.items():
+        db = _pick(background.get(key), rng, None)
+        if db is None:
+            continue
+        if freqs is None:
+            freqs = characteristic_frequencies(geometry, rpm / 60.0).as_dict()
+        drawn[key] = db
+        for (rate, spacing, sign), offset_db in pattern:
+            f = freqs[rate] + (sign * freqs[spacing] if spacing else 0.0)
+            lines.append((f, reference * 10.0 ** ((db + offset_db) / 20.0)))
+    return tuple(lines), drawn
+
+
 def _finish_realistic(
     recipe: dict, job: _Job, x: np.ndarray, healthy: np.ndarray, signal_dtype: type
 ) -> dict:
@@ -443,6 +487,13 @@ def _finish_realistic(
         pedestal_damping=rig.pedestal_damping,
     )
     noise = machine_background(x.size, fs, case.rpm / 60.0, machine, modes, rng, support)
+    # the bearing's own form errors (docs/realism.md 9): levels and phases from a generator of
+    # their own, so that every other draw of the case is the same with the keys as without
+    form_rng = np.random.default_rng([case.seed, 7, 9])
+    form_lines, form_db = _form_lines(background, form_rng, reference, job.run.geometry, case.rpm)
+    if form_lines:
+        own = MachineBackground(other_lines=form_lines)
+        noise = noise + machine_background(x.size, fs, case.rpm / 60.0, own, (), form_rng)
     chain: dict = {
         "modes": [[m.frequency, m.damping, m.gain] for m in modes],
         "shaft_amplitudes": list(shaft),
@@ -453,6 +504,8 @@ def _finish_realistic(
     }
     if rotor_db is not None:
         chain["rotor_force_db"] = rotor_db
+    if form_lines:
+        chain.update(form_db, form_lines=[list(pair) for pair in form_lines])
     y = healthy_at_sensor + noise
     if healthy is not x:
         signature = at_sensor - healthy_at_sensor

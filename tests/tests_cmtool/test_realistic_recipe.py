@@ -119,3 +119,55 @@ def test_chain_keys_are_validated():
     del bad["sensor"]["fault_snr_db"]
     with pytest.raises(ParameterError, match="background_db"):
         validate_recipe(bad)
+
+
+def test_the_bearings_own_form_lines_stand_at_its_rates_and_drawn_levels():
+    """``[background] form_inner_db`` and ``form_ball_db``: a healthy bearing's own form-error
+    lines (docs/realism.md 9) at BPFI - fs, BPFI, BPFI + fs and 2 BSF - FTF, 2 BSF, 2 BSF + FTF,
+    at the drawn level over the healthy bearing's RMS at the sensor; the rest of a case's chain
+    unchanged in kind, and a recipe without the keys drawing none."""
+    from features import amplitude_spectrum
+    from generators import bearing, characteristic_frequencies
+    from generators.synthesis import FORM_LINE_PATTERN_DB
+
+    text = RECIPE.replace("count = 40", "count = 1").replace("count = 8", "count = 2")
+    with_lines = text.replace(
+        "floor_db = { min = -20, max = -10 }",
+        "floor_db = { min = -20, max = -10 }\nform_inner_db = { min = -1, max = 1 }\n"
+        "form_ball_db = { min = -11, max = -9 }",
+    )
+    recipe = validate_recipe(tomllib.loads(with_lines))
+    plain = validate_recipe(tomllib.loads(text))
+    f = characteristic_frequencies(bearing("6205"), 1797 / 60)
+    for row, without in zip(
+        generate_cases(recipe, expand_cases(recipe)),
+        generate_cases(plain, expand_cases(plain)),
+        strict=True,
+    ):
+        chain = json.loads(row["chain"])
+        inner_db, ball_db = chain["form_inner_db"], chain["form_ball_db"]
+        assert -1.0 <= inner_db <= 1.0 and -11.0 <= ball_db <= -9.0
+        assert "form_inner_db" not in json.loads(without["chain"])
+        lines = chain["form_lines"]
+        assert (
+            len(lines) == 6 and chain["other_lines"] == json.loads(without["chain"])["other_lines"]
+        )
+        wanted = [f.bpfi - f.shaft, f.bpfi, f.bpfi + f.shaft, f.two_bsf - f.ftf, f.two_bsf]
+        assert np.allclose([hz for hz, _ in lines[:5]], wanted)
+        # the levels: BPFI at the drawn level, its sidebands -7 and +4 dB, the ball's at its own
+        inner = [a for _, a in lines[:3]]
+        ball = [a for _, a in lines[3:]]
+        assert np.allclose(20 * np.log10(np.array(inner) / inner[1]), [-7.0, 0.0, 4.0])
+        assert np.allclose(20 * np.log10(np.array(ball) / inner[1]), [ball_db - inner_db] * 3)
+        assert [p[1] for p in FORM_LINE_PATTERN_DB["form_inner_db"]] == [-7.0, 0.0, 4.0]
+        # and in the signal: a line at BPFI where the recipe without the keys has none
+        freqs, amp = amplitude_spectrum(np.asarray(row["signal"], float), row["fs_hz"])
+        _, amp0 = amplitude_spectrum(np.asarray(without["signal"], float), row["fs_hz"])
+        near = np.abs(freqs - f.bpfi) < 2.0
+        assert amp[near].max() > 10 * amp0[near].max()
+        # every other draw of the case is the same: the difference is the lines alone (up to
+        # the converter's rounding, whose full scale the lines move)
+        diff = np.asarray(row["signal"], float) - np.asarray(without["signal"], float)
+        _, lines_only = amplitude_spectrum(diff, row["fs_hz"])
+        far = (freqs > 1000.0) & (freqs < 4000.0)
+        assert lines_only[far].max() < 0.01 * amp0[far].max()
