@@ -214,7 +214,15 @@ def envelope_spectrum(
             f = fault_frequencies
             cage = f["shaft"] * f["bpfo"] / (f["bpfo"] + f["bpfi"])
         cage = cage if rates else None
-        band = fault_band(x, fs, rates or fault_frequencies, cage, nlevel=nlevel).band
+        selection = fault_band(x, fs, rates or fault_frequencies, cage, nlevel=nlevel)
+        band = selection.band
+        from . import evidence  # imports this module: here, not at the top
+
+        if evidence.EVIDENCE_BANDS > 1 and len(rates) == 3 and "shaft" in fault_frequencies:
+            # every rate the rule weighs: its band, the one of the bands the line ranks
+            # highest where the weighed evidence stands highest (best_band_evidence)
+            ctx = {**fault_frequencies, "ftf": cage}
+            band = evidence.best_band_evidence(x, fs, ctx, selection).selection.band
     elif band is None:
         band = kurtogram(x, fs, nlevel=nlevel).band
     env = envelope(x, fs, band=band, method=method)

@@ -106,3 +106,53 @@ def test_the_balls_cage_lines_leave_the_lines_another_fault_explains_out():
     # strong cage lines do make a ball of it
     loud = _family([("cage 1x", 30.0, 11.93), ("cage 2x", 25.0, 23.86)])
     assert _with_cage_lines(combined["two_bsf"], families["two_bsf"], loud, 6, 5, 60)["detected"]
+
+
+def test_the_band_is_the_one_the_weighed_evidence_stands_highest_in_among_the_top_ones(
+    monkeypatch,
+):
+    """features.evidence.best_band_evidence: with EVIDENCE_BANDS = 1 (as shipped) the band is
+    the one a fault rate's line ranks highest (fault_band's), and envelope_spectrum's
+    automatic band is the same; with more, the kept band is one of the bands the line ranks
+    highest and its weighed evidence stands at least as far over the threshold."""
+    import dataclasses
+
+    import numpy as np
+
+    import features
+    import features.evidence as fe
+    from features.separation import fault_band
+
+    fs = 12000.0
+    ctx = {"bpfo": BPFO, "bpfi": BPFI, "two_bsf": TWO_BSF, "shaft": 29.95, "ftf": 11.93}
+    rng = np.random.default_rng(5)
+    x = rng.standard_normal(int(fs))
+    t = np.arange(int(0.01 * fs)) / fs
+    ring = np.exp(-2 * np.pi * 2500.0 * 0.05 * t) * np.sin(2 * np.pi * 2500.0 * t)
+    impact = 0.0
+    while impact < 1.0 - 0.01:  # an outer race's impacts, 1 % jitter, ringing at 2.5 kHz
+        i = int(impact * fs)
+        x[i : i + ring.size] += 0.8 * ring
+        impact += (1.0 + 0.01 * rng.standard_normal()) / BPFO
+
+    def margin(evidence):
+        return max(v["evidence_db"] for v in evidence.combined.values()) - evidence.threshold_db
+
+    shipped = fe.fault_evidence(x, fs, ctx)
+    rates = {k: ctx[k] for k in fe.EVIDENCE_FAULTS}
+    alone = fault_band(shipped.random_part, fs, rates, ctx["ftf"])
+    assert fe.EVIDENCE_BANDS == 1 and shipped.selection.band == alone.band
+    _, _, band = features.envelope_spectrum(x, fs, fault_frequencies=ctx, return_band=True)
+    assert band == shipped.selection.band
+    monkeypatch.setattr(fe, "EVIDENCE_BANDS", 6)
+    kept = fe.fault_evidence(x, fs, ctx)
+    top = [tuple(alone.bands[i]) for i in np.argsort(-alone.scores_db.max(axis=1))[:6]]
+    assert tuple(kept.selection.band) in top
+    _, _, band = features.envelope_spectrum(x, fs, fault_frequencies=ctx, return_band=True)
+    assert band == kept.selection.band != shipped.selection.band  # the library's is the rule's
+    assert margin(kept) >= margin(shipped)
+    for b in top:  # and it is the highest of them
+        other = fe._evidence_in_band(
+            shipped.random_part, fs, ctx, dataclasses.replace(alone, band=b)
+        )
+        assert margin(kept) >= margin(other) - 1e-9
