@@ -42,6 +42,12 @@ _COLORS = {
     "shaft": "black",
     "wpf": "tab:purple",
 }
+#: Each fault's colour, that of its rate's marker.
+_FAULT_COLORS = {
+    "outer race": _COLORS["bpfo"],
+    "inner race": _COLORS["bpfi"],
+    "ball": _COLORS["two_bsf"],
+}
 
 
 def save_figure(fig: Figure, path: Path | str, **savefig_kwargs: Any) -> Path:
@@ -364,13 +370,8 @@ def plot_trend(
     """
     path = Path(path)
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(10, 6), dpi=110, sharex=True)
-    colors = {
-        "outer race": _COLORS["bpfo"],
-        "inner race": _COLORS["bpfi"],
-        "ball": _COLORS["two_bsf"],
-    }
     for fault, values in margins.items():
-        top.plot(times, values, marker="o", color=colors.get(fault), label=fault)
+        top.plot(times, values, marker="o", color=_FAULT_COLORS.get(fault), label=fault)
     top.axhline(0.0, color="0.3", ls="--", lw=1.0, label="detection threshold")
     top.set_ylabel("evidence over threshold [dB]")
     top.set_title(title)
@@ -420,14 +421,9 @@ def plot_segment_evidence(
     """
     path = Path(path)
     fig, ax = plt.subplots(figsize=(10, 3.6), dpi=110)
-    colors = {
-        "outer race": _COLORS["bpfo"],
-        "inner race": _COLORS["bpfi"],
-        "ball": _COLORS["two_bsf"],
-    }
     for fault, values in margins.items():
         edges = segment_s * np.arange(len(values) + 1)
-        ax.stairs(values, edges, color=colors.get(fault), label=fault, lw=1.6, baseline=None)
+        ax.stairs(values, edges, color=_FAULT_COLORS.get(fault), label=fault, lw=1.6, baseline=None)
     ax.axhline(0.0, color="0.3", ls="--", lw=1.0, label="detection threshold (per segment)")
     if found:
         ax.axvspan(found["start_s"], found["end_s"], color="0.85", zorder=0, label="found here")
