@@ -503,6 +503,7 @@ def diagnose_signal(
     top = candidates[0]
     margin = top["evidence_db"] - threshold
     scan = None if top["detected"] else segment_scan(x, fs, {**ctx, "ftf": freqs.ftf})
+    weighed_against = threshold  # the verdict's threshold: the segment's if the scan found it
     if top["detected"]:
         verdict, confidence = top["fault"], round(_logistic(margin, *FAULT_CONFIDENCE), 4)
     elif scan is not None and scan["found"]:
@@ -512,6 +513,7 @@ def diagnose_signal(
             plain_f, plain_a, *scan.pop("envelope"), tuple(scan["found"]["band_hz"]), None
         )
         candidates = scan.pop("candidates")
+        weighed_against = scan["found"]["threshold_db"]
     else:
         verdict = "healthy"
         confidence = round(1.0 - _logistic(margin, *HEALTHY_CONFIDENCE), 4)
@@ -523,7 +525,7 @@ def diagnose_signal(
         band_hz=spectra.band,
         warnings=warnings,
         spectra=spectra,
-        threshold_db=threshold,
+        threshold_db=weighed_against,
         assumptions={
             "bearing": geometry.name,
             "rpm": float(rpm),
@@ -539,7 +541,7 @@ def diagnose_signal(
                 f"{min(features.table.MIN_BAND_FACTOR * fastest, fs / 4):.0f} Hz wide "
                 "whose envelope shows a fault rate most clearly"
             ),
-            "threshold_db": round(threshold, 2),
+            "threshold_db": round(weighed_against, 2),
             "line_search": f"{-100 * SLIP_SEARCH[0]:g} to +{100 * SLIP_SEARCH[1]:g} % of "
             "each kinematic fault rate (slip)",
             "evidence": "each fault's fundamental, 2x, 3x and first sidebands (inner race: "
@@ -566,11 +568,7 @@ def diagnose_signal(
                 f"{found['false_alarm_probability']:.2g} for one of {scan['segments']} segments); "
                 "the whole record's envelope shows none: a fault struck in some seconds only"
             )
-            diagnosis.threshold_db = found["threshold_db"]
-            # the assumptions state what the verdict was weighed against: the segment's
-            # threshold, and the whole record's under its own key
             diagnosis.assumptions["whole_record_threshold_db"] = round(threshold, 2)
-            diagnosis.assumptions["threshold_db"] = found["threshold_db"]
     # the ISO 15242 bands and the overall band from one spectrum of the record
     broad = overall_band(rpm)
     bands = features.velocity_band_rms(x, fs, {**features.ISO_15242_BANDS, "overall": broad})
