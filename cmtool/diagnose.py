@@ -271,6 +271,13 @@ def rule_context(
             f"record of {x.size / fs:.2f} s holds fewer than 20 cage revolutions; "
             "sideband resolution is poor"
         )
+    if not features.evidence.cage_lines_weighed(x.size / fs, freqs.ftf):
+        warnings.append(
+            f"record of {x.size / fs:.2f} s holds {x.size / fs * freqs.ftf:.1f} cage "
+            f"revolutions, fewer than {features.evidence.MIN_CAGE_REVOLUTIONS:g}: the ball's "
+            "cage-rate lines are not weighed (a ball pit is judged on its 2 x BSF lines and "
+            "their sidebands alone)"
+        )
     return rpm, freqs, ctx, warnings
 
 
@@ -547,7 +554,10 @@ def diagnose_signal(
             "evidence": "each fault's fundamental, 2x, 3x and first sidebands (inner race: "
             "shaft rate; ball: cage rate) weighed by their false-alarm probabilities "
             "(Fisher), on the threshold's dB scale; a line on a stronger detected fault's "
-            "harmonics or their sidebands counts for that fault only",
+            "harmonics or their sidebands counts for that fault only; for the ball also the "
+            "cage rate and its 2x in a record (or segment) of at least "
+            f"{features.evidence.MIN_CAGE_REVOLUTIONS:g} cage revolutions (this record: "
+            f"{x.size / fs * freqs.ftf:.1f})",
             "randomness": RANDOMNESS_ASSUMED,
         },
     )

@@ -156,3 +156,29 @@ def test_the_band_is_the_one_the_weighed_evidence_stands_highest_in_among_the_to
             shipped.random_part, fs, ctx, dataclasses.replace(alone, band=b)
         )
         assert margin(kept) >= margin(other) - 1e-9
+
+
+def test_the_cage_lines_are_weighed_only_in_records_of_enough_cage_revolutions():
+    """features.evidence.MIN_CAGE_REVOLUTIONS: a record holding 10 or more cage revolutions
+    weighs the ball's cage lines (FTF, 2 x FTF), a shorter one does not (its cage line lies a
+    few bins from 0 Hz, where slow envelope changes stand), and the rest of the ball's family
+    is weighed either way."""
+    import numpy as np
+
+    import features.evidence as fe
+
+    fs, ftf = 12000.0, 11.93
+    ctx = {"bpfo": BPFO, "bpfi": BPFI, "two_bsf": TWO_BSF, "shaft": 29.95, "ftf": ftf}
+    x = np.random.default_rng(3).standard_normal(int(fs))
+
+    def ball_lines(record):
+        return [
+            name for name, *_ in fe.fault_evidence(record, fs, ctx).combined["two_bsf"]["lines"]
+        ]
+
+    assert fe.MIN_CAGE_REVOLUTIONS == 10.0
+    assert fe.cage_lines_weighed(1.0, ftf) and not fe.cage_lines_weighed(0.5, ftf)
+    whole, short = ball_lines(x), ball_lines(x[: int(0.5 * fs)])  # 11.9 and 6.0 revolutions
+    assert {"cage 1x", "cage 2x"} <= set(whole)
+    assert not {"cage 1x", "cage 2x"} & set(short)
+    assert [n for n in whole if not n.startswith("cage")] == short  # 1x-3x and sidebands
