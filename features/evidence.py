@@ -345,6 +345,7 @@ def _evidence_in_band(
 #: k-th harmonic over about k times the slip, and its peak or its slip sidebands can stand
 #: anywhere in that width.
 SHARED_LINE_BINS = 1.0
+SHARED_LINE_SLIP = 0.015
 #: Harmonics of the cage rate weighed into the ball's family (docs/diagnosis.md, "The cage
 #: rate chooses the ball's band").
 CAGE_HARMONICS = (1, 2)
@@ -356,7 +357,6 @@ CAGE_HARMONICS = (1, 2)
 #: times in 100 with the cage lines, 3 and 2 without (docs/diagnosis.md, "Cage lines in
 #: short records").
 MIN_CAGE_REVOLUTIONS = 10.0
-SHARED_LINE_SLIP = 0.015
 #: Harmonics of a stronger fault that can account for another fault's line.
 SHARED_LINE_ORDERS = 10
 
