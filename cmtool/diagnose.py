@@ -266,11 +266,6 @@ def rule_context(
             f"the fault rates apart needs at least {MIN_RATE_PERIODS} periods of the slowest "
             f"({slowest:.1f} Hz): {shortest:.3g} s, {int(math.ceil(shortest * fs))} samples"
         )
-    if x.size / fs < 20.0 / freqs.ftf:
-        warnings.append(
-            f"record of {x.size / fs:.2f} s holds fewer than 20 cage revolutions; "
-            "sideband resolution is poor"
-        )
     if not features.evidence.cage_lines_weighed(x.size / fs, freqs.ftf):
         warnings.append(
             f"record of {x.size / fs:.2f} s holds {x.size / fs * freqs.ftf:.1f} cage "

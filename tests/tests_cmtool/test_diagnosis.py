@@ -1273,7 +1273,8 @@ def test_a_record_outside_what_the_model_saw_is_said_to_be(bundle, rng):
 def test_a_record_of_few_cage_revolutions_says_the_cage_lines_are_not_weighed():
     """A record holding fewer than features.evidence.MIN_CAGE_REVOLUTIONS cage revolutions
     warns that the ball's cage-rate lines are not weighed and states how many it holds; a
-    1 s record of a 6205 at 1797 rpm (11.9 revolutions) weighs them and does not warn."""
+    1 s record of a 6205 at 1797 rpm (11.9 revolutions) weighs them and draws no warning
+    about its length."""
     fs, rpm = 12000.0, 1797.0
     x = np.random.default_rng(4).standard_normal(int(fs))
     short = diagnose_signal(x[: int(0.5 * fs)], fs, rpm, "6205", waviness=False)
@@ -1281,6 +1282,9 @@ def test_a_record_of_few_cage_revolutions_says_the_cage_lines_are_not_weighed():
     assert any("6.0 cage revolutions, fewer than 10" in w for w in short.warnings)
     assert "(this record: 6.0)" in short.assumptions["evidence"]
     assert not any("cage-rate lines are not weighed" in w for w in whole.warnings)
+    # the record's length draws no other warning: its cage sidebands (+/- 29.95 x 0.398 Hz)
+    # stand 12 bins from their line, resolved
+    assert not any("cage revolutions" in w for w in whole.warnings), whole.warnings
     assert "(this record: 11.9)" in whole.assumptions["evidence"]
     ball = next(c for c in whole.candidates if c["fault"] == "ball")
     assert {"cage 1x", "cage 2x"} <= {line["line"] for line in ball["lines_weighed"]}
