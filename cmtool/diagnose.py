@@ -109,6 +109,13 @@ SLIP_SEARCH = features.evidence.SLIP_SEARCH
 #: Shortest record [periods of the slowest fault rate]: its envelope spectrum's bins are then
 #: 5 % of that rate apart, as far as the rates of a bearing lie from each other at the least.
 MIN_RATE_PERIODS = 20
+#: Records shorter than this many periods of the slowest fault rate are diagnosed with a
+#: warning. Measured in stop 58 on rig-recipe draws cut short: the rule called 3.5 % of the
+#: simulated healthy bearings faulty at 20 periods and 1.25 % at 30 (400 records each), 0 and
+#: 1 in 100 at 35-50 periods (two draws), 2 in 600 whole 1 s records (81-107 periods); it
+#: found 0-6 % of the inner-race pits at 20 periods, 16-52 % at 30, 65-86 % in 1 s
+#: (docs/diagnosis.md, "Records of few periods").
+TRUSTED_RATE_PERIODS = 40
 #: Segments a long record is scanned in when the whole shows no fault [s]: the length of the
 #: recipes' signals the rule was measured on (at least ``MIN_RATE_PERIODS`` of the slowest
 #: fault rate). A fault struck in some seconds only (a ball pit whose spin axis drifts) shows
@@ -265,6 +272,14 @@ def rule_context(
             f"the record is {x.size / fs:.3g} s long ({x.size} samples at {fs:g} Hz); telling "
             f"the fault rates apart needs at least {MIN_RATE_PERIODS} periods of the slowest "
             f"({slowest:.1f} Hz): {shortest:.3g} s, {int(math.ceil(shortest * fs))} samples"
+        )
+    periods = x.size / fs * slowest
+    if periods < TRUSTED_RATE_PERIODS:
+        warnings.append(
+            f"record of {x.size / fs:.2f} s holds {periods:.0f} periods of the slowest fault "
+            f"rate ({slowest:.1f} Hz), fewer than {TRUSTED_RATE_PERIODS}: on simulated records "
+            "of 20-30 periods the rule called 1-4 healthy bearings in 100 faulty and missed "
+            "most faults (docs/diagnosis.md, 'Records of few periods'); record longer"
         )
     if not features.evidence.cage_lines_weighed(x.size / fs, freqs.ftf):
         warnings.append(
@@ -534,6 +549,9 @@ def diagnose_signal(
             "fs_hz": float(fs),
             "record_s": round(x.size / fs, 6),
             "samples": int(x.size),
+            "slowest_rate_periods": round(
+                x.size / fs * min(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"]), 1
+            ),
             **({"record_total_s": round(whole / fs, 6)} if whole > x.size else {}),
             "band_hz": [round(b, 2) for b in spectra.band],
             "band_selection": (

@@ -1290,3 +1290,28 @@ def test_a_record_of_few_cage_revolutions_says_the_cage_lines_are_not_weighed():
     assert {"cage 1x", "cage 2x"} <= {line["line"] for line in ball["lines_weighed"]}
     ball = next(c for c in short.candidates if c["fault"] == "ball")
     assert not {"cage 1x", "cage 2x"} & {line["line"] for line in ball["lines_weighed"]}
+
+
+def test_a_record_of_few_fault_periods_warns_that_the_rule_is_less_sure():
+    """Records of fewer than TRUSTED_RATE_PERIODS periods of the slowest fault rate (a 6205 at
+    1797 rpm: BPFO 107.4 Hz, 40 periods in 0.37 s) are diagnosed with a warning that says how
+    many they hold (as the JSON's assumptions do); longer ones draw none, and under
+    MIN_RATE_PERIODS the record is refused."""
+    from cmtool.diagnose import MIN_RATE_PERIODS, TRUSTED_RATE_PERIODS
+    from generators import bearing, characteristic_frequencies
+
+    fs, rpm = 12000.0, 1797.0
+    x = np.random.default_rng(5).standard_normal(int(fs))
+    bpfo = characteristic_frequencies(bearing("6205"), rpm / 60.0).bpfo
+    warned = diagnose_signal(x[: int(0.3 * fs)], fs, rpm, "6205", waviness=False)
+    assert any(
+        f"holds 32 periods of the slowest fault rate ({bpfo:.1f} Hz), fewer than "
+        f"{TRUSTED_RATE_PERIODS}" in w
+        for w in warned.warnings
+    ), warned.warnings
+    assert warned.assumptions["slowest_rate_periods"] == pytest.approx(0.3 * bpfo, abs=0.05)
+    for seconds in (0.4, 1.0):
+        d = diagnose_signal(x[: int(seconds * fs)], fs, rpm, "6205", waviness=False)
+        assert not any("periods of the slowest fault rate" in w for w in d.warnings)
+    with pytest.raises(ValueError, match=f"at least {MIN_RATE_PERIODS} periods"):
+        diagnose_signal(x[: int(0.15 * fs)], fs, rpm, "6205", waviness=False)
