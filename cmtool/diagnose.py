@@ -265,7 +265,7 @@ def rule_context(
             f"fs = {fs:g} Hz is too low to diagnose this bearing at {rpm:g} rpm: envelope "
             f"analysis of fault rates up to {fastest:.1f} Hz needs fs >= {needed:.0f} Hz"
         )
-    slowest = min(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])
+    slowest = _slowest_fault_rate(ctx)
     shortest = MIN_RATE_PERIODS / slowest
     if x.size / fs < shortest:
         raise ValueError(
@@ -289,6 +289,11 @@ def rule_context(
             "their sidebands alone)"
         )
     return rpm, freqs, ctx, warnings
+
+
+def _slowest_fault_rate(ctx: dict[str, float]) -> float:
+    """The slowest of the bearing's fault rates (BPFO, BPFI, 2 x BSF) [Hz]."""
+    return min(ctx[key] for key in FAULTS.values())
 
 
 def segment_scan(x: np.ndarray, fs: float, ctx: dict[str, float]) -> dict | None:
@@ -319,8 +324,7 @@ def segment_scan(x: np.ndarray, fs: float, ctx: dict[str, float]) -> dict | None
         :func:`rule_candidates` on its threshold) and ``envelope`` (its envelope spectrum:
         frequencies [Hz], amplitudes), for the verdict and the plots.
     """
-    slowest = min(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])
-    seconds = max(SCAN_SEGMENT_S, MIN_RATE_PERIODS / slowest)
+    seconds = max(SCAN_SEGMENT_S, MIN_RATE_PERIODS / _slowest_fault_rate(ctx))
     n = int(round(seconds * fs))
     count = x.size // n
     if count < 2:
@@ -549,9 +553,7 @@ def diagnose_signal(
             "fs_hz": float(fs),
             "record_s": round(x.size / fs, 6),
             "samples": int(x.size),
-            "slowest_rate_periods": round(
-                x.size / fs * min(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"]), 1
-            ),
+            "slowest_rate_periods": round(x.size / fs * _slowest_fault_rate(ctx), 1),
             **({"record_total_s": round(whole / fs, 6)} if whole > x.size else {}),
             "band_hz": [round(b, 2) for b in spectra.band],
             "band_selection": (
