@@ -89,6 +89,7 @@ def _exceedance(k, searched_bins: int, floor_bins: int):
     return float(out[0]) if k.ndim == 0 else out.reshape(k.shape)
 
 
+@functools.lru_cache(maxsize=1024)  # a bisection of 60 steps; the same bands recur
 def detection_threshold_db(
     n_bands: int,
     false_alarm: float = FALSE_ALARM,

@@ -529,7 +529,13 @@ def _ratio_db(freqs: np.ndarray, amp: np.ndarray, line: float) -> tuple[float, i
     """A line's peak over the median of its neighbourhood [dB], bins searched, floor bins."""
     df = freqs[1] - freqs[0]
     hw = max(1.5 * df, 0.005 * line)
-    near = np.abs(freqs - line)
+    reach = max(0.1 * line, FLOOR_BINS * df, hw)
+    # only the bins within reach of the line can be selected (a uniform grid): the masks on
+    # that slice, two bins wider each side than rounding could move its ends
+    lo = max(0, int(math.floor((line - reach - freqs[0]) / df)) - 2)
+    hi = min(freqs.size, max(lo, int(math.ceil((line + reach - freqs[0]) / df)) + 3))
+    near = np.abs(freqs[lo:hi] - line)
+    amp = amp[lo:hi]
     sel = near <= hw
     window = (near <= max(0.1 * line, FLOOR_BINS * df)) & ~(near <= 2 * hw)
     if not sel.any() or window.sum() < 3 or line + hw > freqs[-1]:
