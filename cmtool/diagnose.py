@@ -69,6 +69,7 @@ __all__ = [
     "rule_candidates",
     "segment_scan",
     "SCAN_SEGMENT_S",
+    "SCAN_SEGMENT_PERIODS",
     "rule_context",
     "rule_probabilities",
     "verdict_probabilities",
@@ -117,10 +118,16 @@ MIN_RATE_PERIODS = 20
 #: (docs/diagnosis.md, "Records of few periods").
 TRUSTED_RATE_PERIODS = 40
 #: Segments a long record is scanned in when the whole shows no fault [s]: the length of the
-#: recipes' signals the rule was measured on (at least ``MIN_RATE_PERIODS`` of the slowest
+#: recipes' signals the rule was measured on (at least ``SCAN_SEGMENT_PERIODS`` of the slowest
 #: fault rate). A fault struck in some seconds only (a ball pit whose spin axis drifts) shows
 #: there at full strength, where the whole record's envelope spectrum dilutes its lines.
 SCAN_SEGMENT_S = 1.0
+#: Fewest periods of the slowest fault rate a segment of the scan holds (a machine whose
+#: slowest rate is under 40 Hz gets segments longer than ``SCAN_SEGMENT_S``): measured in stop
+#: 59 on 8 s records of the CWRU rig's recipe at 250-550 rpm, segments of 20 periods called
+#: healthy bearings faulty where segments of 40 did not (docs/diagnosis.md, "Long records of
+#: slow machines").
+SCAN_SEGMENT_PERIODS = TRUSTED_RATE_PERIODS
 #: verdict name -> characteristic frequency used as its evidence
 FAULTS = {"outer race": "bpfo", "inner race": "bpfi", "ball": "two_bsf"}
 FAULT_NAMES = {key: name for name, key in FAULTS.items()}
@@ -324,7 +331,7 @@ def segment_scan(x: np.ndarray, fs: float, ctx: dict[str, float]) -> dict | None
         :func:`rule_candidates` on its threshold) and ``envelope`` (its envelope spectrum:
         frequencies [Hz], amplitudes), for the verdict and the plots.
     """
-    seconds = max(SCAN_SEGMENT_S, MIN_RATE_PERIODS / _slowest_fault_rate(ctx))
+    seconds = max(SCAN_SEGMENT_S, SCAN_SEGMENT_PERIODS / _slowest_fault_rate(ctx))
     n = int(round(seconds * fs))
     count = x.size // n
     if count < 2:

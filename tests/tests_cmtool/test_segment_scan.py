@@ -6,6 +6,7 @@ only")."""
 import json
 
 import numpy as np
+import pytest
 
 import features
 from cmtool.diagnose import SCAN_SEGMENT_S, diagnose_signal, rule_candidates, segment_scan
@@ -133,3 +134,23 @@ def test_a_burst_one_segment_alone_would_call_is_held_to_the_corrected_threshold
     assert rule_candidates(first, CTX)[0]["detected"]
     d = diagnose_signal(x, FS, RPM, "6205", waviness=False)
     assert d.verdict == "healthy" and d.segment_scan["found"] is None
+
+
+def test_a_slow_machines_segments_hold_forty_periods_of_its_slowest_rate():
+    """At 250 rpm a 6205's BPFO is 14.9 Hz: 1 s segments would hold 15 periods, 20 periods
+    (the shortest record diagnosed) 1.34 s; on 8 s CWRU-rig records at 250 rpm segments of 20
+    periods called 6 of 38 healthy bearings faulty, segments of 40 none (stop 59,
+    docs/diagnosis.md "Long records of slow machines"). The segments hold 40 periods."""
+    rpm = 250.0
+    bpfo = characteristic_frequencies(bearing("6205"), rpm / 60.0).bpfo
+    x = np.random.default_rng(5).standard_normal(int(8.0 * FS))
+    d = diagnose_signal(x, FS, rpm, "6205", waviness=False)
+    scan = d.segment_scan
+    assert scan["segment_s"] * bpfo == pytest.approx(40.0, abs=0.01)
+    assert scan["segments"] == int(8.0 * bpfo / 40.0)  # 2.68 s: two whole segments in 8 s
+    assert (
+        f"{scan['segments']} segments of {scan['segment_s']:g} s" in (d.assumptions["segment_scan"])
+    )
+    # a machine whose slowest rate is above 40 Hz keeps 1 s segments
+    fast = diagnose_signal(x[: int(3.0 * FS)], FS, RPM, "6205", waviness=False)
+    assert fast.segment_scan["segment_s"] == SCAN_SEGMENT_S and fast.segment_scan["segments"] == 3
