@@ -40,6 +40,7 @@ from .spectra import (
     power_spectral_density,
     velocity_band_rms,
 )
+from .speed import SpeedEstimate, shaft_rate_from_spectrum
 from .stats import TIME_STATISTICS, time_statistics
 from .table import (
     DEFAULT_FAULTS,
@@ -61,6 +62,8 @@ __all__ = [
     "Evidence",
     "fault_evidence",
     "slip_line",
+    "SpeedEstimate",
+    "shaft_rate_from_spectrum",
     "BandSelection",
     "FALSE_ALARM",
     "LINE_DB",
