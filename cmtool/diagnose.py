@@ -70,6 +70,7 @@ __all__ = [
     "segment_scan",
     "SCAN_SEGMENT_S",
     "SCAN_SEGMENT_PERIODS",
+    "SPEED_WARNING",
     "rule_context",
     "rule_probabilities",
     "verdict_probabilities",
@@ -128,6 +129,12 @@ SCAN_SEGMENT_S = 1.0
 #: healthy bearings faulty where segments of 40 did not (docs/diagnosis.md, "Long records of
 #: slow machines").
 SCAN_SEGMENT_PERIODS = TRUSTED_RATE_PERIODS
+#: A 1x line this far from the speed given (fraction) gets a warning: measured in stop 59 on
+#: simulated CWRU-rig records given a speed 1 % off the rule found 0.60-0.61 of the inner-race
+#: pits it finds at the right one (0.69), 2 % off 0.03-0.36; the 1x line read from the
+#: spectrum was within 1.03 % of the shaft's on 1,750 simulated records of the rig, universal
+#: and slow recipes (docs/diagnosis.md, "The speed the rates come from").
+SPEED_WARNING = 0.015
 #: verdict name -> characteristic frequency used as its evidence
 FAULTS = {"outer race": "bpfo", "inner race": "bpfi", "ball": "two_bsf"}
 FAULT_NAMES = {key: name for name, key in FAULTS.items()}
@@ -501,6 +508,17 @@ def diagnose_signal(
     whole = x.size
     x = x[:MAX_RECORD_SAMPLES]
     rpm, freqs, ctx, warnings = rule_context(x, fs, rpm, geometry)
+    speed = features.shaft_rate_from_spectrum(x, fs, rpm / 60.0)
+    if speed.found and abs(speed.deviation) > SPEED_WARNING:
+        side = "below" if speed.deviation < 0 else "above"
+        warnings.append(
+            f"the spectrum's 1x line is at {speed.rate_hz:.2f} Hz ({60 * speed.rate_hz:.0f} "
+            f"rpm), {100 * abs(speed.deviation):.1f} % {side} the {rpm:g} rpm given: the fault "
+            f"rates come from the speed given and their lines are searched "
+            f"{100 * SLIP_SEARCH[0]:g} % below to {100 * SLIP_SEARCH[1]:g} % above them (a "
+            "speed 2 % off cost most inner-race detections on simulated records: "
+            "docs/diagnosis.md, 'The speed the rates come from'); check --rpm"
+        )
     rating = geometry.static_load_rating
     if load_n is not None and rating is not None and load_n > rating:
         warnings.append(
@@ -573,6 +591,7 @@ def diagnose_signal(
             "threshold_db": round(weighed_against, 2),
             "line_search": f"{-100 * SLIP_SEARCH[0]:g} to +{100 * SLIP_SEARCH[1]:g} % of "
             "each kinematic fault rate (slip)",
+            "spectrum_rpm": round(60.0 * speed.rate_hz, 1) if speed.found else None,
             "evidence": "each fault's fundamental, 2x, 3x and first sidebands (inner race: "
             "shaft rate; ball: cage rate) weighed by their false-alarm probabilities "
             "(Fisher), on the threshold's dB scale; a line on a stronger detected fault's "

@@ -181,9 +181,12 @@ def _print_diagnosis(diagnosis) -> None:
         f"{diagnosis.confidence:.2f}); envelope band {diagnosis.band_hz[0]:.0f}-"
         f"{diagnosis.band_hz[1]:.0f} Hz, threshold {diagnosis.threshold_db:.1f} dB"
     )
+    seen = a.get("spectrum_rpm")
     print(
-        f"  assumed: bearing {a['bearing']}, {a['rpm']:g} rpm, fs {a['fs_hz']:g} Hz, "
-        f"{a['record_s']:g} s ({a['samples']} samples), channel {a['channel']}"
+        f"  assumed: bearing {a['bearing']}, {a['rpm']:g} rpm"
+        + (f" (the spectrum's 1x line: {seen:g} rpm)" if seen is not None else "")
+        + f", fs {a['fs_hz']:g} Hz, {a['record_s']:g} s ({a['samples']} samples), "
+        f"channel {a['channel']}"
     )
     if "bearing_geometry" in a:
         print(f"  bearing geometry {a['bearing_geometry']}")

@@ -2,6 +2,7 @@
 
 import json
 import pickle
+import re
 import shutil
 import zipfile
 from pathlib import Path
@@ -492,6 +493,10 @@ def test_measured_recordings_get_their_labelled_fault(shared_data, name, bearing
     assert d.verdict == expected, (name, d.candidates)
     assert d.assumptions["fs_hz"] == float(row.sampling_rate_hz)
     assert d.assumptions["record_s"] == pytest.approx(x.size / float(row.sampling_rate_hz))
+    # the 1x line agrees with the speed the manifest gives (SPEED_WARNING, set on simulated
+    # records): no warning that the speed may be off
+    assert d.assumptions["spectrum_rpm"] is not None
+    assert not any("1x line" in w for w in d.warnings), d.warnings
 
 
 @pytest.mark.realdata
@@ -1315,3 +1320,42 @@ def test_a_record_of_few_fault_periods_warns_that_the_rule_is_less_sure():
         assert not any("periods of the slowest fault rate" in w for w in d.warnings)
     with pytest.raises(ValueError, match=f"at least {MIN_RATE_PERIODS} periods"):
         diagnose_signal(x[: int(0.15 * fs)], fs, rpm, "6205", waviness=False)
+
+
+def test_a_speed_the_1x_line_contradicts_is_warned_of_and_the_line_stated(tmp_path, capsys):
+    """An induction motor under load runs below its nameplate speed (the CWRU rig: 1730 rpm
+    at 3 hp). Given 1797 rpm for a record whose 1x line is at 28.83 Hz (1730 rpm), diagnose
+    says so (fault lines are searched from 2 % below to 0.5 % above the rates of the speed
+    given: 3.7 % off misses them); given 1730 rpm it does not, and the JSON states the speed
+    the spectrum shows either way (docs/diagnosis.md, "The speed the rates come from")."""
+    fs = 12000.0
+    t = np.arange(int(fs)) / fs
+    rng = np.random.default_rng(8)
+    x = rng.standard_normal(t.size) + sum(
+        0.3 / h * np.sin(2 * np.pi * h * 1730 / 60 * t) for h in range(1, 4)
+    )
+    off = diagnose_signal(x, fs, 1797.0, "6205", waviness=False)
+    said = [w for w in off.warnings if "1x line" in w]
+    assert len(said) == 1, off.warnings
+    line = re.search(r"1x line is at ([\d.]+) Hz \((\d+) rpm\), ([\d.]+) % below the 1797", said[0])
+    assert line is not None, said[0]
+    assert float(line[1]) == pytest.approx(28.83, abs=0.1) and float(line[3]) == pytest.approx(
+        3.7, abs=0.35
+    )
+    assert off.assumptions["spectrum_rpm"] == pytest.approx(1730.0, abs=3.0)
+    right = diagnose_signal(x, fs, 1730.0, "6205", waviness=False)
+    assert not any("1x line" in w for w in right.warnings)
+    assert right.assumptions["spectrum_rpm"] == pytest.approx(1730.0, abs=3.0)
+    # 1 % off (1747 rpm) is within what the line search absorbs: no warning
+    near = diagnose_signal(x, fs, 1747.0, "6205", waviness=False)
+    assert not any("1x line" in w for w in near.warnings)
+    # a record with no 1x line states none
+    quiet = diagnose_signal(rng.standard_normal(t.size), fs, 1797.0, "6205", waviness=False)
+    assert quiet.assumptions["spectrum_rpm"] is None
+    # the command prints the line's speed beside the one assumed, and the warning
+    np.save(tmp_path / "x.npy", x)
+    argv = ["diagnose", str(tmp_path / "x.npy"), "--fs", "12000", "--rpm", "1797"]
+    assert main([*argv, "--bearing", "6205"]) == 0
+    printed = capsys.readouterr().out
+    assert re.search(r"1797 rpm \(the spectrum's 1x line: 17(2\d|3[0-4])(\.\d)? rpm\)", printed)
+    assert "% below the 1797 rpm given" in printed and "check --rpm" in printed
