@@ -103,7 +103,7 @@ def check_load_n(load_n: object, name: str = "load_n") -> float:
 
 
 #: Mains frequencies whose harmonics a machine's electrical components put into a record [Hz].
-MAINS_HZ = (50.0, 60.0)
+MAINS_HZ = features.speed.MAINS_HZ
 #: Ball-pass harmonics whose lines are the reference.
 _REFERENCE_HARMONICS = (1, 2, 3)
 
@@ -184,8 +184,8 @@ def line_bins(f: np.ndarray, line: float) -> tuple[int, int]:
 def _peak_frequency(f: np.ndarray, a: np.ndarray, line: float) -> float:
     """Where the largest bin within a line's search width peaks, interpolated [Hz].
 
-    A parabola through the log amplitudes of the largest bin and its two neighbours (exact
-    for a Gaussian main lobe, within a few hundredths of a bin for a Hann window's).
+    A parabola through the log amplitudes of the largest bin and its two neighbours
+    (:func:`features.peak_offset_bins`).
     """
     df = f[1] - f[0]
     half_width = max(1.5 * df, 0.003 * line)
@@ -196,10 +196,7 @@ def _peak_frequency(f: np.ndarray, a: np.ndarray, line: float) -> float:
     k = lo + int(np.argmax(a[lo:hi]))
     if k <= 0 or k >= f.size - 1:
         return float(f[k])
-    left, mid, right = (math.log(max(v, 1e-300)) for v in a[k - 1 : k + 2])
-    curvature = left - 2.0 * mid + right
-    shift = 0.5 * (left - right) / curvature if curvature < 0 else 0.0
-    return float(f[k] + shift * df)
+    return float(f[k] + features.peak_offset_bins(a, k) * df)
 
 
 def _ratio_db(f: np.ndarray, a: np.ndarray, line: WavinessLine, freqs: BearingFrequencies) -> float:

@@ -37,6 +37,7 @@ from .spectra import (
     band_rms,
     integrate_signal,
     integrate_spectrum,
+    peak_offset_bins,
     power_spectral_density,
     velocity_band_rms,
 )
@@ -81,6 +82,7 @@ __all__ = [
     "Spectra",
     "TIME_STATISTICS",
     "amplitude_spectrum",
+    "peak_offset_bins",
     "band_amplitude",
     "band_rms",
     "band_metrics",

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._validate import FeatureError, check_fs, check_positive, check_signal
+from .spectra import peak_offset_bins
 
 __all__ = [
     "SpeedEstimate",
@@ -83,10 +84,7 @@ def _peak(
     k = lo + int(np.argmax(part))
     if part[k - lo] <= 0.0:
         return float(k * fine), 0.0
-    a, b, c = np.log(np.maximum(spectrum[k - 1 : k + 2], 1e-300))
-    curvature = a - 2.0 * b + c
-    shift = 0.5 * (a - c) / curvature if curvature < 0 else 0.0
-    return (k + shift) * fine, float(spectrum[k])
+    return (k + peak_offset_bins(spectrum, k)) * fine, float(spectrum[k])
 
 
 def shaft_rate_from_spectrum(
@@ -117,8 +115,8 @@ def shaft_rate_from_spectrum(
     Returns
     -------
     SpeedEstimate
-        ``found`` False when no 1x line stands out or the line found may be the mains' (the
-        rate is then ``given_hz``).
+        ``found`` False when no 1x line stands out, or the largest is the skirt of a stronger
+        line (the rate is then ``given_hz``).
 
     Examples
     --------
