@@ -10,7 +10,8 @@ fire.
 
 Run (about 3 minutes for a CWRU-rig draw on two workers):
     cmtool generate datasets/cwru-rig.toml --out data/cwru-rig --workers 2
-    .venv/bin/python benchmarks/speed_error.py data/cwru-rig [--errors -0.04,-0.02,0,0.02]
+    .venv/bin/python benchmarks/speed_error.py data/cwru-rig [--errors=-0.04,-0.02,0,0.02]
+        [--warning 0.01]
 """
 
 import argparse
@@ -47,11 +48,17 @@ def main() -> None:
     parser.add_argument("datasets", nargs="+")
     parser.add_argument("--errors", default="-0.04,-0.02,-0.01,0,0.01,0.02,0.04")
     parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument(
+        "--warning",
+        type=float,
+        default=SPEED_WARNING,
+        help=f"the relative deviation warned of (default diagnose's, {SPEED_WARNING})",
+    )
     args = parser.parse_args()
     errors = tuple(float(v) for v in args.errors.split(","))
     columns = []
     for e in errors:
-        columns += [f"{e:+.0%}", f"{e:+.0%} found", f"{e:+.0%} error", f"{e:+.0%} deviation"]
+        columns += [f"{e:+.1%}", f"{e:+.1%} found", f"{e:+.1%} error", f"{e:+.1%} deviation"]
     for path in args.datasets:
         frame = read_dataset(path)
         frame = frame[(frame.label == "healthy") | (frame.fault_snr_db >= -10)]
@@ -61,11 +68,11 @@ def main() -> None:
         table = pd.DataFrame(rows, columns=["id", "truth", *columns])
         print(f"{path}: {len(table)} records")
         for e in errors:
-            c = f"{e:+.0%}"
+            c = f"{e:+.1%}"
             recall = (table.truth == table[c]).groupby(table.truth).mean()
             found = table[f"{c} found"]
             worst = table.loc[found, f"{c} error"].abs().max() if found.any() else float("nan")
-            warned = (found & (table[f"{c} deviation"] > SPEED_WARNING)).mean()
+            warned = (found & (table[f"{c} deviation"] > args.warning)).mean()
             cells = " ".join(f"{k} {v:.2f}" for k, v in recall.items())
             print(
                 f"  speed given {c:>4s}: {cells} | 1x line found {found.mean():.3f}, "
