@@ -114,10 +114,27 @@ def small_dataset():
 
 
 @pytest.fixture(scope="session")
-def small_bundle(small_dataset):
-    """``cmtool train``'s defaults on ``datasets/small`` (trained once per session: the
-    diagnosis tests and the small target share it)."""
+def small_bundle(small_dataset, tmp_path_factory):
+    """``cmtool train``'s defaults on ``datasets/small`` (trained once per test run: the
+    diagnosis tests and the small target share it).
+
+    Under pytest-xdist the first worker to ask trains it and pickles it into the run's
+    temporary folder, under a file lock; the other loads it (the same bundle: training is
+    seeded and a pickle round trip is exact) instead of training it again (about 20 s).
+    """
+    import pickle
+
+    from filelock import FileLock
+
     from cmtool.classifier import train
 
     recipe = pathlib.Path(__file__).resolve().parents[1] / "datasets" / "small" / "recipe.toml"
-    return train(small_dataset, recipe=recipe.read_text())
+    if "PYTEST_XDIST_WORKER" not in os.environ:
+        return train(small_dataset, recipe=recipe.read_text())
+    shared = tmp_path_factory.getbasetemp().parent / "small_bundle.pickle"
+    with FileLock(f"{shared}.lock"):
+        if shared.is_file():
+            return pickle.loads(shared.read_bytes())
+        bundle = train(small_dataset, recipe=recipe.read_text())
+        shared.write_bytes(pickle.dumps(bundle))
+        return bundle
