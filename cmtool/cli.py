@@ -295,6 +295,14 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--fs", type=float, default=None, help="sample rate [Hz] (if not in file)")
     p.add_argument("--rpm", type=float, default=None, help="shaft speed [rev/min]")
+    p.add_argument(
+        "--speed-source",
+        default="given",
+        choices=("given", "spectrum"),
+        help="the fault rates' shaft speed: the one given (--rpm, the file's or the "
+        "manifest's), or the spectrum's 1x line found within 5 %% of it (a nameplate speed "
+        "is 1-4 %% off a loaded motor's; the speed given where no line stands out)",
+    )
     which = p.add_mutually_exclusive_group()
     which.add_argument(
         "--bearing",

@@ -71,6 +71,7 @@ __all__ = [
     "SCAN_SEGMENT_S",
     "SCAN_SEGMENT_PERIODS",
     "SPEED_WARNING",
+    "SPEED_SOURCES",
     "rule_context",
     "rule_probabilities",
     "verdict_probabilities",
@@ -136,6 +137,8 @@ SCAN_SEGMENT_PERIODS = TRUSTED_RATE_PERIODS
 #: 0.03 % of the shaft's on the rigs' draws and warned of 1 of 442 universal-recipe records
 #: at the right speed (docs/diagnosis.md, "The speed the rates come from").
 SPEED_WARNING = 0.0035
+#: Where the fault rates' speed comes from (``diagnose_signal(speed_source=...)``).
+SPEED_SOURCES = ("given", "spectrum")
 #: verdict name -> characteristic frequency used as its evidence
 FAULTS = {"outer race": "bpfo", "inner race": "bpfi", "ball": "two_bsf"}
 FAULT_NAMES = {key: name for name, key in FAULTS.items()}
@@ -456,6 +459,7 @@ def diagnose_signal(
     load_n: float | None = None,
     waviness: bool = True,
     unit: str | None = None,
+    speed_source: str = "given",
 ) -> Diagnosis:
     """Diagnose one signal.
 
@@ -489,6 +493,11 @@ def diagnose_signal(
     unit : {"g", "m/s^2"}, optional
         The signal's unit, if it is an acceleration whose unit is known: the ISO 15242
         velocity bands are then also given in mm/s (``velocity_bands_mm_s``).
+    speed_source : {"given", "spectrum"}
+        Where the fault rates' shaft speed comes from: ``rpm`` as given, or the spectrum's 1x
+        line found within 5 % of it (``features.shaft_rate_from_spectrum``; the speed given,
+        with a warning, where no line stands out). Either way the assumptions state the speed
+        given (``rpm_given``), the line's (``spectrum_rpm``) and the one used (``rpm``).
 
     Returns
     -------
@@ -508,9 +517,22 @@ def diagnose_signal(
         load_n = check_load_n(load_n)
     whole = x.size
     x = x[:MAX_RECORD_SAMPLES]
+    if speed_source not in SPEED_SOURCES:
+        raise ValueError(
+            f"speed_source = {speed_source!r} is not one of {', '.join(SPEED_SOURCES)}"
+        )
     rpm, freqs, ctx, warnings = rule_context(x, fs, rpm, geometry)
+    rpm_given = rpm
     speed = features.shaft_rate_from_spectrum(x, fs, rpm / 60.0)
-    if speed.found and abs(speed.deviation) > SPEED_WARNING:
+    from_line = speed_source == "spectrum" and speed.found
+    if from_line:
+        rpm, freqs, ctx, warnings = rule_context(x, fs, 60.0 * speed.rate_hz, geometry)
+    elif speed_source == "spectrum":
+        warnings.append(
+            f"no 1x line stands out of the spectrum within 5 % of the {rpm:g} rpm given: the "
+            "fault rates come from the speed given"
+        )
+    elif speed.found and abs(speed.deviation) > SPEED_WARNING:
         side = "below" if speed.deviation < 0 else "above"
         warnings.append(
             f"the spectrum's 1x line is at {speed.rate_hz:.2f} Hz ({60 * speed.rate_hz:.0f} "
@@ -519,7 +541,7 @@ def diagnose_signal(
             f"{100 * SLIP_SEARCH[0]:g} % below to {100 * SLIP_SEARCH[1]:g} % above them (on "
             "simulated records a speed 0.5 % off called 3 % of healthy bearings faulty and 2 % "
             "off missed most inner-race pits: docs/diagnosis.md, 'The speed the rates come "
-            "from'); check --rpm"
+            "from'); check --rpm, or take the line's speed (--speed-source spectrum)"
         )
     rating = geometry.static_load_rating
     if load_n is not None and rating is not None and load_n > rating:
@@ -577,6 +599,8 @@ def diagnose_signal(
         assumptions={
             "bearing": geometry.name,
             "rpm": float(rpm),
+            "rpm_given": float(rpm_given),
+            "speed_source": "the spectrum's 1x line" if from_line else "given",
             "fs_hz": float(fs),
             "record_s": round(x.size / fs, 6),
             "samples": int(x.size),

@@ -146,6 +146,7 @@ def _diagnose_one(
         baseline_fs=baseline_fs,
         load_n=args.load,
         unit=unit,
+        speed_source=args.speed_source,
     )
     diagnosis.warnings = list(warnings or []) + diagnosis.warnings
     diagnosis.assumptions["channel"] = channel
@@ -182,9 +183,13 @@ def _print_diagnosis(diagnosis) -> None:
         f"{diagnosis.band_hz[1]:.0f} Hz, threshold {diagnosis.threshold_db:.1f} dB"
     )
     seen = a.get("spectrum_rpm")
+    if a.get("speed_source", "given") != "given":  # --speed-source spectrum, its line found
+        speed = f" (the spectrum's 1x line; {a['rpm_given']:g} rpm given)"
+    else:
+        speed = f" (the spectrum's 1x line: {seen:g} rpm)" if seen is not None else ""
     print(
         f"  assumed: bearing {a['bearing']}, {a['rpm']:g} rpm"
-        + (f" (the spectrum's 1x line: {seen:g} rpm)" if seen is not None else "")
+        + speed
         + f", fs {a['fs_hz']:g} Hz, {a['record_s']:g} s ({a['samples']} samples), "
         f"channel {a['channel']}"
     )

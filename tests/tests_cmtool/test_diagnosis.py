@@ -1371,3 +1371,53 @@ def test_a_speed_the_1x_line_contradicts_is_warned_of_and_the_line_stated(tmp_pa
     printed = capsys.readouterr().out
     assert re.search(r"1797 rpm \(the spectrum's 1x line: 17(2\d|3[0-4])(\.\d)? rpm\)", printed)
     assert "% below the 1797 rpm given" in printed and "check --rpm" in printed
+
+
+def test_the_speed_can_come_from_the_spectrums_1x_line(tmp_path, capsys):
+    """``speed_source="spectrum"`` (``--speed-source spectrum``): an outer-race pit on a shaft
+    turning at 1730 rpm, diagnosed with the nameplate's 1797 rpm, is missed at the speed given
+    (3.7 % off: its lines lie outside the search) and found from the 1x line; the assumptions
+    say which speed was given, which was used and why; without a line the speed given is used
+    and the output says so."""
+    from scipy import signal as sp_signal
+
+    from generators import bearing, characteristic_frequencies
+
+    fs, n = 12000.0, 24000
+    t = np.arange(n) / fs
+    rng = np.random.default_rng(11)
+    bpfo = characteristic_frequencies(bearing("6205"), 1730 / 60).bpfo
+    times = np.arange(0.0, n / fs, 1 / bpfo)
+    times = times + rng.normal(0.0, 0.01 / bpfo, times.size)  # slip: 1 % jitter
+    impacts = np.zeros(n)
+    impacts[np.clip((times * fs).astype(int), 0, n - 1)] = 1.0
+    x = sp_signal.lfilter(*sp_signal.iirpeak(3000.0, 15.0, fs), impacts)
+    x = x + 0.05 * rng.standard_normal(n) + 0.2 * np.sin(2 * np.pi * 1730 / 60 * t)
+    given = diagnose_signal(x, fs, 1797.0, "6205", waviness=False)
+    assert given.verdict != "outer race", given.candidates
+    assert given.assumptions["speed_source"] == "given" and given.assumptions["rpm"] == 1797.0
+    line = diagnose_signal(x, fs, 1797.0, "6205", waviness=False, speed_source="spectrum")
+    assert line.verdict == "outer race", line.candidates
+    a = line.assumptions
+    assert a["speed_source"] == "the spectrum's 1x line" and a["rpm_given"] == 1797.0
+    assert a["rpm"] == pytest.approx(1730.0, abs=3.0) and a["rpm"] == pytest.approx(
+        a["spectrum_rpm"], abs=0.1
+    )
+    assert line.frequencies["bpfo"] == pytest.approx(bpfo, rel=2e-3)
+    assert not any("1x line is at" in w for w in line.warnings)  # used, not warned of
+    # no line: the speed given, said
+    quiet = diagnose_signal(
+        rng.standard_normal(n), fs, 1797.0, "6205", waviness=False, speed_source="spectrum"
+    )
+    assert quiet.assumptions["rpm"] == 1797.0 and quiet.assumptions["speed_source"] == "given"
+    assert any("no 1x line stands out" in w for w in quiet.warnings), quiet.warnings
+    with pytest.raises(ValueError, match="speed_source = 'tach' is not one of given, spectrum"):
+        diagnose_signal(x, fs, 1797.0, "6205", speed_source="tach")
+    # the command
+    np.save(tmp_path / "x.npy", x)
+    argv = ["diagnose", str(tmp_path / "x.npy"), "--fs", "12000", "--rpm", "1797"]
+    assert main([*argv, "--bearing", "6205", "--speed-source", "spectrum"]) == 0
+    printed = capsys.readouterr().out
+    used = r"17(2\d|3[0-4])(\.\d+)? rpm \(the spectrum's 1x line; 1797 rpm given\)"
+    assert re.search(used, printed), printed
+    assert "outer race" in printed.splitlines()[0]
