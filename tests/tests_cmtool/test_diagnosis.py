@@ -1421,3 +1421,14 @@ def test_the_speed_can_come_from_the_spectrums_1x_line(tmp_path, capsys):
     used = r"17(2\d|3[0-4])(\.\d+)? rpm \(the spectrum's 1x line; 1797 rpm given\)"
     assert re.search(used, printed), printed
     assert "outer race" in printed.splitlines()[0]
+    # a folder: its manifest's speed in verdicts.csv's rpm, the line's in spectrum_rpm
+    pd.DataFrame(
+        [{"file": "x.npy", "sampling_rate_hz": fs, "shaft_rpm": 1797, "bearing": "6205"}]
+    ).to_csv(tmp_path / "MANIFEST.csv", index=False)
+    out = tmp_path / "reports"
+    argv = ["diagnose", str(tmp_path), "--report", str(out), "--speed-source", "spectrum"]
+    assert main(argv) == 0
+    capsys.readouterr()
+    table = pd.read_csv(out / "verdicts.csv")
+    assert table["verdict"].tolist() == ["outer race"] and table["rpm"].tolist() == [1797]
+    assert table["spectrum_rpm"].iloc[0] == pytest.approx(1730.0, abs=3.0)
