@@ -370,9 +370,12 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
             if row["error"]:
                 print(f"{row['file']}: not diagnosed: {row['error']}")
                 continue
+            speed = f"{row['rpm']:g} rpm"
+            if args.speed_source == "spectrum" and row["spectrum_rpm"] is not None:
+                speed = f"{row['spectrum_rpm']:g} rpm, the 1x line's ({row['rpm']:g} given)"
             print(
                 f"{row['file']}: {row['verdict']} (confidence {row['confidence']:.2f}, "
-                f"margin {row['margin_db']:+.1f} dB; {row['bearing']}, {row['rpm']:g} rpm)"
+                f"margin {row['margin_db']:+.1f} dB; {row['bearing']}, {speed})"
                 + (f"; waviness hint: {row['waviness_hint']}" if row["waviness_hint"] else "")
                 + (f"; {row['warnings'].count(' | ') + 1} warning(s)" if row["warnings"] else "")
             )

@@ -1428,7 +1428,9 @@ def test_the_speed_can_come_from_the_spectrums_1x_line(tmp_path, capsys):
     out = tmp_path / "reports"
     argv = ["diagnose", str(tmp_path), "--report", str(out), "--speed-source", "spectrum"]
     assert main(argv) == 0
-    capsys.readouterr()
+    printed = capsys.readouterr().out
+    line_used = r"x.npy: outer race .*6205, 17[23]\d(\.\d)? rpm, the 1x line's \(1797 given\)"
+    assert re.search(line_used, printed), printed
     table = pd.read_csv(out / "verdicts.csv")
     assert table["verdict"].tolist() == ["outer race"] and table["rpm"].tolist() == [1797]
     assert table["spectrum_rpm"].iloc[0] == pytest.approx(1730.0, abs=3.0)
