@@ -298,7 +298,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--speed-source",
         default="given",
-        choices=("given", "spectrum"),
+        choices=("given", "spectrum", "auto"),
         help="the fault rates' shaft speed: the one given (--rpm, the file's or the "
         "manifest's), or the spectrum's 1x line found within 5 %% of it (a nameplate speed "
         "is 1-4 %% off a loaded motor's; the speed given where no line stands out)",

@@ -1411,7 +1411,7 @@ def test_the_speed_can_come_from_the_spectrums_1x_line(tmp_path, capsys):
     )
     assert quiet.assumptions["rpm"] == 1797.0 and quiet.assumptions["speed_source"] == "given"
     assert any("no 1x line stands out" in w for w in quiet.warnings), quiet.warnings
-    with pytest.raises(ValueError, match="speed_source = 'tach' is not one of given, spectrum"):
+    with pytest.raises(ValueError, match="speed_source = 'tach' is not one of given, spectrum, auto"):
         diagnose_signal(x, fs, 1797.0, "6205", speed_source="tach")
     # the command
     np.save(tmp_path / "x.npy", x)
@@ -1434,3 +1434,41 @@ def test_the_speed_can_come_from_the_spectrums_1x_line(tmp_path, capsys):
     table = pd.read_csv(out / "verdicts.csv")
     assert table["verdict"].tolist() == ["outer race"] and table["rpm"].tolist() == [1797]
     assert table["spectrum_rpm"].iloc[0] == pytest.approx(1730.0, abs=3.0)
+
+
+def test_auto_takes_the_lines_speed_only_where_the_speed_given_is_over_two_percent_off():
+    """``speed_source="auto"``: the speed given while the 1x line lies within
+    ``SPEED_CORRECTION`` (2 %) of it, the line's beyond (a speed 2 % off costs most inner-race
+    pits on simulated records), with a warning that says which."""
+    from scipy import signal as sp_signal
+
+    from cmtool.diagnose import SPEED_CORRECTION
+    from generators import bearing, characteristic_frequencies
+
+    assert SPEED_CORRECTION == 0.02
+    fs, n = 12000.0, 24000
+    t = np.arange(n) / fs
+    rng = np.random.default_rng(12)
+    bpfi = characteristic_frequencies(bearing("6205"), 1730 / 60).bpfi
+    times = np.arange(0.0, n / fs, 1 / bpfi)
+    times = times + rng.normal(0.0, 0.01 / bpfi, times.size)
+    impacts = np.zeros(n)
+    impacts[np.clip((times * fs).astype(int), 0, n - 1)] = 1.0 + 0.5 * np.cos(
+        2 * np.pi * 1730 / 60 * times  # the load zone's modulation at the shaft rate
+    )
+    x = sp_signal.lfilter(*sp_signal.iirpeak(3000.0, 15.0, fs), impacts)
+    x = x + 0.05 * rng.standard_normal(n) + 0.2 * np.sin(2 * np.pi * 1730 / 60 * t)
+    # 3.7 % off: the speed given misses the inner race, auto takes the line's and finds it
+    given = diagnose_signal(x, fs, 1797.0, "6205", waviness=False, speed_source="given")
+    assert given.verdict != "inner race", given.candidates
+    auto = diagnose_signal(x, fs, 1797.0, "6205", waviness=False, speed_source="auto")
+    assert auto.verdict == "inner race", auto.candidates
+    assert auto.assumptions["speed_source"] == "the spectrum's 1x line"
+    assert auto.assumptions["rpm"] == pytest.approx(1730.0, abs=3.0)
+    said = [w for w in auto.warnings if "1x line" in w]
+    assert len(said) == 1 and "more than 2 %: the fault rates come from the line's" in said[0]
+    # 1.5 % off (1756 rpm): within SPEED_CORRECTION, the speed given is used (and warned of)
+    near = diagnose_signal(x, fs, 1756.0, "6205", waviness=False, speed_source="auto")
+    assert near.assumptions["rpm"] == 1756.0 and near.assumptions["speed_source"] == "given"
+    said = [w for w in near.warnings if "1x line" in w]
+    assert len(said) == 1 and "the fault rates come from the speed given" in said[0]
