@@ -465,7 +465,7 @@ def diagnose_signal(
     load_n: float | None = None,
     waviness: bool = True,
     unit: str | None = None,
-    speed_source: str = "given",
+    speed_source: str = "auto",
 ) -> Diagnosis:
     """Diagnose one signal.
 

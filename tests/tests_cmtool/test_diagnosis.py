@@ -1341,7 +1341,7 @@ def test_a_speed_the_1x_line_contradicts_is_warned_of_and_the_line_stated(tmp_pa
     x = rng.standard_normal(t.size) + sum(
         0.3 / h * np.sin(2 * np.pi * h * 1730 / 60 * t) for h in range(1, 4)
     )
-    off = diagnose_signal(x, fs, 1797.0, "6205", waviness=False)
+    off = diagnose_signal(x, fs, 1797.0, "6205", waviness=False, speed_source="given")
     said = [w for w in off.warnings if "1x line" in w]
     assert len(said) == 1, off.warnings
     line = re.search(r"1x line is at ([\d.]+) Hz \((\d+) rpm\), ([\d.]+) % below the 1797", said[0])
@@ -1367,10 +1367,17 @@ def test_a_speed_the_1x_line_contradicts_is_warned_of_and_the_line_stated(tmp_pa
     # the command prints the line's speed beside the one assumed, and the warning
     np.save(tmp_path / "x.npy", x)
     argv = ["diagnose", str(tmp_path / "x.npy"), "--fs", "12000", "--rpm", "1797"]
+    assert main([*argv, "--bearing", "6205", "--speed-source", "given"]) == 0
+    printed = capsys.readouterr().out
+    seen = r"1797 rpm \(the spectrum's 1x line: 17(2\d|3[0-4])(\.\d)? rpm\)"
+    assert re.search(seen, printed), printed
+    assert "% below the 1797 rpm given" in printed and "check --rpm" in printed
+    # by default (auto) a speed 3.7 % off is replaced by the line's, and said
     assert main([*argv, "--bearing", "6205"]) == 0
     printed = capsys.readouterr().out
-    assert re.search(r"1797 rpm \(the spectrum's 1x line: 17(2\d|3[0-4])(\.\d)? rpm\)", printed)
-    assert "% below the 1797 rpm given" in printed and "check --rpm" in printed
+    used = r"17(2\d|3[0-4])(\.\d+)? rpm \(the spectrum's 1x line; 1797 rpm given\)"
+    assert re.search(used, printed), printed
+    assert "more than 2 %: the fault rates come from the line's speed" in printed
 
 
 def test_the_speed_can_come_from_the_spectrums_1x_line(tmp_path, capsys):
@@ -1393,7 +1400,7 @@ def test_the_speed_can_come_from_the_spectrums_1x_line(tmp_path, capsys):
     impacts[np.clip((times * fs).astype(int), 0, n - 1)] = 1.0
     x = sp_signal.lfilter(*sp_signal.iirpeak(3000.0, 15.0, fs), impacts)
     x = x + 0.05 * rng.standard_normal(n) + 0.2 * np.sin(2 * np.pi * 1730 / 60 * t)
-    given = diagnose_signal(x, fs, 1797.0, "6205", waviness=False)
+    given = diagnose_signal(x, fs, 1797.0, "6205", waviness=False, speed_source="given")
     assert given.verdict != "outer race", given.candidates
     assert given.assumptions["speed_source"] == "given" and given.assumptions["rpm"] == 1797.0
     line = diagnose_signal(x, fs, 1797.0, "6205", waviness=False, speed_source="spectrum")
@@ -1411,7 +1418,7 @@ def test_the_speed_can_come_from_the_spectrums_1x_line(tmp_path, capsys):
     )
     assert quiet.assumptions["rpm"] == 1797.0 and quiet.assumptions["speed_source"] == "given"
     assert any("no 1x line stands out" in w for w in quiet.warnings), quiet.warnings
-    with pytest.raises(ValueError, match="speed_source = 'tach' is not one of given, spectrum, auto"):
+    with pytest.raises(ValueError, match="'tach' is not one of given, spectrum, auto"):
         diagnose_signal(x, fs, 1797.0, "6205", speed_source="tach")
     # the command
     np.save(tmp_path / "x.npy", x)
