@@ -183,7 +183,7 @@ def _print_diagnosis(diagnosis) -> None:
         f"{diagnosis.band_hz[1]:.0f} Hz, threshold {diagnosis.threshold_db:.1f} dB"
     )
     seen = a.get("spectrum_rpm")
-    if a.get("speed_source", "given") != "given":  # --speed-source spectrum, its line found
+    if a.get("speed_source", "given") != "given":  # the line's speed used (spectrum, auto)
         speed = f" (the spectrum's 1x line; {a['rpm_given']:g} rpm given)"
     else:
         speed = f" (the spectrum's 1x line: {seen:g} rpm)" if seen is not None else ""
@@ -264,6 +264,7 @@ VERDICT_COLUMNS = (
     "bearing",
     "rpm",
     "spectrum_rpm",
+    "speed_source",
     "fs_hz",
     "band_low_hz",
     "band_high_hz",
@@ -371,7 +372,7 @@ def _diagnose_folder(args: argparse.Namespace) -> int:
                 print(f"{row['file']}: not diagnosed: {row['error']}")
                 continue
             speed = f"{row['rpm']:g} rpm"
-            if args.speed_source == "spectrum" and row["spectrum_rpm"] is not None:
+            if row["speed_source"] not in (None, "given"):  # the line's speed was used
                 speed = f"{row['spectrum_rpm']:g} rpm, the 1x line's ({row['rpm']:g} given)"
             print(
                 f"{row['file']}: {row['verdict']} (confidence {row['confidence']:.2f}, "
@@ -446,6 +447,7 @@ def _folder_row(task) -> tuple[dict, dict]:
         basis=diagnosis.basis,
         margin_db=round(top["evidence_db"] - diagnosis.threshold_db, 2),
         spectrum_rpm=diagnosis.assumptions.get("spectrum_rpm"),
+        speed_source=diagnosis.assumptions.get("speed_source"),
         band_low_hz=diagnosis.band_hz[0],
         band_high_hz=diagnosis.band_hz[1],
         waviness_hint=None if not wav else f"{wav['surface']} race order ~{wav['order']}",

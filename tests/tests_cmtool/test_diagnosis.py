@@ -1428,19 +1428,20 @@ def test_the_speed_can_come_from_the_spectrums_1x_line(tmp_path, capsys):
     used = r"17(2\d|3[0-4])(\.\d+)? rpm \(the spectrum's 1x line; 1797 rpm given\)"
     assert re.search(used, printed), printed
     assert "outer race" in printed.splitlines()[0]
-    # a folder: its manifest's speed in verdicts.csv's rpm, the line's in spectrum_rpm
+    # a folder (by default, auto: 3.7 % off, the line's speed): its manifest's speed in
+    # verdicts.csv's rpm, the line's in spectrum_rpm, which one was used in speed_source
     pd.DataFrame(
         [{"file": "x.npy", "sampling_rate_hz": fs, "shaft_rpm": 1797, "bearing": "6205"}]
     ).to_csv(tmp_path / "MANIFEST.csv", index=False)
     out = tmp_path / "reports"
-    argv = ["diagnose", str(tmp_path), "--report", str(out), "--speed-source", "spectrum"]
-    assert main(argv) == 0
+    assert main(["diagnose", str(tmp_path), "--report", str(out)]) == 0
     printed = capsys.readouterr().out
     line_used = r"x.npy: outer race .*6205, 17[23]\d(\.\d)? rpm, the 1x line's \(1797 given\)"
     assert re.search(line_used, printed), printed
     table = pd.read_csv(out / "verdicts.csv")
     assert table["verdict"].tolist() == ["outer race"] and table["rpm"].tolist() == [1797]
     assert table["spectrum_rpm"].iloc[0] == pytest.approx(1730.0, abs=3.0)
+    assert table["speed_source"].tolist() == ["the spectrum's 1x line"]
 
 
 def test_auto_takes_the_lines_speed_only_where_the_speed_given_is_over_two_percent_off():
