@@ -538,14 +538,18 @@ def diagnose_signal(
     from_line = (speed_source == "spectrum" and speed.found) or corrected
     if from_line:
         rpm, freqs, ctx, warnings = rule_context(x, fs, 60.0 * speed.rate_hz, geometry)
+    line_off = (  # where the line lies against the speed given, as both warnings say it
+        f"the spectrum's 1x line is at {speed.rate_hz:.2f} Hz ({60 * speed.rate_hz:.0f} "
+        f"rpm), {100 * abs(speed.deviation):.1f} % "
+        f"{'below' if speed.deviation < 0 else 'above'} the {rpm_given:g} rpm given"
+        if speed.found
+        else ""
+    )
     if corrected:
-        side = "below" if speed.deviation < 0 else "above"
         warnings.append(
-            f"the spectrum's 1x line is at {speed.rate_hz:.2f} Hz ({60 * speed.rate_hz:.0f} "
-            f"rpm), {100 * abs(speed.deviation):.1f} % {side} the {rpm_given:g} rpm given, "
-            f"more than {100 * SPEED_CORRECTION:g} %: the fault rates come from the line's "
-            "speed (on simulated records a speed 2 % off missed most inner-race pits); check "
-            "--rpm, or keep the speed given with --speed-source given"
+            f"{line_off}, more than {100 * SPEED_CORRECTION:g} %: the fault rates come from "
+            "the line's speed (on simulated records a speed 2 % off missed most inner-race "
+            "pits); check --rpm, or keep the speed given with --speed-source given"
         )
     elif speed_source == "spectrum" and not speed.found:
         warnings.append(
@@ -553,15 +557,12 @@ def diagnose_signal(
             "fault rates come from the speed given"
         )
     elif not from_line and speed.found and abs(speed.deviation) > SPEED_WARNING:
-        side = "below" if speed.deviation < 0 else "above"
         warnings.append(
-            f"the spectrum's 1x line is at {speed.rate_hz:.2f} Hz ({60 * speed.rate_hz:.0f} "
-            f"rpm), {100 * abs(speed.deviation):.1f} % {side} the {rpm:g} rpm given: the fault "
-            f"rates come from the speed given and their lines are searched "
-            f"{100 * SLIP_SEARCH[0]:g} % below to {100 * SLIP_SEARCH[1]:g} % above them (on "
-            "simulated records a speed 0.5 % off called 3 % of healthy bearings faulty and 2 % "
-            "off missed most inner-race pits: docs/diagnosis.md, 'The speed the rates come "
-            "from'); check --rpm, or take the line's speed (--speed-source spectrum)"
+            f"{line_off}: the fault rates come from the speed given and their lines are "
+            f"searched {100 * SLIP_SEARCH[0]:g} % below to {100 * SLIP_SEARCH[1]:g} % above "
+            "them (on simulated records a speed 0.5 % off called 3 % of healthy bearings "
+            "faulty and 2 % off missed most inner-race pits: docs/diagnosis.md, 'The speed the "
+            "rates come from'); check --rpm, or take the line's speed (--speed-source spectrum)"
         )
     rating = geometry.static_load_rating
     if load_n is not None and rating is not None and load_n > rating:
