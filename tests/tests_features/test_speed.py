@@ -51,3 +51,25 @@ def test_bad_input_is_refused_by_name():
         F.shaft_rate_from_spectrum(x, FS, -30.0)
     with pytest.raises(F.FeatureError, match="given_hz = 5000"):
         F.shaft_rate_from_spectrum(x, FS, 5000.0)
+
+
+def test_a_record_of_awkward_length_gets_the_padded_transforms_bins():
+    # a length with a large prime factor takes the chirp-z path: the same bins as the FFT's
+    from features.speed import _padded_spectrum
+
+    rng = np.random.default_rng(5)
+    n = 12007  # prime
+    x = rng.standard_normal(n) * np.hanning(n)
+    points = 16 * n
+    first, last = 2400, 2900
+    full = np.abs(np.fft.rfft(x, points))
+    part = _padded_spectrum(x, points, first, last)
+    np.testing.assert_allclose(
+        part[first : last + 1], full[first : last + 1], rtol=0, atol=1e-9 * full.max()
+    )
+    assert part.shape == full.shape and not part[:first].any() and not part[last + 1 :].any()
+    # and a fast length keeps the FFT itself
+    fast = 16 * 12000
+    np.testing.assert_array_equal(
+        _padded_spectrum(x[:12000], fast, first, last), np.abs(np.fft.rfft(x[:12000], fast))
+    )
