@@ -532,20 +532,28 @@ def diagnose_signal(
     rpm, freqs, ctx, warnings = rule_context(x, fs, rpm, geometry)
     rpm_given = rpm
     speed = features.shaft_rate_from_spectrum(x, fs, rpm / 60.0)
-    corrected = (
-        speed_source == "auto" and speed.found and abs(speed.deviation) > SPEED_CORRECTION
-    )
+    corrected = speed_source == "auto" and speed.found and abs(speed.deviation) > SPEED_CORRECTION
     from_line = (speed_source == "spectrum" and speed.found) or corrected
-    if from_line:
-        rpm, freqs, ctx, warnings = rule_context(x, fs, 60.0 * speed.rate_hz, geometry)
-    line_off = (  # where the line lies against the speed given, as both warnings say it
+    line_off = (  # where the line lies against the speed given, as the warnings say it
         f"the spectrum's 1x line is at {speed.rate_hz:.2f} Hz ({60 * speed.rate_hz:.0f} "
         f"rpm), {100 * abs(speed.deviation):.1f} % "
         f"{'below' if speed.deviation < 0 else 'above'} the {rpm_given:g} rpm given"
         if speed.found
         else ""
     )
-    if corrected:
+    unusable = None  # why the line's speed cannot be diagnosed at, where it cannot
+    if from_line:
+        try:
+            rpm, freqs, ctx, warnings = rule_context(x, fs, 60.0 * speed.rate_hz, geometry)
+        except ValueError as error:  # beyond the toolkit's speeds, fs or record at that speed
+            unusable = str(error)
+            corrected = from_line = False
+    if unusable is not None:
+        warnings.append(
+            f"{line_off}, but the record cannot be diagnosed at the line's speed ({unusable}): "
+            "the fault rates come from the speed given"
+        )
+    elif corrected:
         warnings.append(
             f"{line_off}, more than {100 * SPEED_CORRECTION:g} %: the fault rates come from "
             "the line's speed (on simulated records a speed 2 % off missed most inner-race "

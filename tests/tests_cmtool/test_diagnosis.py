@@ -1474,3 +1474,31 @@ def test_auto_takes_the_lines_speed_only_where_the_speed_given_is_over_two_perce
     assert near.assumptions["rpm"] == 1756.0 and near.assumptions["speed_source"] == "given"
     said = [w for w in near.warnings if "1x line" in w]
     assert len(said) == 1 and "the fault rates come from the speed given" in said[0]
+
+
+@pytest.mark.parametrize(
+    ("line_rpm", "given_rpm", "fs", "why"),
+    [
+        # enough for 1797 rpm's fault rates (fs >= 1246 Hz), not for the line's 1850
+        (1850.0, 1797.0, 1260.0, "fs = 1260 Hz is too low"),
+        # beyond the toolkit's 120,000 rpm
+        (122730.0, 119000.0, 100000.0, "outside the allowed range (0, 120000] rpm"),
+    ],
+)
+def test_a_lines_speed_the_record_cannot_be_diagnosed_at_leaves_the_speed_given(
+    line_rpm, given_rpm, fs, why
+):
+    """A 1x line whose speed the record cannot be diagnosed at (too fast for its rate, beyond
+    the toolkit's speeds) is reported, and the speed given is used, instead of an error about
+    a speed nobody gave."""
+    t = np.arange(int(10 * fs if fs < 5000 else fs)) / fs
+    rate = line_rpm / 60.0
+    x = np.sin(2 * np.pi * rate * t) + 0.5 * np.sin(2 * np.pi * 2 * rate * t)
+    x = x + 0.05 * np.random.default_rng(2).standard_normal(t.size)
+    for source in ("auto", "spectrum"):
+        d = diagnose_signal(x, fs, given_rpm, "6205", waviness=False, speed_source=source)
+        assert d.assumptions["rpm"] == given_rpm and d.assumptions["speed_source"] == "given"
+        assert d.assumptions["spectrum_rpm"] == pytest.approx(line_rpm, rel=1e-3)
+        said = [w for w in d.warnings if "1x line" in w]
+        assert len(said) == 1, d.warnings
+        assert "cannot be diagnosed at the line's speed" in said[0] and why in said[0]
