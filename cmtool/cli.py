@@ -302,7 +302,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="the fault rates' shaft speed: the one given (--rpm, the file's or the "
         "manifest's), the spectrum's 1x line found within 5 %% of it (a nameplate speed is "
         "1-4 %% off a loaded motor's; the speed given where no line stands out), or auto "
-        "(default): the speed given unless the line lies more than 2 %% from it",
+        "(default): the speed given unless the line lies more than 1 %% from it",
     )
     which = p.add_mutually_exclusive_group()
     which.add_argument(
