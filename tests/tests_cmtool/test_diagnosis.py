@@ -1507,3 +1507,43 @@ def test_a_lines_speed_the_record_cannot_be_diagnosed_at_leaves_the_speed_given(
         said = [w for w in d.warnings if "1x line" in w]
         assert len(said) == 1, d.warnings
         assert "cannot be diagnosed at the line's speed" in said[0] and why in said[0]
+
+
+@pytest.mark.xfail(
+    strict=True,
+    raises=AssertionError,
+    reason="issue 18: the periodic part is removed at the rates of the speed given, so a speed "
+    "0.35-1 % off leaves a periodic ball-pass train in the random part (docs/diagnosis.md, 'The "
+    "speed the rates come from': the fix measured in stop 61, not shipped)",
+)
+def test_a_periodic_ball_pass_train_is_no_fault_when_the_speed_given_is_slightly_off():
+    """A strictly periodic train at BPFO (a healthy bearing's varying compliance, made sharp)
+    is healthy at the right speed. With the speed given 0.5-0.75 % off, the harmonic fit at the
+    given rates leaves it in the random part, where it reads as an outer-race fault far over
+    the threshold; auto removes the periodic part at the 1x line's speed (the fault rates stay
+    the speed given's) and it stays healthy. Auto does not yet: the bar for it was missed."""
+    from scipy import signal as sp_signal
+
+    from generators import bearing, characteristic_frequencies
+
+    fs, n, rpm = 12000.0, 12000, 1797.0
+    rates = characteristic_frequencies(bearing("6205"), rpm / 60)
+    t = np.arange(n) / fs
+    orders = np.arange(1, int(5900 // rates.bpfo))
+    gains = sp_signal.freqz(*sp_signal.iirpeak(3000.0, 10.0, fs), worN=orders * rates.bpfo, fs=fs)[
+        1
+    ]
+    x = np.real((gains[:, None] * np.exp(2j * np.pi * np.outer(orders * rates.bpfo, t))).sum(0))
+    x = x / x.std() + 0.3 * np.sin(2 * np.pi * rates.shaft * t)
+    x = x + 0.05 * np.random.default_rng(1).standard_normal(n)
+    assert diagnose_signal(x, fs, rpm, "6205", waviness=False).verdict == "healthy"
+    for error in (-0.005, 0.0075):
+        given = diagnose_signal(
+            x, fs, rpm * (1 + error), "6205", waviness=False, speed_source="given"
+        )
+        assert given.verdict == "outer race"  # the weakness
+        auto = diagnose_signal(x, fs, rpm * (1 + error), "6205", waviness=False)
+        assert auto.verdict == "healthy", auto.candidates
+        assert auto.assumptions["rpm"] == rpm * (1 + error)  # the fault rates: the speed given's
+        said = [w for w in auto.warnings if "1x line" in w]
+        assert len(said) == 1 and "the periodic part is removed at the line speed" in said[0]
