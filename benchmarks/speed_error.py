@@ -68,7 +68,7 @@ def main() -> None:
     errors = tuple(float(v) for v in args.errors.split(","))
     columns = []
     for e in errors:
-        columns += [f"{e:+.1%}", f"{e:+.1%} found", f"{e:+.1%} error", f"{e:+.1%} deviation"]
+        columns += [f"{e:+.2%}", f"{e:+.2%} found", f"{e:+.2%} error", f"{e:+.2%} deviation"]
     for path in args.datasets:
         frame = read_dataset(path)
         frame = frame[(frame.label == "healthy") | (frame.fault_snr_db >= -10)]
@@ -78,14 +78,14 @@ def main() -> None:
         table = pd.DataFrame(rows, columns=["id", "truth", *columns])
         print(f"{path}: {len(table)} records")
         for e in errors:
-            c = f"{e:+.1%}"
+            c = f"{e:+.2%}"
             recall = (table.truth == table[c]).groupby(table.truth).mean()
             found = table[f"{c} found"]
             worst = table.loc[found, f"{c} error"].abs().max() if found.any() else float("nan")
             warned = (found & (table[f"{c} deviation"] > args.warning)).mean()
             cells = " ".join(f"{k} {v:.2f}" for k, v in recall.items())
             print(
-                f"  speed given {c:>4s}: {cells} | 1x line found {found.mean():.3f}, "
+                f"  speed given {c:>6s}: {cells} | 1x line found {found.mean():.3f}, "
                 f"largest error {100 * worst:.3f} %, warned {warned:.3f}"
             )
 
