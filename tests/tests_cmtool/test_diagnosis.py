@@ -1365,13 +1365,18 @@ def test_a_speed_the_1x_line_contradicts_is_warned_of_and_the_line_stated(tmp_pa
     quiet = diagnose_signal(rng.standard_normal(t.size), fs, 1797.0, "6205", waviness=False)
     assert quiet.assumptions["spectrum_rpm"] is None
     # the command prints the line's speed beside the one assumed, and the warning
-    np.save(tmp_path / "x.npy", x)
-    argv = ["diagnose", str(tmp_path / "x.npy"), "--fs", "12000", "--rpm", "1797"]
-    assert main([*argv, "--bearing", "6205", "--speed-source", "given"]) == 0
-    printed = capsys.readouterr().out
+    printed = _diagnosed_at_1797_rpm(x, tmp_path, capsys, "given")
     seen = r"1797 rpm \(the spectrum's 1x line: 17(2\d|3[0-4])(\.\d)? rpm\)"
     assert re.search(seen, printed), printed
     assert "% below the 1797 rpm given" in printed and "check --rpm" in printed
+
+
+def _diagnosed_at_1797_rpm(x: np.ndarray, tmp_path: Path, capsys, speed_source: str) -> str:
+    """What ``cmtool diagnose`` prints for ``x`` (12 kHz, a 6205 given 1797 rpm)."""
+    np.save(tmp_path / "x.npy", x)
+    argv = ["diagnose", str(tmp_path / "x.npy"), "--fs", "12000", "--rpm", "1797"]
+    assert main([*argv, "--bearing", "6205", "--speed-source", speed_source]) == 0
+    return capsys.readouterr().out
 
 
 def test_the_speed_can_come_from_the_spectrums_1x_line(tmp_path, capsys):
@@ -1415,10 +1420,7 @@ def test_the_speed_can_come_from_the_spectrums_1x_line(tmp_path, capsys):
     with pytest.raises(ValueError, match="'tach' is not one of given, spectrum, auto"):
         diagnose_signal(x, fs, 1797.0, "6205", speed_source="tach")
     # the command
-    np.save(tmp_path / "x.npy", x)
-    argv = ["diagnose", str(tmp_path / "x.npy"), "--fs", "12000", "--rpm", "1797"]
-    assert main([*argv, "--bearing", "6205", "--speed-source", "spectrum"]) == 0
-    printed = capsys.readouterr().out
+    printed = _diagnosed_at_1797_rpm(x, tmp_path, capsys, "spectrum")
     used = r"17(2\d|3[0-4])(\.\d+)? rpm \(the spectrum's 1x line; 1797 rpm given\)"
     assert re.search(used, printed), printed
     assert "outer race" in printed.splitlines()[0]
