@@ -1516,7 +1516,7 @@ def test_a_lines_speed_the_record_cannot_be_diagnosed_at_leaves_the_speed_given(
     raises=AssertionError,
     reason="issue 18: the periodic part is removed at the rates of the speed given, so a speed "
     "0.35-1 % off leaves a periodic ball-pass train in the random part (docs/diagnosis.md, 'The "
-    "speed the rates come from': the fix measured in stop 61, not shipped)",
+    "speed the rates come from': the fix measured in stops 61 and 62, not shipped)",
 )
 def test_a_periodic_ball_pass_train_is_no_fault_when_the_speed_given_is_slightly_off():
     """A strictly periodic train at BPFO (a healthy bearing's varying compliance, made sharp)
