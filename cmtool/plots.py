@@ -113,7 +113,8 @@ def plot_spectrum(
     fmax : float, optional
         Upper frequency limit [Hz]; default 10 times the largest marker or the Nyquist.
     log : bool
-        Logarithmic amplitude axis.
+        Logarithmic amplitude axis (a plain spectrum's decades); False: linear from 0, as
+        envelope spectra are read (the lines against their floor).
     emphasis : str, optional
         The marker of the verdict: drawn solid and wider, "(verdict)" in the legend.
     sidebands : float, optional
@@ -131,9 +132,12 @@ def plot_spectrum(
         fmax = min(float(frequencies[-1]), 10 * max(markers.values(), default=frequencies[-1]))
     keep = (frequencies > 0) & (frequencies <= fmax)
     fig, ax = plt.subplots(figsize=(10, 4.5), dpi=110)
-    ax.plot(frequencies[keep], amplitude[keep], lw=0.8, color="0.2")
+    # the data over the markers: a marker must not hide the line it marks
+    ax.plot(frequencies[keep], amplitude[keep], lw=0.8, color="0.2", zorder=3)
     if log:
         ax.set_yscale("log")
+    else:
+        ax.set_ylim(bottom=0.0)
     for name, f0 in markers.items():
         if not f0 or f0 <= 0:
             continue

@@ -100,6 +100,7 @@ def write_report(
         ylabel="envelope amplitude",
         markers=markers,
         fmax=min(fs / 2, 5 * f["bpfi"]),
+        log=False,
         emphasis=fault,
         sidebands={"inner race": f["shaft"], "ball": f["ftf"]}.get(diagnosis.verdict),
     )

@@ -529,6 +529,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
             ylabel="envelope [m/s^2]",
             markers=markers,
             fmax=min(result.fs / 2, 5 * f.bpfi),
+            log=False,
         )
         print(f"wrote {path}")
     return 0

@@ -122,3 +122,44 @@ def test_the_verdicts_comb_is_marked_across_the_span_and_the_others_at_three_har
     assert sorted(x for x in xs if x % 100.0 == 0) == [100.0 * k for k in range(1, 11)]
     assert sorted(x for x in xs if x % 137.0 == 0) == [137.0, 274.0, 411.0]
     assert sorted(x for x in xs if x % 10.0 == 0 and x % 100.0) == [90, 110, 190, 210, 290, 310]
+
+
+def test_the_reports_envelope_spectrum_is_linear_with_its_lines_over_the_markers(
+    tmp_path, monkeypatch
+):
+    """An envelope spectrum is read on a linear axis from 0 (its lines against their floor; a
+    log axis spends half its height on the floor's dips), the plain spectrum on a log one; in
+    both the data is drawn over the markers, so the verdict's solid marker does not hide the
+    line it marks."""
+    from scipy import signal as sp_signal
+
+    import cmtool.plots as plots
+    from cmtool.diagnose import diagnose_signal
+    from cmtool.report import write_report
+    from generators import bearing, characteristic_frequencies
+
+    figures = {}
+
+    def keep(fig, path):
+        figures[path.name] = fig
+        return path
+
+    monkeypatch.setattr(plots, "save_figure", keep)
+    fs, n = 12000.0, 12000
+    bpfo = characteristic_frequencies(bearing("6205"), 1797 / 60).bpfo
+    rng = np.random.default_rng(5)
+    times = np.arange(0.0, n / fs, 1 / bpfo)
+    times = times + rng.normal(0.0, 0.01 / bpfo, times.size)  # slip: 1 % jitter
+    impacts = np.zeros(n)
+    impacts[np.clip((times * fs).astype(int), 0, n - 1)] = 1.0
+    x = sp_signal.lfilter(*sp_signal.iirpeak(3000.0, 15.0, fs), impacts)
+    x = x + 0.05 * rng.standard_normal(n)
+    d = diagnose_signal(x, fs, 1797.0, "6205", waviness=False)
+    assert d.verdict == "outer race"
+    write_report(d, tmp_path, title="t", x=x, fs=fs)
+    envelope, spectrum = figures["envelope.png"].axes[0], figures["spectrum.png"].axes[0]
+    assert envelope.get_yscale() == "linear" and envelope.get_ylim()[0] == 0.0
+    assert spectrum.get_yscale() == "log"
+    for ax in (envelope, spectrum):
+        data, *markers = ax.lines
+        assert markers and all(data.get_zorder() > m.get_zorder() for m in markers)
