@@ -268,12 +268,43 @@ def transform_in_chunks(
     return np.concatenate(parts) if parts else extractor.transform(frame)
 
 
-def _grouped_cv(X, y, groups, estimator, n_splits: int) -> tuple[float, np.ndarray]:
-    cv = GroupKFold(n_splits=n_splits)
+def _out_of_fold(
+    X: np.ndarray,
+    y: np.ndarray,
+    groups: np.ndarray,
+    estimator: Any,
+    n_splits: int,
+    *,
+    probabilities: bool = False,
+    X_extra: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
+    """Each signal's prediction by the grouped fold's model that did not see its group.
+
+    With ``probabilities`` also the class probabilities (columns: the sorted labels of
+    ``y``; a class a fold's model never saw has 0) and those of ``X_extra`` (signals in no
+    fold) averaged over the folds' models: what :func:`pooled_calibration` weighs. One fit
+    per fold serves the score and the calibration.
+    """
+    classes = np.array(sorted(set(y)))
     pred = np.empty_like(y)
-    for train_idx, test_idx in cv.split(X, y, groups):
+    proba = np.zeros((len(y), classes.size)) if probabilities else None
+    extra = None
+    if probabilities and X_extra is not None and len(X_extra):
+        extra = np.zeros((len(X_extra), classes.size))
+    folds = list(GroupKFold(n_splits=n_splits).split(X, y, groups))
+    for train_idx, test_idx in folds:
         est = clone(estimator).fit(X[train_idx], y[train_idx])
         pred[test_idx] = est.predict(X[test_idx])
+        if proba is not None:
+            columns = np.searchsorted(classes, est.classes_)
+            proba[np.ix_(test_idx, columns)] = est.predict_proba(X[test_idx])
+            if extra is not None:
+                extra[:, columns] += est.predict_proba(X_extra) / len(folds)
+    return pred, proba, extra
+
+
+def _grouped_cv(X, y, groups, estimator, n_splits: int) -> tuple[float, np.ndarray]:
+    pred, _, _ = _out_of_fold(X, y, groups, estimator, n_splits)
     return float(balanced_accuracy_score(y, pred)), pred
 
 
@@ -362,6 +393,7 @@ def pooled_calibration(
     X_left_out: pd.DataFrame | None = None,
     *,
     rule: list[dict[str, float]],
+    out_of_fold: tuple[np.ndarray, np.ndarray | None] | None = None,
 ) -> dict | None:
     """Calibration of ``diagnose``'s pooled verdict (rule + this model) on the training data.
 
@@ -374,6 +406,9 @@ def pooled_calibration(
     verdict is right (or every one wrong): nothing to fit. ``rule`` holds the rule detector's
     probabilities (``cmtool.diagnose.rule_probabilities``) of ``frame``'s rows, then of
     ``left_out``'s (:func:`_table_and_rule` computes them with the features).
+    ``out_of_fold``: the model's out-of-fold probabilities of ``frame``'s rows and the
+    left-out signals' fold average, where :func:`train`'s cross-validation already has
+    them (the same folds and estimator, so the same figures); None fits the folds here.
 
     Returns
     -------
@@ -386,16 +421,13 @@ def pooled_calibration(
     kinds = class_kinds(frame)
 
     classes = np.array(sorted(set(y)))
-    proba = np.zeros((len(y), classes.size))
     extra = 0 if left_out is None else len(left_out)
-    proba_left_out = np.zeros((extra, classes.size))
-    folds = list(GroupKFold(n_splits=n_splits).split(X, y, groups))
-    for train_idx, test_idx in folds:
-        est = clone(estimator).fit(X[train_idx], y[train_idx])
-        columns = np.searchsorted(classes, est.classes_)
-        proba[np.ix_(test_idx, columns)] = est.predict_proba(X[test_idx])
-        if extra:
-            proba_left_out[:, columns] += est.predict_proba(X_left_out) / len(folds)
+    if out_of_fold is None:
+        _, proba, proba_left_out = _out_of_fold(
+            X, y, groups, estimator, n_splits, probabilities=True, X_extra=X_left_out
+        )
+    else:
+        proba, proba_left_out = out_of_fold
     if extra:
         frame = pd.concat([frame, left_out], ignore_index=True)
         proba = np.vstack([proba, proba_left_out])
@@ -541,17 +573,25 @@ def train(
     if n_groups < 2:
         raise ValueError("the dataset has one operating point: grouped validation needs two")
     n_splits = n_splits or min(5, n_groups)
-    scores, cv_predictions = {}, {}
-    for name, clf in candidate_classifiers(random_state).items():
-        est = make_pipeline(StandardScaler(), clf)
-        scores[name], cv_predictions[name] = _grouped_cv(X, y, groups, est, n_splits)
     if classifier == FROM_RECIPE:
         classifier = recipe_classifier(recipe)
-    if classifier is not None and classifier not in scores:
+    candidates = candidate_classifiers(random_state)
+    if classifier is not None and classifier not in candidates:
         raise ValueError(
-            f"classifier = {classifier!r} is not one of {sorted(scores)} (or None: the best "
-            "grouped cross-validation score)"
+            f"classifier = {classifier!r} is not one of {sorted(candidates)} (or None: the "
+            "best grouped cross-validation score)"
         )
+    scores, cv_predictions, probabilities = {}, {}, {}
+    for name, clf in candidates.items():
+        est = make_pipeline(StandardScaler(), clf)
+        # the probabilities for the calibration from the same fits, of each candidate that
+        # may be kept
+        keepable = classifier in (None, name)
+        pred, proba, proba_faint = _out_of_fold(
+            X, y, groups, est, n_splits, probabilities=keepable, X_extra=X_faint
+        )
+        scores[name] = float(balanced_accuracy_score(y, pred))
+        cv_predictions[name], probabilities[name] = pred, (proba, proba_faint)
     best = classifier if classifier is not None else max(scores, key=scores.get)
     head = make_pipeline(StandardScaler(), candidate_classifiers(random_state)[best])
     calibration = pooled_calibration(
@@ -564,6 +604,7 @@ def train(
         faint if len(faint) else None,
         X_faint,
         rule=rule,
+        out_of_fold=probabilities[best],
     )
     extrapolation = _extrapolation(X, y, frame, head)
     pipeline = make_classifier(best, random_state=random_state, feature_set=feature_set)

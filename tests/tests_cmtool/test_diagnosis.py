@@ -1091,6 +1091,50 @@ def test_candidates_are_weighed_by_class_and_ranked_by_balanced_accuracy():
     assert score == pytest.approx(1 / 3)  # plain accuracy would be 0.8
 
 
+def test_the_calibration_from_the_cross_validations_fits_is_the_one_it_fits_itself():
+    """``train`` hands ``pooled_calibration`` the out-of-fold probabilities its grouped
+    cross-validation already has (one fit per fold, not two): the same calibration, to the
+    bit, as fitting the folds again, with signals left out of training (each scored by
+    every fold's model) and a class one fold never saw."""
+    from sklearn.ensemble import RandomForestClassifier
+
+    from cmtool.classifier import _out_of_fold, pooled_calibration
+
+    rng = np.random.default_rng(2)
+    y = np.array(["healthy"] * 30 + ["outer"] * 24 + ["inner"] * 6)
+    groups = np.r_[np.arange(54) % 6, np.full(6, 6)]  # inner: one group, missing from a fold
+    X = rng.normal(size=(y.size, 4)) + (y == "outer")[:, None] * 0.8
+    frame = pd.DataFrame({"label": y})
+    left_out = pd.DataFrame({"label": ["outer"] * 5})
+    X_left_out = rng.normal(size=(5, 4))
+    rule = [
+        {"healthy": float(p), "outer race": 0.5 * (1 - p), "inner race": 0.5 * (1 - p)}
+        for p in rng.uniform(0.05, 0.95, y.size + 5)
+    ]
+    forest = RandomForestClassifier(n_estimators=20, random_state=0)
+    pred, proba, proba_left_out = _out_of_fold(
+        X, y, groups, forest, 4, probabilities=True, X_extra=X_left_out
+    )
+    # what the calibration fitted before train handed it the probabilities
+    from sklearn.base import clone
+    from sklearn.model_selection import GroupKFold
+
+    classes = np.array(["healthy", "inner", "outer"])
+    expected, expected_left_out = np.zeros((60, 3)), np.zeros((5, 3))
+    for train_idx, test_idx in GroupKFold(n_splits=4).split(X, y, groups):
+        est = clone(forest).fit(X[train_idx], y[train_idx])
+        columns = np.searchsorted(classes, est.classes_)
+        expected[np.ix_(test_idx, columns)] = est.predict_proba(X[test_idx])
+        expected_left_out[:, columns] += est.predict_proba(X_left_out) / 4
+        assert (pred[test_idx] == est.predict(X[test_idx])).all()
+    assert np.array_equal(proba, expected) and np.array_equal(proba_left_out, expected_left_out)
+    assert (proba[y == "inner", 1] == 0).all()  # its fold's model never saw "inner"
+    args = (frame, X, y, groups, forest, 4, left_out, X_left_out)
+    fitted = pooled_calibration(*args, rule=rule)
+    handed = pooled_calibration(*args, rule=rule, out_of_fold=(proba, proba_left_out))
+    assert fitted is not None and handed == fitted
+
+
 def test_diagnosis_beyond_the_ratings_warns_in_its_own_words_once():
     """Found by a property run of diagnose + report: the healthy model waviness is judged
     against ran simulate above the 6205's limiting speed, whose OperatingRangeWarning came on
