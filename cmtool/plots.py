@@ -94,6 +94,7 @@ def plot_spectrum(
     log: bool = True,
     emphasis: str | None = None,
     sidebands: float | None = None,
+    top_from: float | None = None,
 ) -> Path:
     """Plot a spectrum with vertical markers at fault frequencies and their harmonics.
 
@@ -115,6 +116,11 @@ def plot_spectrum(
     log : bool
         Logarithmic amplitude axis (a plain spectrum's decades); False: linear from 0, as
         envelope spectra are read (the lines against their floor).
+    top_from : float, optional
+        On the linear axis, its height is the spectrum's highest value from this frequency
+        up [Hz] (what lies below is drawn off the top): half the cage rate for an envelope
+        spectrum, whose first bins hold the envelope's slow wander and its mean's leakage,
+        which would otherwise squash the fault's lines.
     emphasis : str, optional
         The marker of the verdict: drawn solid and wider, "(verdict)" in the legend.
     sidebands : float, optional
@@ -137,7 +143,12 @@ def plot_spectrum(
     if log:
         ax.set_yscale("log")
     else:
-        ax.set_ylim(bottom=0.0)
+        lines = amplitude[keep][frequencies[keep] >= (top_from or 0.0)]
+        top = float(lines.max()) if lines.size else 0.0
+        if top > 0:
+            ax.set_ylim(0.0, 1.08 * top)
+        else:
+            ax.set_ylim(bottom=0.0)
     for name, f0 in markers.items():
         if not f0 or f0 <= 0:
             continue

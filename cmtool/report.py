@@ -101,6 +101,7 @@ def write_report(
         markers=markers,
         fmax=min(fs / 2, 5 * f["bpfi"]),
         log=False,
+        top_from=0.5 * f["ftf"],
         emphasis=fault,
         sidebands={"inner race": f["shaft"], "ball": f["ftf"]}.get(diagnosis.verdict),
     )

@@ -530,6 +530,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
             markers=markers,
             fmax=min(result.fs / 2, 5 * f.bpfi),
             log=False,
+            top_from=0.5 * f.ftf,
         )
         print(f"wrote {path}")
     return 0

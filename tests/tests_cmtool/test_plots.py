@@ -1,6 +1,7 @@
 """The figures cmtool writes: atomically, and the report's time waveform."""
 
 import numpy as np
+import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
@@ -153,7 +154,8 @@ def test_the_reports_envelope_spectrum_is_linear_with_its_lines_over_the_markers
     impacts = np.zeros(n)
     impacts[np.clip((times * fs).astype(int), 0, n - 1)] = 1.0
     x = sp_signal.lfilter(*sp_signal.iirpeak(3000.0, 15.0, fs), impacts)
-    x = x + 0.05 * rng.standard_normal(n)
+    wander = 1 + 0.8 * np.sin(2 * np.pi * 1.3 * np.arange(n) / fs)  # a load wandering at 1.3 Hz
+    x = x * wander + 0.05 * rng.standard_normal(n)
     d = diagnose_signal(x, fs, 1797.0, "6205", waviness=False)
     assert d.verdict == "outer race"
     write_report(d, tmp_path, title="t", x=x, fs=fs)
@@ -163,3 +165,26 @@ def test_the_reports_envelope_spectrum_is_linear_with_its_lines_over_the_markers
     for ax in (envelope, spectrum):
         data, *markers = ax.lines
         assert markers and all(data.get_zorder() > m.get_zorder() for m in markers)
+    # its height: the lines from half the cage rate up, not the first bins' slow wander, which
+    # would squash them (on 200 simulated rig records a quarter had their highest point under
+    # half the shaft rate: in the first bins, up to 7.5 times the lines, or at the cage rate,
+    # a ball pit's line, which stays in)
+    f, amplitude = d.spectra.envelope_frequencies, d.spectra.envelope_amplitude
+    plotted = (f > 0) & (f <= 5 * d.frequencies["bpfi"])
+    lines = plotted & (f >= 0.5 * d.frequencies["ftf"])
+    assert amplitude[lines].max() < 0.9 * amplitude[plotted].max()  # the wander is highest
+    assert envelope.get_ylim()[1] == pytest.approx(1.08 * amplitude[lines].max())
+    f = np.arange(0.0, 600.0, 1.0)
+    amplitude = np.full(f.size, 0.1)
+    amplitude[1], amplitude[12], amplitude[107] = 50.0, 2.0, 1.0  # wander, cage, BPFO
+    plots.plot_spectrum(
+        f,
+        amplitude,
+        tmp_path / "w.png",
+        title="t",
+        ylabel="a",
+        markers={"bpfo": 107.0},
+        log=False,
+        top_from=0.5 * 11.9,
+    )
+    assert figures["w.png"].axes[0].get_ylim() == pytest.approx((0.0, 1.08 * 2.0))
