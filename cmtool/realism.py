@@ -38,8 +38,12 @@ __all__ = [
     "context_columns",
     "feature_difference",
     "CONTEXT_UNITS",
+    "REALISM_TREES",
     "SIMULATED_RANGE",
 ]
+
+#: Trees of each of the gauge's random forests (one per fold and one for the importances).
+REALISM_TREES = 300
 
 #: Units of the features that repeat a signal's context instead of measuring the signal
 #: (``features.feature_units``): the gauge leaves them out.
@@ -118,6 +122,7 @@ def realism(
     random_state: int = 0,
     n_jobs: int | None = None,
     progress: Callable[[str, int, int], None] | None = None,
+    n_estimators: int = REALISM_TREES,
 ) -> dict[str, Any]:
     """ROC AUC of telling ``measured`` segments from ``simulated`` signals, and why.
 
@@ -135,12 +140,16 @@ def realism(
         Workers of the feature extraction.
     progress : callable, optional
         ``progress(stage, done, total)`` after each chunk of signals whose features are done.
+    n_estimators : int
+        Trees of each forest (``REALISM_TREES`` by default): fewer are faster and leave the
+        AUC noisier (tests of the gauge's logic use 100).
 
     Returns
     -------
     dict
-        ``auc``, ``folds``, ``recordings``, ``segments``, ``simulated``, ``roc`` (false and
-        true positive rates), ``features`` (name, importance) most telling first,
+        ``auc``, ``folds``, ``trees`` (``n_estimators``), ``recordings``, ``segments``,
+        ``simulated``, ``roc`` (false and true positive rates), ``features`` (name,
+        importance) most telling first,
         ``differences`` (the same order: each feature's importance, unit and
         :func:`feature_difference`, which way measured and simulated differ),
         ``context_left_out`` (features that only repeat the context, not used), the
@@ -162,6 +171,8 @@ def realism(
 
     from .classifier import transform_in_chunks
 
+    if isinstance(n_estimators, bool) or not isinstance(n_estimators, int) or n_estimators < 1:
+        raise ValueError(f"n_estimators = {n_estimators!r} is outside the allowed range [1, inf)")
     groups_measured = measured["group"].astype(str).to_numpy()
     recordings = len(set(groups_measured))
     if recordings < 2:
@@ -184,7 +195,10 @@ def realism(
     scores = np.zeros(len(y))
     for train, test in GroupKFold(n_splits=folds).split(X, y, groups):
         forest = RandomForestClassifier(
-            n_estimators=300, class_weight="balanced", random_state=random_state, n_jobs=-1
+            n_estimators=n_estimators,
+            class_weight="balanced",
+            random_state=random_state,
+            n_jobs=-1,
         )
         forest.fit(X[train], y[train])
         scores[test] = forest.predict_proba(X[test])[:, 1]
@@ -232,7 +246,10 @@ def realism(
                 telling.sort(key=lambda d: -abs(d["auc"] - 0.5))
                 auc_by[column][value]["differences"] = telling[:CLASS_DIFFERENCES]
     forest = RandomForestClassifier(
-        n_estimators=300, class_weight="balanced", random_state=random_state, n_jobs=-1
+        n_estimators=n_estimators,
+        class_weight="balanced",
+        random_state=random_state,
+        n_jobs=-1,
     ).fit(X, y)
     ranked = sorted(zip(names, forest.feature_importances_, strict=True), key=lambda item: -item[1])
     column = {name: j for j, name in enumerate(names)}
@@ -248,6 +265,7 @@ def realism(
     return {
         "auc": auc,
         "folds": folds,
+        "trees": n_estimators,
         "recordings": recordings,
         "segments": int(len(measured)),
         "simulated": int(len(simulated)),
