@@ -546,6 +546,44 @@ def _ratio_db(freqs: np.ndarray, amp: np.ndarray, line: float) -> tuple[float, i
     return ratio, int(sel.sum()), int(window.sum())
 
 
+def _ratio_db_bands(
+    spectra: Sequence[tuple[np.ndarray, np.ndarray]], df: float, line: float
+) -> list[tuple[float, int, int]]:
+    """:func:`_ratio_db` of one line in every band's envelope spectrum, to the same bits.
+
+    Every band's envelope spectrum lies on the same grid, k x ``df`` from 0 Hz
+    (:func:`_band_envelope_spectrum`), so the bins within reach of the line, and which of
+    them are searched and which are the floor, are the same in each band long enough to hold
+    them all: their peaks and medians are taken in one pass over the stacked bins (a median
+    along an axis is the 1-D median of each row); a band too short for that is measured
+    alone.
+    """
+    out: list[tuple[float, int, int] | None] = [None] * len(spectra)
+    hw = max(1.5 * df, 0.005 * line)
+    reach = max(0.1 * line, FLOOR_BINS * df, hw)
+    lo = max(0, int(math.floor((line - reach) / df)) - 2)
+    hi = max(lo, int(math.ceil((line + reach) / df)) + 3)
+    # a band that holds bins lo .. hi - 1 reaches past line + reach >= line + hw, and its
+    # bins within hw (at least 1.5 bins each side) and its floor's (50 bins or more each
+    # side) are never too few: _ratio_db's answer for a missing line cannot arise there
+    whole = [i for i, (freqs, _) in enumerate(spectra) if freqs.size >= hi]
+    if whole:
+        near = np.abs(np.arange(lo, hi) * df - line)
+        sel = near <= hw
+        window = (near <= max(0.1 * line, FLOOR_BINS * df)) & ~(near <= 2 * hw)
+        stacked = np.stack([spectra[i][1][lo:hi] for i in whole])
+        floors = np.median(stacked[:, window], axis=1)
+        peaks = stacked[:, sel].max(axis=1)
+        searched, floor_bins = int(sel.sum()), int(window.sum())
+        for i, peak, floor in zip(whole, peaks.tolist(), floors.tolist(), strict=True):
+            ratio = 20.0 * math.log10(peak / floor) if peak > 0 and floor > 0 else 0.0
+            out[i] = (ratio, searched, floor_bins)
+    for i, (freqs, amp) in enumerate(spectra):
+        if out[i] is None:
+            out[i] = _ratio_db(freqs, amp, line)
+    return out  # type: ignore[return-value]
+
+
 def select_band(
     x: np.ndarray,
     fs: float,
@@ -601,12 +639,12 @@ def select_band(
     n = x.size
     spec = np.fft.fft((x - x.mean()) * _windows.tukey(n, 0.05))
     df = fs / n
+    spectra = [_band_envelope_spectrum(spec, df, low, high) for low, high in bands]
     scores = np.zeros((len(bands), len(names)))
     searched, floor = 1, None
-    for i, (low, high) in enumerate(bands):
-        freqs, amp = _band_envelope_spectrum(spec, df, low, high)
-        for j, r in enumerate(values):
-            scores[i, j], bins, floor_bins = _ratio_db(freqs, amp, r)
+    for j, r in enumerate(values):
+        for i, (ratio, bins, floor_bins) in enumerate(_ratio_db_bands(spectra, df, r)):
+            scores[i, j] = ratio
             searched = max(searched, bins)
             floor = floor_bins if floor is None else min(floor, floor_bins)
     for name, lowest in (floors or {}).items():

@@ -358,3 +358,22 @@ def test_the_cage_rate_finds_a_ball_pits_bursts(monkeypatch):
     monkeypatch.setattr(features.evidence, "CAGE_HARMONICS", ())
     assert balls(records) <= 6
     assert balls(noise) == 0
+
+
+def test_every_bands_line_ratio_at_once_is_each_bands_own_to_the_bit(rng):
+    """select_band measures a rate's line in all its bands' envelope spectra in one pass
+    (stop 63): the same ratios, bins searched and floor bins, to the bit, as measuring each
+    band alone, in bands long enough to hold the line's floor and in bands too short for it
+    (a short record's narrowest bands), for rates from 2 Hz to near a band's top."""
+    from features.separation import _band_envelope_spectrum, _ratio_db, _ratio_db_bands
+
+    for n, fs in ((12000, FS), (2400, FS), (48000, 48000.0)):
+        x = _impacts(BPFI, n, rng, jitter=0.01) + 0.3 * rng.standard_normal(n)
+        spec = np.fft.fft((x - x.mean()) * sp_signal.windows.tukey(n, 0.05))
+        bands = candidate_bands(fs, n, min_bandwidth=3 * BPFI)
+        spectra = [_band_envelope_spectrum(spec, fs / n, low, high) for low, high in bands]
+        sizes = {freqs.size for freqs, _ in spectra}
+        assert len(sizes) > 2  # bands of several widths
+        for line in (2.0, FTF, BPFO, BPFI, TWO_BSF, 900.0, 0.45 * min(h - lo for lo, h in bands)):
+            alone = [_ratio_db(freqs, amp, line) for freqs, amp in spectra]
+            assert _ratio_db_bands(spectra, fs / n, line) == alone, (n, line)
