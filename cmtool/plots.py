@@ -250,7 +250,8 @@ def plot_waveform(
     band : (float, float), optional
         The envelope analysis' band [Hz].
     fault_hz, fault_name : float and str, optional
-        The verdict's fault rate [Hz] and name, for the ticks.
+        The verdict's fault rate [Hz] and name, for the ticks (in the colour of the fault's
+        marker in the spectra: outer race red, inner race blue, ball green).
     ylabel : str
         The signal's quantity and unit.
 
@@ -299,10 +300,11 @@ def plot_waveform(
             -np.floor((first - t[window.start]) / period),
             np.floor((t[window.stop - 1] - first) / period) + 1,
         )
+        color = _FAULT_COLORS.get(fault_name or "", "tab:red")  # its marker's in the spectra
         for ax in panels:
             for i, tick in enumerate(ticks):
                 label = f"{fault_name or 'fault'} period {1e3 * period:.2f} ms" if i == 0 else None
-                ax.axvline(tick, color="tab:red", ls="--", lw=0.8, alpha=0.7, label=label)
+                ax.axvline(tick, color=color, ls="--", lw=0.8, alpha=0.7, label=label)
         panels[0].legend(loc="upper right", fontsize=8)
     for ax in panels:
         ax.set_xlim(t[window.start], t[window.stop - 1])

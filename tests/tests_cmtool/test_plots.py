@@ -188,3 +188,32 @@ def test_the_reports_envelope_spectrum_is_linear_with_its_lines_over_the_markers
         top_from=0.5 * 11.9,
     )
     assert figures["w.png"].axes[0].get_ylim() == pytest.approx((0.0, 1.08 * 2.0))
+
+
+def test_the_waveforms_period_ticks_take_the_colour_of_the_verdicts_marker(tmp_path, monkeypatch):
+    """The ticks of the verdict's period in waveform.png are drawn in the colour its rate's
+    marker has in spectrum.png and envelope.png (they were red for every fault)."""
+    from matplotlib.colors import to_hex
+
+    import cmtool.plots as plots
+
+    captured = {}
+
+    def keep(fig, path):
+        captured["fig"] = fig
+        return path
+
+    monkeypatch.setattr(plots, "save_figure", keep)
+    x = np.random.default_rng(5).standard_normal(12000)
+    expected = {"outer race": "tab:red", "inner race": "tab:blue", "ball": "tab:green"}
+    for fault, colour in [*expected.items(), (None, "tab:red")]:
+        plots.plot_waveform(
+            x, 12000.0, tmp_path / "w.png", title="t", shaft_hz=30.0, band=(500.0, 3000.0),
+            fault_hz=107.0, fault_name=fault,
+        )  # fmt: skip
+        fig = captured.pop("fig")
+        for ax in fig.axes[1:]:  # the zoom and the band's panel
+            ticks = [line for line in ax.lines if line.get_linestyle() == "--"]
+            assert len(ticks) >= 3, fault
+            assert {to_hex(line.get_color()) for line in ticks} == {to_hex(colour)}, fault
+        plt.close(fig)
