@@ -179,12 +179,11 @@ def _hann_gram(lines: np.ndarray, n: int) -> sparse.csc_matrix:
     order = np.argsort(lines)
     ordered = lines[order]
     reach = COUPLED_BINS / n
-    rows, cols = [], []
     ends = np.searchsorted(ordered, ordered + reach, side="right")
-    for first, end in enumerate(ends):
-        rows.append(np.full(end - first, first))
-        cols.append(np.arange(first, end))
-    r, c = np.concatenate(rows), np.concatenate(cols)
+    # row k pairs line k with lines k .. ends[k] - 1: the rows one after the other
+    counts = ends - np.arange(ordered.size)
+    r = np.repeat(np.arange(ordered.size), counts)
+    c = r + np.arange(r.size) - np.repeat(np.cumsum(counts) - counts, counts)
     values = _hann_transform(ordered[r] - ordered[c], n)
     upper = r != c
     r, c, values = (
