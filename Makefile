@@ -33,6 +33,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_generate_rig.py
 	$(BIN)/python benchmarks/bench_detectors.py
 	$(BIN)/python benchmarks/bench_train.py
+	$(BIN)/python benchmarks/bench_diagnose.py
 
 # docs/benchmark.md: the detector benchmark (about 3 + 1.5 minutes on two cores)
 detector-bench: $(STAMP)
