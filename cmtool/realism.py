@@ -142,7 +142,7 @@ def realism(
         ``progress(stage, done, total)`` after each chunk of signals whose features are done.
     n_estimators : int
         Trees of each forest (``REALISM_TREES`` by default): fewer are faster and leave the
-        AUC noisier (tests of the gauge's logic use 100).
+        AUC and the features' importances noisier.
 
     Returns
     -------
