@@ -31,7 +31,8 @@ if TYPE_CHECKING:
         waviness_passage_frequencies,
     )
 
-    from .diagnose import Diagnosis, diagnose_signal
+    from .diagnose import diagnose_signal
+    from .diagnosis import Diagnosis
     from .io import read_recording
 
 #: Public names loaded on first use (the model, numpy, scipy and numba with them), so that
@@ -42,7 +43,7 @@ _LAZY = {
     "LocalizedDefect": "generators",
     "OperatingRangeWarning": "generators",
     "waviness_passage_frequencies": "generators",
-    "Diagnosis": "cmtool.diagnose",
+    "Diagnosis": "cmtool.diagnosis",
     "diagnose_signal": "cmtool.diagnose",
     "read_recording": "cmtool.io",
 }

@@ -28,7 +28,6 @@ adds its verdict.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -39,6 +38,7 @@ from generators import BearingGeometry, characteristic_frequencies
 from generators.kinematics import BearingFrequencies
 from generators.params import check_shaft_speed_rpm
 
+from .diagnosis import DETECTION_DB, Diagnosis  # kept importable from here
 from .inputs import checked_geometry, checked_model, checked_rate, checked_record
 from .pooling import (  # the pooled verdict, kept importable from here
     CANONICAL,
@@ -85,7 +85,6 @@ __all__ = [
     "CLIPPING_ERROR_SHARE",
 ]
 
-DETECTION_DB = 12.0
 # Confidences calibrated on simulation only (benchmarks/calibrate_confidence.py: logistic fits
 # on 1,100 signals of the detector-bench recipe with seed 9173, checked on the 2,200 of seed
 # 4711), in the margin of the weighed evidence (features.Evidence.combined) over the threshold:
@@ -169,67 +168,6 @@ RANDOMNESS_ASSUMED = (
     "machine vibration; simulated CWRU-size race pits (in noise 3 x their RMS) with 1 % of "
     "slip are found in 1 s, with 0.2 % only in 5 s or more, strictly periodic ones never"
 )
-
-
-@dataclass
-class Diagnosis:
-    """Verdict and evidence of one signal."""
-
-    verdict: str
-    confidence: float
-    candidates: list[dict]
-    frequencies: dict[str, float]
-    band_hz: tuple[float, float]
-    warnings: list[str] = field(default_factory=list)
-    model_verdict: dict | None = None
-    waviness: dict | None = None
-    spectra: Any = None
-    threshold_db: float = DETECTION_DB
-    assumptions: dict = field(default_factory=dict)
-    rule_verdict: dict | None = None
-    basis: str = "the rule evidence (envelope analysis of the random part)"
-    probabilities: dict | None = None
-    velocity_bands: dict | None = None
-    velocity_bands_mm_s: dict | None = None
-    overall_velocity: dict | None = None
-    baseline: dict | None = None
-    severity: dict | None = None
-    segment_scan: dict | None = None
-
-    def to_dict(self) -> dict:
-        """JSON-serialisable form (without the spectra)."""
-        out = {
-            "verdict": self.verdict,
-            "confidence": round(self.confidence, 4),
-            "candidates": self.candidates,
-            "frequencies": self.frequencies,
-            "envelope_band_hz": list(self.band_hz),
-            "basis": self.basis,
-            "threshold_db": round(self.threshold_db, 2),
-            "assumptions": self.assumptions,
-            "warnings": self.warnings,
-        }
-        if self.waviness is not None:
-            out["waviness"] = self.waviness
-        if self.rule_verdict is not None:
-            out["rule_verdict"] = self.rule_verdict
-        if self.model_verdict is not None:
-            out["model_verdict"] = self.model_verdict
-        if self.probabilities is not None:
-            out["probabilities"] = self.probabilities
-        if self.velocity_bands is not None:
-            out["velocity_bands_iso15242"] = self.velocity_bands
-        if self.velocity_bands_mm_s is not None:
-            out["velocity_bands_iso15242_mm_s"] = self.velocity_bands_mm_s
-        if self.overall_velocity is not None:
-            out["overall_velocity_iso10816"] = self.overall_velocity
-        if self.baseline is not None:
-            out["baseline"] = self.baseline
-        if self.severity is not None:
-            out["severity"] = self.severity
-        if self.segment_scan is not None:
-            out["segment_scan"] = self.segment_scan
-        return out
 
 
 def rule_context(

@@ -19,7 +19,7 @@ import numpy as np
 if TYPE_CHECKING:
     from generators.kinematics import BearingFrequencies
 
-    from .diagnose import Diagnosis
+    from .diagnosis import Diagnosis
 
 __all__ = [
     "CANONICAL",

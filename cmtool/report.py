@@ -6,7 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .diagnose import Diagnosis, explained_lines
+from .diagnose import explained_lines
+from .diagnosis import Diagnosis
 from .io import atomic_write, json_text
 
 __all__ = ["model_verdict_text", "write_report"]
@@ -27,7 +28,7 @@ def model_verdict_text(model_verdict: dict, *, bold: bool = False) -> str:
     Parameters
     ----------
     model_verdict : dict
-        :attr:`cmtool.diagnose.Diagnosis.model_verdict`.
+        :attr:`cmtool.diagnosis.Diagnosis.model_verdict`.
     bold : bool
         The verdict's class in Markdown bold (the report).
 
