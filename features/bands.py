@@ -151,7 +151,27 @@ def harmonic_amplitudes(
     n_harmonics: int = 3,
     half_width: float,
 ) -> np.ndarray:
-    """Peak amplitude at 1x .. n_harmonics x ``fundamental`` [U], shape (..., n_harmonics)."""
+    """Peak amplitude at 1x .. n_harmonics x ``fundamental`` [U], shape (..., n_harmonics).
+
+    Parameters
+    ----------
+    frequencies : ndarray
+        Bin frequencies [Hz], increasing.
+    spectrum : ndarray
+        Amplitude spectrum [U]; the last axis matches ``frequencies``.
+    fundamental : float
+        The series' fundamental [Hz], > 0.
+    n_harmonics : int
+        Harmonics measured.
+    half_width : float
+        Half band width searched about each harmonic [Hz] (:func:`band_amplitude`).
+
+    Returns
+    -------
+    ndarray
+        Each harmonic's peak amplitude [U] (0 beyond the spectrum), harmonics on the last
+        axis.
+    """
     fundamental = check_positive("fundamental", fundamental, unit="Hz")
     return np.stack(
         [

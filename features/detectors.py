@@ -123,6 +123,23 @@ def cpw_envelope_scores(
     transfer path's colour at once, so no band has to be chosen (Borghesani et al. 2013).
     Scores as :func:`envelope_scores`.
 
+    Parameters
+    ----------
+    x : array_like, 1-D
+        Signal [U].
+    fs : float
+        Sample rate [Hz].
+    fault_frequencies : mapping of str to float
+        Fault rates [Hz], e.g. ``{"bpfo": 107.4, "bpfi": 162.2}``.
+    harmonics : int
+        Harmonics of each rate in the score.
+
+    Returns
+    -------
+    dict of str to float
+        Per rate, the mean power ratio of its first ``harmonics`` lines in the pre-whitened
+        signal's squared envelope spectrum over the spectrum's local median [dB].
+
     Examples
     --------
     >>> import numpy as np
@@ -140,6 +157,20 @@ def cpw_envelope_scores(
 def spectral_kurtosis_score(x: np.ndarray, fs: float, *, nlevel: int = 4) -> float:
     """The largest spectral kurtosis of the fast kurtogram (0 for Gaussian noise).
 
+    Parameters
+    ----------
+    x : array_like, 1-D
+        Signal [U].
+    fs : float
+        Sample rate [Hz].
+    nlevel : int
+        Levels of the kurtogram (1 .. 12; :func:`features.kurtogram`).
+
+    Returns
+    -------
+    float
+        The spectral kurtosis of the kurtogram's selected band (dimensionless).
+
     Examples
     --------
     >>> import numpy as np
@@ -152,6 +183,17 @@ def spectral_kurtosis_score(x: np.ndarray, fs: float, *, nlevel: int = 4) -> flo
 
 def time_scores(x: np.ndarray) -> dict[str, float]:
     """Kurtosis (3 for Gaussian noise) and crest factor (peak over RMS) of the raw signal.
+
+    Parameters
+    ----------
+    x : array_like, 1-D
+        Signal [U], at least 4 samples.
+
+    Returns
+    -------
+    dict of str to float
+        ``kurtosis`` and ``crest_factor`` of the signal less its mean (dimensionless); both 0
+        for a constant signal.
 
     Examples
     --------

@@ -74,7 +74,21 @@ class KurtogramResult:
 
 
 def prewhiten(x: np.ndarray, *, axis: int = -1) -> np.ndarray:
-    """Cepstral pre-whitening: unit magnitude spectrum, phase kept (Randall et al. 2011)."""
+    """Cepstral pre-whitening: unit magnitude spectrum, phase kept (Randall et al. 2011).
+
+    Parameters
+    ----------
+    x : array_like
+        Signal [U], at least 4 samples; its mean is removed first.
+    axis : int
+        Time axis.
+
+    Returns
+    -------
+    ndarray
+        The pre-whitened signal, shaped as ``x`` (dimensionless: every bin of its spectrum
+        but the zero-frequency one has magnitude 1).
+    """
     x = check_signal(x, min_length=4)
     spec = np.fft.rfft(x - np.mean(x, axis=axis, keepdims=True), axis=axis)
     mag = np.abs(spec)
@@ -263,8 +277,8 @@ def kurtogram(
     nlevel : int
         Number of binary levels (1 .. 12); level k has 2^k bands of width fs / 2^(k+1).
     min_bandwidth : float, optional
-        Smallest band considered [Hz]; default 3 x fs / n (so every band holds a few
-        envelope periods of the lowest fault rates).
+        Smallest band considered [Hz]; default 24 fs / n, 24 bins of the record's
+        spectrum (24 Hz for a one-second record).
 
     Returns
     -------

@@ -30,6 +30,18 @@ def peak_offset_bins(amplitude: np.ndarray, k: int) -> float:
     A parabola through the log amplitudes of bin ``k`` and its two neighbours (exact for a
     Gaussian main lobe, within a few hundredths of a bin for a Hann window's); 0 where the
     three do not bend down. ``k`` must have a neighbour on each side.
+
+    Parameters
+    ----------
+    amplitude : array_like, 1-D
+        Amplitude (or power) spectrum [U], positive.
+    k : int
+        The line's largest bin, 1 .. len(amplitude) - 2.
+
+    Returns
+    -------
+    float
+        The peak's offset from bin ``k`` [bins].
     """
     left, mid, right = (math.log(max(float(v), 1e-300)) for v in amplitude[k - 1 : k + 2])
     curvature = left - 2.0 * mid + right
@@ -161,6 +173,22 @@ def integrate_spectrum(
 
     Bins below ``low_cut`` [Hz] are set to zero (the 1/f gain would blow up noise and drift).
     Acceleration [m/s^2] -> velocity [m/s] with ``order=1``.
+
+    Parameters
+    ----------
+    frequencies : array_like, 1-D
+        The spectrum's frequencies [Hz].
+    spectrum : array_like
+        Amplitude spectrum [U], its last axis along ``frequencies``.
+    low_cut : float
+        Bins below it are zeroed [Hz], > 0.
+    order : int
+        1 for velocity from acceleration, 2 for displacement.
+
+    Returns
+    -------
+    ndarray
+        The integrated spectrum [U s^order], shaped as ``spectrum``.
     """
     low_cut = check_positive("low_cut", low_cut, unit="Hz")
     f = np.asarray(frequencies, dtype=float)

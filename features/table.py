@@ -96,7 +96,27 @@ def compute_spectra(
     nlevel: int = 6,
     min_bandwidth: float | None = None,
 ) -> Spectra:
-    """Amplitude spectrum, kurtogram (if ``band`` is None) and envelope spectrum of ``x``."""
+    """Amplitude spectrum, kurtogram (if ``band`` is None) and envelope spectrum of ``x``.
+
+    Parameters
+    ----------
+    x : array_like, 1-D
+        Signal [U], at least 64 samples.
+    fs : float
+        Sample rate [Hz].
+    band : (float, float), optional
+        Demodulation band [Hz]; default the fast kurtogram's band.
+    nlevel : int
+        Levels of the kurtogram (1 .. 12), when it chooses the band.
+    min_bandwidth : float, optional
+        The kurtogram's narrowest band [Hz] (:func:`features.kurtogram`).
+
+    Returns
+    -------
+    Spectra
+        The amplitude and envelope spectra [Hz], [U], the band [Hz] and the kurtogram (None
+        when ``band`` was given).
+    """
     x = check_signal(x, min_length=64)
     fs = check_fs(fs)
     freqs, amp = amplitude_spectrum(x, fs)
@@ -110,7 +130,21 @@ def compute_spectra(
 
 
 def feature_names(faults: Sequence[str] = DEFAULT_FAULTS, n_harmonics: int = 3) -> list[str]:
-    """Names of the features of :func:`extract_features`, in order."""
+    """Names of the features of :func:`extract_features`, in order.
+
+    Parameters
+    ----------
+    faults : sequence of str
+        The fault rates measured (keys of ``fault_frequencies``: ``bpfo``, ``bpfi``,
+        ``two_bsf``, ``ftf``, ...).
+    n_harmonics : int
+        Harmonics per rate.
+
+    Returns
+    -------
+    list of str
+        The names, in the order of :func:`extract_features`' values.
+    """
     names = list(TIME_STATISTICS)
     for kind in ("spectrum", "envelope"):
         for fault in faults:
@@ -130,7 +164,21 @@ def feature_names(faults: Sequence[str] = DEFAULT_FAULTS, n_harmonics: int = 3) 
 
 
 def feature_units(faults: Sequence[str] = DEFAULT_FAULTS, n_harmonics: int = 3) -> dict[str, str]:
-    """Unit of each feature ("U" is the signal's unit)."""
+    """Unit of each feature ("U" is the signal's unit).
+
+    Parameters
+    ----------
+    faults : sequence of str
+        The fault rates measured, as for :func:`feature_names`.
+    n_harmonics : int
+        Harmonics per rate.
+
+    Returns
+    -------
+    dict of str to str
+        Per feature name, its unit: ``"U"`` (the signal's), ``"dB"``, ``"Hz"`` or ``"-"``
+        (dimensionless).
+    """
     units = {}
     for name in feature_names(faults, n_harmonics):
         if name in TIME_STATISTICS:

@@ -192,8 +192,11 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
     n_jobs : int or None
         Worker processes for the transform (joblib; ``None`` or 1: in this process,
         -1: all cores). Signals are independent, so the table is the same for any value.
-    feature_set : {"all", "scale-free", "envelope"}
-        Which features (``FEATURE_SETS``).
+    feature_set : {"all", "scale-free", "envelope", "evidence", "evidence+scale-free"}
+        Which features (``FEATURE_SETS``): every feature; those without the signal's unit
+        (ratios, dB, kurtosis); the envelope lines' ratios to their floor [dB]; the rule's
+        weighed evidence (``features.EVIDENCE_NAMES``); the last two together (the default
+        of ``cmtool train``).
     """
 
     def __init__(
@@ -262,7 +265,20 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
             yield row, ctx
 
     def fit(self, X: pd.DataFrame | np.ndarray, y: object = None) -> FeatureExtractor:
-        """Check the input and record the feature names (the transform has no state)."""
+        """Check the input and record the feature names (the transform has no state).
+
+        Parameters
+        ----------
+        X : pandas.DataFrame or ndarray
+            Signals: a DataFrame as in the class description, or one signal per row [U].
+        y : object, optional
+            Ignored (scikit-learn's signature).
+
+        Returns
+        -------
+        FeatureExtractor
+            This extractor, fitted.
+        """
         if not isinstance(X, pd.DataFrame):
             validate_data(self, X, dtype=np.float64, ensure_min_features=2)
         if self.feature_set not in FEATURE_SETS:
@@ -281,7 +297,19 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
         return self
 
     def transform(self, X: pd.DataFrame | np.ndarray) -> np.ndarray:
-        """Feature matrix, shape (n_signals, n_features)."""
+        """Feature matrix, shape (n_signals, n_features).
+
+        Parameters
+        ----------
+        X : pandas.DataFrame or ndarray
+            Signals, as for :meth:`fit` (an array's rows as long as fit's).
+
+        Returns
+        -------
+        ndarray
+            One row per signal, one column per name of :meth:`get_feature_names_out`, in the
+            unit ``features.feature_units`` gives each.
+        """
         check_is_fitted(self, "feature_names_out_")
         if not isinstance(X, pd.DataFrame):
             # the count of samples per signal is checked against fit's first (any count, even
@@ -295,6 +323,17 @@ class FeatureExtractor(TransformerMixin, BaseEstimator):
         return np.asarray(rows, dtype=float).reshape(len(items), len(names))
 
     def get_feature_names_out(self, input_features: object = None) -> np.ndarray:
-        """Names of the output features."""
+        """Names of the output features.
+
+        Parameters
+        ----------
+        input_features : object, optional
+            Ignored (scikit-learn's signature: the output names do not depend on the input's).
+
+        Returns
+        -------
+        ndarray of str
+            The feature names, in the columns' order.
+        """
         check_is_fitted(self, "feature_names_out_")
         return self.feature_names_out_.copy()

@@ -196,28 +196,83 @@ class HertzContact:
     stiffness_constant: float
 
     def load(self, deflection: float | np.ndarray) -> float | np.ndarray:
-        """Contact load Q = K [delta]_+^1.5 [N] for an approach ``deflection`` [m]."""
+        """Contact load Q = K [delta]_+^1.5 [N] for an approach ``deflection`` [m].
+
+        Parameters
+        ----------
+        deflection : float or ndarray
+            Elastic approach of ball and groove [m]; a negative one (a gap) carries no load.
+
+        Returns
+        -------
+        float or ndarray
+            Contact load [N].
+        """
         d = np.maximum(np.asarray(deflection, dtype=float), 0.0)
         return self.stiffness_constant * d**1.5
 
     def deflection(self, load: float | np.ndarray) -> float | np.ndarray:
-        """Approach delta = (Q / K)^(2/3) [m] for a load ``load`` [N] >= 0."""
+        """Approach delta = (Q / K)^(2/3) [m] for a load ``load`` [N] >= 0.
+
+        Parameters
+        ----------
+        load : float or ndarray
+            Contact load [N], >= 0.
+
+        Returns
+        -------
+        float or ndarray
+            Elastic approach [m].
+        """
         q = np.asarray(load, dtype=float)
         return (q / self.stiffness_constant) ** (2.0 / 3.0)
 
     def linear_stiffness(self, load: float | np.ndarray) -> float | np.ndarray:
-        """Tangent stiffness dQ/d delta = 1.5 K^(2/3) Q^(1/3) [N/m]."""
+        """Tangent stiffness dQ/d delta = 1.5 K^(2/3) Q^(1/3) [N/m].
+
+        Parameters
+        ----------
+        load : float or ndarray
+            Contact load [N], >= 0.
+
+        Returns
+        -------
+        float or ndarray
+            Tangent stiffness at that load [N/m] (0 unloaded).
+        """
         q = np.asarray(load, dtype=float)
         return 1.5 * self.stiffness_constant ** (2.0 / 3.0) * np.cbrt(q)
 
     def semi_axes(self, load: float) -> tuple[float, float]:
-        """Contact ellipse semi-axes (a across rolling, b along rolling) [m] at ``load`` [N]."""
+        """Contact ellipse semi-axes (a across rolling, b along rolling) [m] at ``load`` [N].
+
+        Parameters
+        ----------
+        load : float
+            Contact load [N], >= 0.
+
+        Returns
+        -------
+        a, b : float
+            Semi-axes across and along the rolling direction [m].
+        """
         r = self.geometry.effective_radius
         base = 6.0 * self.elliptic_e * load * r / (math.pi * self.effective_modulus)
         return (self.kappa**2 * base) ** (1 / 3), (base / self.kappa) ** (1 / 3)
 
     def max_pressure(self, load: float) -> float:
-        """Maximum Hertz pressure p_max = 3 Q / (2 pi a b) [Pa] at ``load`` [N]."""
+        """Maximum Hertz pressure p_max = 3 Q / (2 pi a b) [Pa] at ``load`` [N].
+
+        Parameters
+        ----------
+        load : float
+            Contact load [N].
+
+        Returns
+        -------
+        float
+            Maximum contact pressure [Pa]; 0 for a load <= 0.
+        """
         if load <= 0:
             return 0.0
         a, b = self.semi_axes(load)
@@ -263,6 +318,16 @@ def series_constant(k_inner: float, k_outer: float) -> float:
     """Load-deflection constant of a ball between both races (docs/model.md 3.4) [N/m^1.5].
 
     K_tot = (K_i^(-2/3) + K_o^(-2/3))^(-3/2).
+
+    Parameters
+    ----------
+    k_inner, k_outer : float
+        Load-deflection constants of the inner and the outer contact [N/m^1.5].
+
+    Returns
+    -------
+    float
+        The two contacts' series constant [N/m^1.5].
     """
     return (k_inner ** (-2.0 / 3.0) + k_outer ** (-2.0 / 3.0)) ** (-1.5)
 
@@ -321,6 +386,18 @@ def entrainment_speed(geometry: BearingGeometry, shaft_frequency_hz: float) -> f
     """Mean rolling (entrainment) speed of both contacts, u = omega_s (D^2 - d^2) / (4 D) [m/s].
 
     For alpha = 0 and a stationary outer ring (docs/model.md section 2).
+
+    Parameters
+    ----------
+    geometry : BearingGeometry
+        Bearing geometry (ball and pitch diameters [m], contact angle [rad]).
+    shaft_frequency_hz : float
+        Shaft rotation frequency [Hz], 0 .. 2000.
+
+    Returns
+    -------
+    float
+        Entrainment speed [m/s].
     """
     fs = check_real("shaft_frequency_hz", shaft_frequency_hz, low=0.0, high=2000.0, unit="Hz")
     d, pd = geometry.ball_diameter * math.cos(geometry.contact_angle), geometry.pitch_diameter
@@ -388,7 +465,20 @@ def film_thickness(
 
 
 def film_stiffness(load: float, central_film_thickness: float) -> float:
-    """Film stiffness k_f = |dQ/dh_c| = Q / (0.067 h_c) (docs/model.md 4.4) [N/m]."""
+    """Film stiffness k_f = |dQ/dh_c| = Q / (0.067 h_c) (docs/model.md 4.4) [N/m].
+
+    Parameters
+    ----------
+    load : float
+        Contact load [N], >= 0.
+    central_film_thickness : float
+        Central film thickness h_c at that load [m], > 0 (:func:`film_thickness`).
+
+    Returns
+    -------
+    float
+        Film stiffness [N/m].
+    """
     q = check_real("load", load, low=0.0, unit="N")
     h = check_real(
         "central_film_thickness", central_film_thickness, low=0.0, low_inclusive=False, unit="m"
@@ -409,6 +499,20 @@ def squeeze_film_damping(
 
     c_sq = 6 pi eta_0 R_x^1.5 R_y^0.5 f(R_x/R_y) / h_c. An order-of-magnitude estimate (no
     piezo-viscosity, cavitation, starvation or elastic flattening).
+
+    Parameters
+    ----------
+    contact : HertzContact
+        The contact (its radii R_x, R_y [m]).
+    lubricant : Lubricant
+        The lubricant (its dynamic viscosity eta_0 [Pa s]).
+    central_film_thickness : float or ndarray
+        Central film thickness h_c [m], > 0.
+
+    Returns
+    -------
+    float or ndarray
+        Squeeze-film damping coefficient [N s/m].
     """
     cg = contact.geometry
     f = squeeze_film_shape_factor(min(cg.rx / cg.ry, 1.0))

@@ -26,7 +26,20 @@ __all__ = ["DefectPath", "defect_path", "sagitta"]
 
 
 def sagitta(bridge_radius: float, distance: float) -> float:
-    """Sink of a ball pivoting over an edge: R_x - sqrt(R_x^2 - e^2) [m] (R_x if e >= R_x)."""
+    """Sink of a ball pivoting over an edge: R_x - sqrt(R_x^2 - e^2) [m] (R_x if e >= R_x).
+
+    Parameters
+    ----------
+    bridge_radius : float
+        Radius R_x of the ball's curvature across the defect [m], > 0.
+    distance : float
+        Distance e of the ball's centre from the edge along the race [m], >= 0.
+
+    Returns
+    -------
+    float
+        How far the ball sinks below the intact surface [m].
+    """
     if distance >= bridge_radius:
         return bridge_radius
     return bridge_radius - math.sqrt(bridge_radius * bridge_radius - distance * distance)

@@ -58,11 +58,23 @@ class BearingFrequencies:
     inner_relative_to_cage: float
 
     def as_dict(self) -> dict[str, float]:
-        """Return the frequencies as a plain dict (keys are the attribute names)."""
+        """Return the frequencies as a plain dict (keys are the attribute names).
+
+        Returns
+        -------
+        dict of str to float
+            Each frequency [Hz] under its attribute's name.
+        """
         return asdict(self)
 
     def orders(self) -> dict[str, float]:
-        """Return the frequencies as multiples of the shaft frequency [-]."""
+        """Return the frequencies as multiples of the shaft frequency [-].
+
+        Returns
+        -------
+        dict of str to float
+            Each frequency over the shaft frequency (orders, dimensionless).
+        """
         return {k: v / self.shaft for k, v in asdict(self).items()}
 
 

@@ -113,7 +113,13 @@ class SimulationResult:
         return self.signals[channel]
 
     def to_frame(self) -> pd.DataFrame:
-        """Return the signals as a pandas DataFrame with a ``time`` column [s]."""
+        """Return the signals as a pandas DataFrame with a ``time`` column [s].
+
+        Returns
+        -------
+        pandas.DataFrame
+            ``time`` [s] and one column per recorded channel, in SI units.
+        """
         import pandas as pd
 
         data = {"time": self.time}

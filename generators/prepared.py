@@ -90,9 +90,24 @@ def resolve_scene(
       (k_b / (k_b + k_h) < bound: the relative error of the one-way housing coupling);
     * otherwise ``shaft+housing``.
 
+    Parameters
+    ----------
+    scene : Scene
+        The scene asked for (``level`` and ``auto_error_bound``).
+    geometry : BearingGeometry
+        Bearing geometry and materials.
+    operating : OperatingCondition
+        Shaft speed and radial load [N].
+    rig : Rig
+        Masses [kg] and support stiffnesses [N/m] of shaft and housing.
+    settings : SimulationSettings
+        Sample rate [Hz] (sets the analysis band).
+
     Returns
     -------
     level, reason : str
+        The model level (``shaft``, ``shaft+housing`` or ``full``) and why: "requested", or
+        the estimate that chose it.
     """
     if scene.level != "auto":
         return scene.level, "requested"
