@@ -1,5 +1,6 @@
 """House rules a newcomer relies on: no module of the three packages over 900 lines, no
-private helper imported across modules (a leading underscore means "this module only")."""
+private helper imported across modules (a leading underscore means "this module only"), type
+hints and numpydoc docstrings on the public API."""
 
 import ast
 from pathlib import Path
@@ -271,3 +272,70 @@ def test_documented_benchmark_commands_exist():
     script = (REPO / "benchmarks" / "rule_variants.py").read_text()
     unknown = sorted(m for m in modes if f'mode == "{m}"' not in script)
     assert not missing and not unknown, (missing, unknown)
+
+
+def _exported_callables():
+    """(qualified name, object) of every function and class the three packages export in
+    ``__all__``, and of every public method of an exported class."""
+    import importlib
+    import inspect
+
+    for package in PACKAGES:
+        module = importlib.import_module(package)
+        for name in module.__all__:
+            obj = getattr(module, name)
+            if inspect.isfunction(obj) or inspect.isclass(obj):
+                yield f"{package}.{name}", obj
+            if inspect.isclass(obj):
+                for attribute, member in vars(obj).items():
+                    if not attribute.startswith("_") and inspect.isfunction(member):
+                        yield f"{package}.{name}.{attribute}", member
+
+
+def _numpydoc_section(doc: str, title: str) -> set[str] | None:
+    """The names a numpydoc section lists ("x, y : float" gives both), None without it."""
+    import re
+
+    found = re.search(rf"(?:^|\n){title}\n-+\n(.*?)(?=\n\n[A-Z][A-Za-z ]*\n-+\n|\Z)", doc, re.S)
+    if found is None:
+        return None
+    names = set()
+    for line in found.group(1).splitlines():
+        if line and not line[0].isspace():
+            names.update(n.strip().lstrip("*") for n in line.split(" : ")[0].split(","))
+    return names
+
+
+def test_exported_functions_document_their_parameters_and_returns():
+    """The brief: numpydoc docstrings. Every function the three packages export, and every
+    public method of an exported class, has a docstring whose Parameters section names each
+    parameter and, unless it returns None, a Returns (or Yields) section; every exported
+    class (exceptions and warnings aside) names each of its constructor's parameters under
+    Parameters or Attributes."""
+    import inspect
+
+    gaps = []
+    for qualified, obj in _exported_callables():
+        doc = inspect.getdoc(obj) or ""
+        if inspect.isclass(obj):
+            if issubclass(obj, BaseException):
+                continue
+            listed = (_numpydoc_section(doc, "Parameters") or set()) | (
+                _numpydoc_section(doc, "Attributes") or set()
+            )
+            skip = ("self", "args", "kwargs")
+        else:
+            listed = _numpydoc_section(doc, "Parameters") or set()
+            skip = ("self", "cls")
+            returns = inspect.signature(obj).return_annotation
+            answers = _numpydoc_section(doc, "Returns") or _numpydoc_section(doc, "Yields")
+            if returns not in (None, "None", inspect.Signature.empty) and answers is None:
+                gaps.append(f"{qualified}: no Returns section")
+        try:
+            parameters = inspect.signature(obj).parameters
+        except (TypeError, ValueError):  # a class without a signature of its own
+            continue
+        missing = [p for p in parameters if p not in skip and p not in listed]
+        if missing:
+            gaps.append(f"{qualified}: {missing} not documented")
+    assert not gaps, gaps
