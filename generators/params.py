@@ -387,7 +387,23 @@ class OperatingCondition:
     def from_rpm(
         cls, rpm: float, radial_load: float = 500.0, **kwargs: float
     ) -> OperatingCondition:
-        """Build from a shaft speed in revolutions per minute (0 to 120 000, standing allowed)."""
+        """Build from a shaft speed in revolutions per minute (0 to 120 000, standing allowed).
+
+        Parameters
+        ----------
+        rpm : float
+            Shaft speed [rev/min], 0 .. 120,000.
+        radial_load : float
+            Radial load on the shaft [N].
+        **kwargs : float
+            The other attributes (``load_angle`` [rad], ``cage_slip``, ``random_slip``,
+            ``ball_jitter``, ...), as for the class.
+
+        Returns
+        -------
+        OperatingCondition
+            With ``shaft_frequency`` = rpm / 60 [Hz].
+        """
         check_shaft_speed_rpm("rpm", rpm, standing=True)
         return cls(shaft_frequency=float(rpm) / 60.0, radial_load=radial_load, **kwargs)
 
