@@ -90,9 +90,10 @@ __all__ = [
 # 4711), in the margin of the weighed evidence (features.Evidence.combined) over the threshold:
 # expected calibration error of the verdict 0.008 with these (0.014 with those of stop 30,
 # 0.124 with a plain 3 dB logistic). Refitted at stop 35, when a line shared with a stronger
-# fault stopped counting for the weaker one (features.explain_shared_lines): the lines' (scale,
-# offset) moved from (5.67, 7.27) to (2.36, 0.07) dB (the same script on the code before gives
-# (5.65, 7.22)): a margin that no longer borrows another fault's lines says more. They are
+# fault stopped counting for the weaker one (features.evidence.explain_shared_lines): the
+# lines' (scale, offset) moved from (5.67, 7.27) to (2.36, 0.07) dB (the same script on the
+# code before gives (5.65, 7.22)): a margin that no longer borrows another fault's lines says
+# more. They are
 # probabilities for that recipe's population (45 % healthy, pits of every kind and size, fault
 # SNR -20 to +10 dB); another prior shifts them. Refitted at stop 41, when the recipe's fault
 # SNR came to be measured where the fault stands out and its machine noise through the
@@ -374,8 +375,9 @@ def rule_candidates(
                     for n, r, p in weighed["lines"]
                 ],
                 "detected": bool(weighed["evidence_db"] >= threshold),
-                # lines on a stronger detected fault's series (features.explain_shared_lines):
-                # counted as absent in this fault's weighing
+                # lines on a stronger detected fault's series
+                # (features.evidence.explain_shared_lines): counted as absent in this fault's
+                # weighing
                 "explained": [
                     {"line": line, "by": FAULT_NAMES[other], "harmonic": k}
                     for line, other, k in weighed.get("explained", [])
