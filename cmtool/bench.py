@@ -118,9 +118,19 @@ ENVELOPE_LABEL_DB = 10.0
 def load_from_sensor_deg(load_angle_rad: float, direction: str) -> float:
     """Angle between the radial load's line and the sensor's axis [deg], 0 to 90.
 
-    ``load_angle_rad`` from the x axis (the dataset's ``load_angle_rad``), ``direction`` the
-    sensor's axis (``x`` or ``y``). 0: the sensor looks along the load (the recipes' default);
-    90: across it.
+    0: the sensor looks along the load (the recipes' default); 90: across it.
+
+    Parameters
+    ----------
+    load_angle_rad : float
+        The load's direction from the x axis [rad] (the dataset's ``load_angle_rad``).
+    direction : {"x", "y"}
+        The sensor's axis.
+
+    Returns
+    -------
+    float
+        The angle [deg].
 
     Examples
     --------
@@ -140,7 +150,23 @@ class DetectorOutput:
 
 
 def load_callable(spec: str) -> Callable:
-    """Import ``module:function``."""
+    """Import ``module:function``.
+
+    Parameters
+    ----------
+    spec : str
+        ``module:function`` (``cmtool bench --detector``).
+
+    Returns
+    -------
+    callable
+        The function.
+
+    Raises
+    ------
+    ValueError
+        When ``spec`` has no colon, or the module or the function cannot be found.
+    """
     if ":" not in spec:
         raise ValueError(f"--detector {spec!r}: expected module:function")
     module, name = spec.split(":", 1)
@@ -219,7 +245,28 @@ def _labelled(scores: dict[str, float], limit: float) -> DetectorOutput:
 def builtin_outputs(
     x: np.ndarray, fs: float, rpm: float, bearing: str | BearingGeometry, *, model: Any = None
 ) -> dict[str, DetectorOutput]:
-    """Every built-in detector on one signal (``model``/``combined`` when a model is given)."""
+    """Every built-in detector on one signal (``model``/``combined`` when a model is given).
+
+    Parameters
+    ----------
+    x : ndarray
+        The signal [U].
+    fs : float
+        Sample rate [Hz].
+    rpm : float
+        Shaft speed [rev/min].
+    bearing : str or BearingGeometry
+        Catalog name or geometry.
+    model : dict, optional
+        A model bundle (``cmtool train``).
+
+    Returns
+    -------
+    dict of str to DetectorOutput
+        ``envelope`` (the rule: margins over its threshold [dB]), ``fixed_band_ses`` and
+        ``cpw_ses`` [dB], ``spectral_kurtosis``, ``kurtosis`` and ``crest_factor``, and with a
+        model ``model`` and ``combined`` (probabilities).
+    """
     from features.detectors import (
         cpw_envelope_scores,
         envelope_scores,

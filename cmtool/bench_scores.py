@@ -63,7 +63,17 @@ SNR_BIN_ORIGIN_DB = -20.0
 
 
 def score_column(fault: str) -> str:
-    """The results' column of a fault's score (``score_outer_race``, ...)."""
+    """The results' column of a fault's score (``score_outer_race``, ...).
+
+    Parameters
+    ----------
+    fault : str
+        ``outer race``, ``inner race`` or ``ball``.
+
+    Returns
+    -------
+    str
+    """
     return "score_" + fault.replace(" ", "_")
 
 
@@ -72,6 +82,18 @@ SCORE_COLUMNS = tuple(score_column(f) for f in FAULT_CLASSES)
 
 def wilson_interval(successes: int, trials: int, z: float = 1.959964) -> tuple[float, float]:
     """Wilson score interval of a binomial proportion (95 % by default).
+
+    Parameters
+    ----------
+    successes, trials : int
+        The count of successes and of trials.
+    z : float
+        The standard normal quantile of the interval's confidence (1.96: 95 %).
+
+    Returns
+    -------
+    low, high : float
+        The interval's ends, in [0, 1]; NaN for no trials.
 
     Examples
     --------
@@ -92,6 +114,18 @@ def threshold_at_pfa(healthy_scores: np.ndarray, pfa: float) -> float:
 
     A signal is called faulty when its score exceeds the threshold. NaN when there are fewer
     than ``1 / pfa`` healthy scores (the rate cannot be measured on them).
+
+    Parameters
+    ----------
+    healthy_scores : array_like
+        A detector's scores of healthy signals.
+    pfa : float
+        The false-alarm rate allowed, in (0, 1).
+
+    Returns
+    -------
+    float
+        The threshold, in the scores' unit.
 
     Examples
     --------
@@ -118,9 +152,19 @@ def _own_score(frame: pd.DataFrame) -> np.ndarray:
 def score_summary(results: pd.DataFrame) -> tuple[pd.DataFrame, dict]:
     """AUC and detection probability at each false-alarm rate, per detector and fault.
 
-    Returns the table (``detector``, ``fault``, ``auc``, ``pd_at_pfa_0.01``,
-    ``pd_at_pfa_0.001``, ``signals``, ``healthy_signals``) and the ROC curves
-    ``{(detector, fault): (fpr, tpr)}``.
+    Parameters
+    ----------
+    results : pandas.DataFrame
+        ``cmtool bench``'s results: a row per detector and signal, with ``label`` and the
+        score columns (:func:`score_column`).
+
+    Returns
+    -------
+    table : pandas.DataFrame
+        ``detector``, ``fault``, ``auc``, ``pd_at_pfa_0.01``, ``pd_at_pfa_0.001``,
+        ``signals``, ``healthy_signals``.
+    curves : dict
+        The ROC curves, ``{(detector, fault): (fpr, tpr)}``.
     """
     from sklearn.metrics import roc_auc_score, roc_curve
 
@@ -206,6 +250,21 @@ def by_factor(
     (of ``fault`` only, when given) counts in the bin of its factor value. Columns:
     ``detector``, ``bin`` (readable), ``value`` (the bin's centre, numeric where the factor
     is), ``pd_at_pfa_<pfa>``, ``ci_low``, ``ci_high`` (Wilson 95 %), ``signals``.
+
+    Parameters
+    ----------
+    results : pandas.DataFrame
+        ``cmtool bench``'s results (:func:`score_summary`).
+    column : str
+        The factor (a results column: ``fault_snr_db``, ``rpm``, ``noise_rms``, ...).
+    pfa : float
+        The false-alarm rate the thresholds are set at.
+    fault : str, optional
+        Only this fault's signals.
+
+    Returns
+    -------
+    pandas.DataFrame
     """
     rows = []
     key = f"pd_at_pfa_{pfa:g}"
@@ -318,7 +377,19 @@ def confusion_tables(results: pd.DataFrame) -> pd.DataFrame:
 
 
 def confusion_plot_name(detector: str, rig: str = "all") -> str:
-    """File name of a detector's confusion plot (``confusion_<detector>[_<rig>].png``)."""
+    """File name of a detector's confusion plot (``confusion_<detector>[_<rig>].png``).
+
+    Parameters
+    ----------
+    detector : str
+        The detector's name.
+    rig : str
+        The rig's (bearing's) name, or ``all``.
+
+    Returns
+    -------
+    str
+    """
     slug = re.sub(r"[^A-Za-z0-9]+", "_", detector if rig == "all" else f"{detector}_{rig}")
     return f"confusion_{slug.strip('_')}.png"
 
@@ -327,6 +398,20 @@ def confusion_frame(tables: pd.DataFrame, detector: str, rig: str = "all") -> pd
     """One detector's confusion matrix from :func:`confusion_tables`.
 
     Rows: the true classes; columns: the verdicts; both in :data:`CLASS_ORDER`.
+
+    Parameters
+    ----------
+    tables : pandas.DataFrame
+        :func:`confusion_tables`' counts.
+    detector : str
+        The detector.
+    rig : str
+        The rig, or ``all``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Counts of signals.
     """
     part = tables[(tables["detector"] == detector) & (tables["rig"] == rig)]
     frame = part.pivot(index="label", columns="verdict", values="count")
@@ -336,7 +421,19 @@ def confusion_frame(tables: pd.DataFrame, detector: str, rig: str = "all") -> pd
 
 
 def summarise(results: pd.DataFrame) -> dict[str, pd.DataFrame]:
-    """The detectors' own labels: rates per detector (``overall``) and by each factor."""
+    """The detectors' own labels: rates per detector (``overall``) and by each factor.
+
+    Parameters
+    ----------
+    results : pandas.DataFrame
+        ``cmtool bench``'s results, with each detector's ``verdict``.
+
+    Returns
+    -------
+    dict of str to pandas.DataFrame
+        ``overall`` and one table per factor the dataset varies: signals, detection rate,
+        false-alarm rate, right fault first and accuracy.
+    """
     out = {"overall": results.groupby("detector", sort=False)[["label", "verdict"]].apply(_rates)}
     for column in FACTORS:
         if column not in results.columns or results[column].nunique() < 2:
@@ -354,7 +451,21 @@ def summarise(results: pd.DataFrame) -> dict[str, pd.DataFrame]:
 
 
 def plot_roc(curves: dict, path: Path, *, title: str = "") -> Path:
-    """ROC curves, one panel per fault, one line per detector (log false-alarm axis)."""
+    """ROC curves, one panel per fault, one line per detector (log false-alarm axis).
+
+    Parameters
+    ----------
+    curves : dict
+        ``{(detector, fault): (fpr, tpr)}`` (:func:`score_summary`).
+    path : pathlib.Path
+        The PNG written.
+    title : str
+        The figure's title.
+
+    Returns
+    -------
+    pathlib.Path
+    """
     from .plots import plt, save_figure
 
     fig, axes = plt.subplots(1, len(FAULT_CLASSES), figsize=(13, 4.2), dpi=110, sharey=True)
@@ -386,6 +497,22 @@ def plot_pd_vs_snr(table: pd.DataFrame, path: Path, *, pfa: float = 1e-2, title:
 
     One panel for every fault together, and one per fault when ``table`` has a ``fault``
     column (rows with ``fault`` = ``all`` make the first panel).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        :func:`by_factor` on the fault SNR, its ``value`` (the bins' centres [dB]) named
+        ``snr_db``, with a ``fault`` column (``all`` or the fault).
+    path : pathlib.Path
+        The PNG written.
+    pfa : float
+        The false-alarm rate of the table's thresholds.
+    title : str
+        The figure's title.
+
+    Returns
+    -------
+    pathlib.Path
     """
     from .plots import plt, save_figure
 
@@ -464,9 +591,29 @@ def write_report(
 ) -> Path:
     """``report.md``: the tables, the plots, and what the figures rest on.
 
-    ``confusion`` (:func:`confusion_tables`) adds each detector's labels by class, over all
-    signals and per rig, with the plots the CLI writes beside the report
-    (:func:`confusion_plot_name`).
+    Parameters
+    ----------
+    path : pathlib.Path
+        ``report.md``'s path.
+    dataset : str
+        The dataset's name, as the report states it.
+    summary : pandas.DataFrame
+        :func:`score_summary`'s table.
+    by_snr : pandas.DataFrame
+        Detection probability against the fault SNR (:func:`by_factor`).
+    factors : dict of str to pandas.DataFrame
+        The same against each other factor.
+    in_sample : float
+        The share of the signals that trained the model (0 to 1; above 0 the report says
+        its figures are in-sample).
+    confusion : pandas.DataFrame, optional
+        :func:`confusion_tables`: each detector's labels by class, over all signals and
+        per rig, with the plots the CLI writes beside the report
+        (:func:`confusion_plot_name`).
+
+    Returns
+    -------
+    pathlib.Path
     """
     healthy = int(summary["healthy_signals"].max()) if len(summary) else 0
     lines = [f"# Detector benchmark: {dataset}", ""]

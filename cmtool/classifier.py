@@ -88,7 +88,18 @@ FROM_RECIPE = "recipe"
 
 
 def recipe_classifier(recipe: str) -> str | None:
-    """The classifier a recipe's text names in ``[training] classifier`` (None: none named)."""
+    """The classifier a recipe's text names in ``[training] classifier`` (None: none named).
+
+    Parameters
+    ----------
+    recipe : str
+        The recipe's TOML text (text that is not TOML names none).
+
+    Returns
+    -------
+    str or None
+        The classifier's name (a key of :func:`candidate_classifiers`), as written.
+    """
     import tomllib
 
     try:
@@ -103,7 +114,19 @@ def candidate_classifiers(
 ) -> dict[str, Any]:
     """The classifiers compared by :func:`train` (after a scaler).
 
-    Classes are weighed by ``class_weight`` (None: unweighted).
+    Parameters
+    ----------
+    random_state : int
+        Seed of the randomised ones (forests, gradient boosting).
+    class_weight : str or None
+        scikit-learn's ``class_weight`` for every one (``"balanced"``: classes weighed by
+        their counts; None: unweighted).
+
+    Returns
+    -------
+    dict of str to estimator
+        ``random_forest``, ``extra_trees``, ``gradient_boosting`` and
+        ``logistic_regression``, unfitted.
     """
     weight = class_weight
     return {
@@ -123,7 +146,22 @@ def candidate_classifiers(
 def make_classifier(
     name: str = "random_forest", *, random_state: int = 0, **extractor: Any
 ) -> Pipeline:
-    """Full pipeline: FeatureExtractor -> StandardScaler -> classifier ``name``."""
+    """Full pipeline: FeatureExtractor -> StandardScaler -> classifier ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A key of :func:`candidate_classifiers`.
+    random_state : int
+        The classifier's seed.
+    **extractor : Any
+        Parameters of ``features.FeatureExtractor`` (``feature_set``, ``n_jobs``, ...).
+
+    Returns
+    -------
+    sklearn.pipeline.Pipeline
+        Unfitted; its steps are named ``features``, ``scale`` and ``classify``.
+    """
     return Pipeline(
         [
             ("features", features.FeatureExtractor(**extractor)),
@@ -357,6 +395,16 @@ def class_kinds(frame: pd.DataFrame) -> dict[str, str]:
 
     From the ``defect_kind`` column (empty without one): ``diagnose`` reads a class learnt
     from waviness as no local fault (:func:`cmtool.diagnose.model_label_verdict`).
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        A dataset (:func:`cmtool.datasets.read_dataset`).
+
+    Returns
+    -------
+    dict of str to str
+        Label -> kind of defect its signals carry.
     """
     if "defect_kind" not in frame.columns:
         return {}
@@ -371,6 +419,17 @@ def training_ranges(frame: pd.DataFrame) -> dict[str, list]:
     """What a model saw: shaft speeds [rpm], sample rates [Hz] (lowest, highest), bearings.
 
     ``diagnose`` says when a record lies outside them (:func:`cmtool.diagnose.outside_training`).
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        The training dataset.
+
+    Returns
+    -------
+    dict of str to list
+        ``rpm`` [rev/min] and ``fs_hz`` [Hz] as [lowest, highest], and the ``bearings``' names,
+        each where the dataset has the column.
     """
     out: dict[str, list] = {}
     for column in ("rpm", "fs_hz"):
@@ -409,6 +468,27 @@ def pooled_calibration(
     ``out_of_fold``: the model's out-of-fold probabilities of ``frame``'s rows and the
     left-out signals' fold average, where :func:`train`'s cross-validation already has
     them (the same folds and estimator, so the same figures); None fits the folds here.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        The training signals kept (labels in ``label``).
+    X : pandas.DataFrame
+        Their feature table.
+    y : ndarray
+        Their labels.
+    groups : ndarray
+        Their operating point (the folds' groups).
+    estimator : estimator
+        The scaler and classifier whose out-of-fold probabilities are pooled.
+    n_splits : int
+        Grouped folds.
+    left_out, X_left_out : pandas.DataFrame, optional
+        The signals left out of training (too faint) and their feature table.
+    rule : list of dict of str to float
+        The rule detector's probabilities of each signal (see above).
+    out_of_fold : (ndarray, ndarray or None), optional
+        The model's out-of-fold probabilities, where already computed (see above).
 
     Returns
     -------
@@ -652,10 +732,27 @@ def evaluate(
 ) -> dict[str, Any]:
     """Accuracy, per-class precision/recall and the confusion matrix of a model on a dataset.
 
-    ``workers`` processes extract the features (the result is the same for any count);
-    ``progress(stage, done, total)`` is called after each chunk of signals. A dataset of
-    several bearings (rigs) is also scored per bearing (``by_rig``: signals, accuracy and
-    each class's recall), so that one rig's accuracy does not hide in another's.
+    A dataset of several bearings (rigs) is also scored per bearing (``by_rig``: signals,
+    accuracy and each class's recall), so that one rig's accuracy does not hide in
+    another's.
+
+    Parameters
+    ----------
+    bundle : dict
+        A model bundle (:func:`train`, ``cmtool.model_files.load_model``).
+    frame : pandas.DataFrame
+        The dataset scored (labels in ``label``).
+    workers : int
+        Processes that extract the features (the result is the same for any count).
+    progress : callable, optional
+        ``progress(stage, done, total)``, called after each chunk of signals.
+
+    Returns
+    -------
+    dict
+        ``accuracy``, ``labels``, ``confusion`` (rows: true labels, columns: predicted, in
+        the order of ``labels``), ``per_class`` precision, recall and F1, ``predictions``
+        and ``by_rig``.
     """
     y = frame["label"].astype(str).to_numpy()
     pipeline = bundle["pipeline"]

@@ -407,7 +407,18 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run ``cmtool``; returns the exit code (2 for input errors, 3 for a diverged run)."""
+    """Run ``cmtool``; returns the exit code (2 for input errors, 3 for a diverged run).
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        The arguments (default the process's, ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        0 on success.
+    """
     parser = build_parser()
     args = parser.parse_args(argv)
     logging.basicConfig(

@@ -77,7 +77,26 @@ class DatasetError(ValueError):
 
 
 def load_recipe(path: str | os.PathLike) -> tuple[dict, str]:
-    """Read and validate a TOML recipe: ``(normalised recipe, raw text)``."""
+    """Read and validate a TOML recipe: ``(normalised recipe, raw text)``.
+
+    Parameters
+    ----------
+    path : path-like
+        The recipe's TOML file.
+
+    Returns
+    -------
+    recipe : dict
+        The recipe validated and normalised (``generators.recipe.validate_recipe``).
+    text : str
+        Its text as read (stored with the dataset).
+
+    Raises
+    ------
+    DatasetError
+        When the file is missing or not valid TOML; ``generators.ParameterError`` when a key
+        or value is not allowed (naming it and its range).
+    """
     path = Path(path)
     if not path.is_file():
         raise DatasetError(f"recipe {path}: no such file")
@@ -93,7 +112,20 @@ _THREAD_STATE = threading.local()  # per worker thread: its lane blocks' output 
 
 
 def run_chunk(recipe: dict, cases: list[Case]) -> list[dict]:
-    """Generate the rows of one chunk (a Dask task: the client writes them)."""
+    """Generate the rows of one chunk (a Dask task: the client writes them).
+
+    Parameters
+    ----------
+    recipe : dict
+        The validated recipe (:func:`load_recipe`).
+    cases : list of generators.cases.Case
+        The chunk's cases.
+
+    Returns
+    -------
+    list of dict
+        One row per case (the dataset's columns; failed cases flagged).
+    """
     return generate_cases(recipe, cases)
 
 
@@ -102,7 +134,23 @@ def run_and_write_chunk(
 ) -> tuple[int, int]:
     """Generate one chunk and write its files (a local worker: no rows sent back).
 
-    Returns the counts of signals written and failed.
+    Parameters
+    ----------
+    recipe : dict
+        The validated recipe (:func:`load_recipe`).
+    cases : list of generators.cases.Case
+        The chunk's cases.
+    out : pathlib.Path
+        The dataset folder.
+    chunk : int
+        The chunk's number (names its parquet files).
+    recipe_text : str
+        The recipe's text, stored in the files' metadata.
+
+    Returns
+    -------
+    written, failed : int
+        The counts of signals written and of cases that failed (diverged).
     """
     # float64 rows that view this thread's output buffers (reused chunk after chunk: the rows
     # are written before the thread takes its next chunk); _table rounds them to float32
@@ -424,6 +472,15 @@ def dataset_complete(path: str | os.PathLike) -> bool:
     ``path`` may be the dataset folder or its ``data/`` folder. A folder of parquet files that
     ``cmtool generate`` did not make (no ``recipe.toml``) counts as complete; a folder that
     does not exist, or holds no parquet file, does not.
+
+    Parameters
+    ----------
+    path : path-like
+        The dataset folder or its ``data/`` folder.
+
+    Returns
+    -------
+    bool
     """
     path = Path(path)
     root = path.parent if path.name == "data" and not (path / "data").is_dir() else path
@@ -444,6 +501,28 @@ def read_dataset(
 
     An interrupted ``cmtool generate`` (no ``_dataset.json``) is refused unless
     ``allow_incomplete``: some classes or operating points may be missing from it.
+
+    Parameters
+    ----------
+    path : path-like
+        The dataset folder (or any folder with a ``data/`` folder of parquet files).
+    columns : list of str, optional
+        Only these columns (default all: ``signal`` [SI unit of the recipe's channel],
+        ``label``, ``fs_hz``, ``rpm``, the characteristic frequencies [Hz], the drawn
+        parameters and the fault SNR [dB]).
+    allow_incomplete : bool
+        Read a dataset whose generation did not finish.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per signal, sorted by its ``index``.
+
+    Raises
+    ------
+    DatasetError
+        When there is no data, or the dataset is incomplete and ``allow_incomplete`` is
+        False.
     """
     path = Path(path)
     data = path / "data" if (path / "data").is_dir() else path
@@ -500,7 +579,20 @@ _ANGLE_COLUMNS = ("load_angle_rad", "defect_position_rad")
 
 
 def dataset_info(path: str | os.PathLike) -> str:
-    """Counts per label and parameter ranges of a dataset, as text."""
+    """Counts per label and parameter ranges of a dataset, as text.
+
+    Parameters
+    ----------
+    path : path-like
+        The dataset folder.
+
+    Returns
+    -------
+    str
+        What ``cmtool dataset info`` prints: counts per label, the range of each parameter
+        the recipe varies, those it fixes, and how many faults reach the fault SNR that
+        ``cmtool train`` keeps.
+    """
     path = Path(path)
     present = (
         set(pq.read_schema(next((path / "data").glob("*.parquet"))).names)

@@ -39,7 +39,22 @@ SHARED_RECORDING = REPO.parent / "shared" / "data" / "cwru" / "12k_Drive_End_IR0
 
 
 def run_demo(out: Path, *, recipe: Path = SMALL_RECIPE, workers: int = 1) -> int:
-    """Run the demo into ``out``; returns 0."""
+    """Run the demo into ``out``; returns 0.
+
+    Parameters
+    ----------
+    out : pathlib.Path
+        The folder for its plots, dataset, model and reports (created).
+    recipe : pathlib.Path
+        The dataset recipe it generates and trains on (default the small recipe).
+    workers : int
+        Worker threads for the generation.
+
+    Returns
+    -------
+    int
+        The exit code, 0.
+    """
     from .classifier import save_model, train
     from .datasets import generate_dataset, read_dataset
     from .diagnose import diagnose_signal, write_report

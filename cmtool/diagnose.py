@@ -750,6 +750,16 @@ def overall_band(rpm: float) -> tuple[float, float]:
 
     The band the standard's zones are set in; the zones themselves depend on the machine's
     class and foundation, which a record does not give.
+
+    Parameters
+    ----------
+    rpm : float
+        Shaft speed [rev/min].
+
+    Returns
+    -------
+    low, high : float
+        The band [Hz].
     """
     return (2.0 if rpm <= 600.0 else 10.0, 1000.0)
 
@@ -759,8 +769,16 @@ def overall_velocity(
 ) -> dict | None:
     """The machine's overall vibration: the velocity RMS over :func:`overall_band`.
 
-    ``rms`` [signal unit x s] over ``band`` [Hz]; ``scale``: the signal's unit in m/s^2
-    (None: unknown).
+    Parameters
+    ----------
+    rms : float
+        The velocity RMS over the band [signal unit x s].
+    band : (float, float)
+        The band [Hz] (:func:`overall_band`).
+    fs : float
+        The record's sample rate [Hz] (the band ends at fs / 2 at most).
+    scale : float or None
+        The signal's unit in m/s^2 (None: unknown).
 
     Returns
     -------
@@ -790,7 +808,18 @@ def _logistic(margin: float, scale: float, offset: float) -> float:
 
 
 def explained_lines(candidate: dict) -> str:
-    """The candidate's lines that another fault accounts for, as text ("2x: outer race 3x")."""
+    """The candidate's lines that another fault accounts for, as text ("2x: outer race 3x").
+
+    Parameters
+    ----------
+    candidate : dict
+        One of ``Diagnosis.candidates``.
+
+    Returns
+    -------
+    str
+        Empty when no line is explained.
+    """
     return ", ".join(
         f"{e['line']}: {e['by']} {e['harmonic']}x" for e in candidate.get("explained", [])
     )
@@ -802,6 +831,24 @@ def write_report(
     """Write ``report.md`` with the spectrum, envelope spectrum and kurtogram plots.
 
     :func:`cmtool.report.write_report` (the report's own module; kept here by name).
+
+    Parameters
+    ----------
+    diagnosis : Diagnosis
+        The diagnosis (:func:`cmtool.diagnose.diagnose_signal`).
+    out : path-like
+        The report's folder (created).
+    title : str
+        The record's name, in the report's and the plots' titles.
+    x : ndarray
+        The record diagnosed [its unit] (for the time waveform).
+    fs : float
+        Its sample rate [Hz].
+
+    Returns
+    -------
+    pathlib.Path
+        ``report.md``'s path (``diagnosis.json`` and the PNGs beside it).
     """
     from .report import write_report as write
 

@@ -266,7 +266,20 @@ def _pareto(table: pd.DataFrame) -> np.ndarray:
 
 
 def recommend(table: pd.DataFrame, error_bound: float) -> pd.Series | None:
-    """Cheapest stable setting whose band amplitude error is at most ``error_bound``."""
+    """Cheapest stable setting whose band amplitude error is at most ``error_bound``.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The fidelity study's table (``cmtool fidelity``).
+    error_bound : float
+        The largest relative band amplitude error allowed (0.01: 1 %).
+
+    Returns
+    -------
+    pandas.Series or None
+        The table's row, None when no stable setting meets the bound.
+    """
     ok = table[table["stable"] & (table["band_amplitude_error"] <= error_bound)]
     if ok.empty:
         return None
@@ -276,7 +289,21 @@ def recommend(table: pd.DataFrame, error_bound: float) -> pd.Series | None:
 def plot_fidelity(
     table: pd.DataFrame, path: str | Path, *, error_bound: float | None = None
 ) -> Path:
-    """Runtime against band amplitude error, one marker per setting, Pareto front joined."""
+    """Runtime against band amplitude error, one marker per setting, Pareto front joined.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The fidelity study's table (``cmtool fidelity``).
+    path : str or Path
+        The PNG written.
+    error_bound : float, optional
+        The bound drawn as a line (relative error).
+
+    Returns
+    -------
+    Path
+    """
     from .plots import plt, save_figure
 
     path = Path(path)

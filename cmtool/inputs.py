@@ -19,6 +19,18 @@ __all__ = ["checked_record", "checked_rate", "checked_geometry", "checked_model"
 def checked_record(x: Any, name: str = "x") -> np.ndarray:
     """One record as a 1-D float array (a single row or column is taken as one record).
 
+    Parameters
+    ----------
+    x : array_like
+        The record [its unit].
+    name : str
+        Its name in an error message.
+
+    Returns
+    -------
+    ndarray
+        1-D, float.
+
     Raises
     ------
     ValueError
@@ -41,7 +53,24 @@ def checked_record(x: Any, name: str = "x") -> np.ndarray:
 
 
 def checked_rate(fs: Any, name: str = "fs") -> float:
-    """A sample rate [Hz]: a finite number above 0."""
+    """A sample rate [Hz]: a finite number above 0.
+
+    Parameters
+    ----------
+    fs : object
+        The rate given [Hz].
+    name : str
+        Its name in an error message.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    generators.ParameterError
+        Not a number, not finite, or not above 0 (naming it and the range).
+    """
     try:
         value = float(fs)
     except (TypeError, ValueError):
@@ -54,7 +83,22 @@ def checked_rate(fs: Any, name: str = "fs") -> float:
 
 
 def checked_geometry(geometry: Any) -> BearingGeometry:
-    """A catalog name or a :class:`generators.BearingGeometry`, as the geometry."""
+    """A catalog name or a :class:`generators.BearingGeometry`, as the geometry.
+
+    Parameters
+    ----------
+    geometry : str or BearingGeometry
+        A catalog name (``generators.bearing``) or a geometry.
+
+    Returns
+    -------
+    BearingGeometry
+
+    Raises
+    ------
+    generators.ParameterError
+        Neither, or a name not in the catalog.
+    """
     if isinstance(geometry, BearingGeometry):
         return geometry
     if isinstance(geometry, str):
@@ -69,6 +113,21 @@ def checked_model(model: Any) -> Any:
     """A model: a bundle of ``cmtool train`` (``cmtool.classifier.load_model``), or None.
 
     A fitted scikit-learn pipeline is taken too.
+
+    Parameters
+    ----------
+    model : dict, fitted pipeline or None
+        The model given.
+
+    Returns
+    -------
+    dict, fitted pipeline or None
+        ``model``, checked.
+
+    Raises
+    ------
+    ValueError
+        A dict without a ``pipeline``, or an object that cannot predict.
     """
     if model is None:
         return None

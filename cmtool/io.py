@@ -41,7 +41,19 @@ SIGNAL_SCHEMA_VERSION = 1
 
 
 def to_jsonable(obj: Any) -> Any:
-    """Convert numpy scalars/arrays and nested containers to JSON-serialisable values."""
+    """Convert numpy scalars/arrays and nested containers to JSON-serialisable values.
+
+    Parameters
+    ----------
+    obj : object
+        A value: dicts (keys made str), lists, tuples, numpy arrays and scalars are
+        converted all the way down.
+
+    Returns
+    -------
+    object
+        Python scalars, lists and dicts; a value that is not finite becomes None.
+    """
     if isinstance(obj, dict):
         return {str(k): to_jsonable(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
@@ -60,6 +72,15 @@ def json_text(obj: Any) -> str:
 
     What every JSON result cmtool writes or prints goes through (``tests/tests_cmtool/
     test_house.py::test_json_results_are_strict_json``).
+
+    Parameters
+    ----------
+    obj : object
+        The value (:func:`to_jsonable`).
+
+    Returns
+    -------
+    str
     """
     return json.dumps(to_jsonable(obj), indent=2, allow_nan=False)
 
@@ -75,7 +96,17 @@ _UMASK = _process_umask()
 
 
 def atomic_write(path: Path, write: Callable[[Path], object]) -> None:
-    """Call ``write(tmp_path)`` then rename the temporary file onto ``path`` (atomic on POSIX)."""
+    """Call ``write(tmp_path)`` then rename the temporary file onto ``path`` (atomic on POSIX).
+
+    A reader never sees half a file, and an interrupted write leaves the previous one.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file written (its folder is created).
+    write : callable
+        ``write(tmp_path)`` writes the whole file at ``tmp_path`` (beside ``path``).
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
@@ -91,7 +122,19 @@ def atomic_write(path: Path, write: Callable[[Path], object]) -> None:
 
 
 def signal_metadata(result: SimulationResult | SignalStream) -> dict[str, Any]:
-    """Metadata stored with a simulated signal (a whole result or a stream of blocks)."""
+    """Metadata stored with a simulated signal (a whole result or a stream of blocks).
+
+    Parameters
+    ----------
+    result : SimulationResult or SignalStream
+        The run.
+
+    Returns
+    -------
+    dict
+        Schema and cmtool versions, ``fs_hz``, ``frequencies_hz``, the run's parameters and
+        the units of each quantity (SI), JSON-serialisable.
+    """
     return to_jsonable(
         {
             "schema_version": SIGNAL_SCHEMA_VERSION,
@@ -249,7 +292,20 @@ def write_signal_stream(
 
 
 def read_signal(path: str | os.PathLike) -> tuple[pd.DataFrame, dict[str, Any]]:
-    """Read a signal written by :func:`write_signal`: ``(frame, metadata)``."""
+    """Read a signal written by :func:`write_signal`: ``(frame, metadata)``.
+
+    Parameters
+    ----------
+    path : path-like
+        A ``.parquet`` file, or a ``.csv`` with its ``.csv.json`` metadata beside it.
+
+    Returns
+    -------
+    frame : pandas.DataFrame
+        ``time`` [s] and the channels [SI units].
+    metadata : dict
+        :func:`signal_metadata` (empty for a CSV without its sidecar).
+    """
     path = Path(path)
     if path.suffix.lower() == ".parquet":
         table = pq.read_table(path)
@@ -289,8 +345,28 @@ def split_spec(
 ) -> tuple[str, dict[str, object]]:
     """Split ``head:key=value:...``; ``keys`` maps a key to (field name, converter).
 
-    Every message names ``option`` and the spec; ``error`` is the exception raised (the
-    command line's own, or :class:`generators.ParameterError`).
+    Parameters
+    ----------
+    spec : str
+        The specification.
+    option : str
+        What gave it (an option, a manifest's line): every message names it and the spec.
+    usage : str
+        The form expected, for the messages.
+    keys : dict of str to (str, callable)
+        Each key allowed -> the field's name and its converter (``int``, ``float``).
+    required : tuple of str
+        The keys that must be given.
+    error : type
+        The exception raised (the command line's own, or
+        :class:`generators.ParameterError`).
+
+    Returns
+    -------
+    head : str
+        The text before the first colon.
+    fields : dict of str to object
+        The converted values under their fields' names.
     """
     parts = spec.split(":")
     head = parts[0].strip()

@@ -125,6 +125,18 @@ def save_model(bundle: dict[str, Any], path: str | Path) -> Path:
 
     The archive holds JSON and numpy arrays only (no pickle): :func:`load_model` rebuilds it
     without running code from the file.
+
+    Parameters
+    ----------
+    bundle : dict
+        The model bundle (``cmtool.classifier.train``).
+    path : str or Path
+        The archive written (``.skops``); the summary is written beside it, ``.json``
+        added to its name.
+
+    Returns
+    -------
+    Path
     """
     import skops.io as sio
 

@@ -463,7 +463,22 @@ def plot_confusion(
 ) -> Path:
     """Confusion matrix (rows: true label, columns: predicted) with counts in the cells.
 
-    ``columns``: the predicted labels when they differ from the true ones (``labels``).
+    Parameters
+    ----------
+    matrix : array_like
+        Counts, rows the true labels, columns the predicted ones.
+    labels : sequence of str
+        The true labels, in the rows' order.
+    path : str or Path
+        The PNG written.
+    title : str
+        The figure's title.
+    columns : list of str, optional
+        The predicted labels, when they differ from ``labels``.
+
+    Returns
+    -------
+    Path
     """
     path = Path(path)
     m = np.asarray(matrix)
@@ -492,7 +507,20 @@ def plot_confusion(
 
 
 def waviness_markers(result: SimulationResult, defects: Sequence[Waviness]) -> dict[str, float]:
-    """Fault-frequency markers for a plot: characteristic frequencies plus waviness lines."""
+    """Fault-frequency markers for a plot: characteristic frequencies plus waviness lines.
+
+    Parameters
+    ----------
+    result : SimulationResult
+        The run (its bearing and characteristic frequencies).
+    defects : sequence of Waviness
+        The run's waviness.
+
+    Returns
+    -------
+    dict of str to float
+        Marker name -> frequency [Hz] (:func:`plot_spectrum`'s ``markers``).
+    """
     from generators import Waviness, bearing, waviness_passage_frequencies
 
     f = result.frequencies

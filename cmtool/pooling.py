@@ -55,6 +55,16 @@ def rule_probabilities(candidates: list[dict]) -> dict[str, float]:
     Each fault's confidence c_i (logistic in its margin over the threshold) is read as the
     probability that its line is real; a fault alone: c_i prod_{j != i} (1 - c_j), healthy:
     prod (1 - c_j); normalised.
+
+    Parameters
+    ----------
+    candidates : list of dict
+        ``Diagnosis.candidates`` (each with ``fault`` and ``confidence``).
+
+    Returns
+    -------
+    dict of str to float
+        ``healthy`` and each fault's probability; they sum to 1.
     """
     conf = {c["fault"]: float(c["confidence"]) for c in candidates}
     scores = {"healthy": float(np.prod([1.0 - v for v in conf.values()]))}
@@ -71,6 +81,19 @@ def model_label_verdict(label: str, class_kinds: dict | None = None) -> str | No
     A class the model learnt from waviness (``class_kinds[label] == "waviness"``, recorded by
     ``cmtool train`` from the dataset's ``defect_kind``) is no local fault: it stands for
     ``healthy`` in the rule's verdicts (docs/diagnosis.md, "A model trained on waviness").
+
+    Parameters
+    ----------
+    label : str
+        A model's class label (``outer``, ``inner race``, ``healthy``, ...).
+    class_kinds : dict, optional
+        Label -> kind of defect (``cmtool.classifier.class_kinds``).
+
+    Returns
+    -------
+    str or None
+        ``healthy``, ``outer race``, ``inner race`` or ``ball``; None for a label that is
+        none of them.
     """
     if class_kinds and class_kinds.get(str(label)) == "waviness":
         return "healthy"
@@ -80,7 +103,20 @@ def model_label_verdict(label: str, class_kinds: dict | None = None) -> str | No
 def verdict_probabilities(
     model_probabilities: dict, class_kinds: dict | None = None
 ) -> dict[str, float]:
-    """A model's class probabilities summed per verdict (:func:`model_label_verdict`)."""
+    """A model's class probabilities summed per verdict (:func:`model_label_verdict`).
+
+    Parameters
+    ----------
+    model_probabilities : dict
+        Class label -> probability.
+    class_kinds : dict, optional
+        Label -> kind of defect (``cmtool.classifier.class_kinds``).
+
+    Returns
+    -------
+    dict of str to float
+        Verdict -> probability (labels that stand for no verdict left out).
+    """
     out: dict[str, float] = {}
     for label, value in model_probabilities.items():
         name = model_label_verdict(str(label), class_kinds)
@@ -109,6 +145,22 @@ def pool_probabilities(
     model trained on waviness has none for any local fault) is one it cannot tell from
     healthy: it gets the model's probability of healthy, so that the rule alone weighs it
     (until stop 52 it got none, and such a model turned every local fault healthy).
+
+    Parameters
+    ----------
+    rule_p : dict of str to float
+        The rule's probabilities (:func:`rule_probabilities`).
+    model_probabilities : dict
+        The model's class probabilities.
+    class_kinds : dict, optional
+        Label -> kind of defect (``cmtool.classifier.class_kinds``).
+    segments : int
+        n, the model's segments in the record (>= 1).
+
+    Returns
+    -------
+    dict of str to float
+        The pooled probability of each of ``rule_p``'s verdicts; they sum to 1.
     """
     model_p = verdict_probabilities(model_probabilities, class_kinds)
     if "healthy" in model_p:
@@ -134,6 +186,18 @@ def calibrated_confidence(probability: float, calibration: dict | None) -> float
 
     A logistic in the probability's log-odds, fitted by ``cmtool train``
     (:func:`cmtool.classifier.pooled_calibration`); without one, the probability as it is.
+
+    Parameters
+    ----------
+    probability : float
+        The pooled verdict's probability, in [0, 1].
+    calibration : dict or None
+        ``slope`` and ``intercept`` of the logistic.
+
+    Returns
+    -------
+    float
+        The confidence, in (0, 1).
     """
     if not calibration:
         return probability
@@ -151,6 +215,13 @@ def combine_verdicts(diagnosis: Diagnosis) -> None:
     training signals). On a record the model reads as n segments (``segments`` in its
     verdict) the rule weighs n / (n + 1). The headline says what the verdict rests on,
     whether the two agree and how they were weighed.
+
+    Parameters
+    ----------
+    diagnosis : Diagnosis
+        A diagnosis with the rule's candidates and the model's verdict; its ``verdict``,
+        ``confidence``, ``probabilities`` and ``basis`` are set here (nothing changes when
+        the model gave no probabilities).
     """
     probabilities = diagnosis.model_verdict.get("probabilities")
     if not probabilities:
@@ -211,6 +282,16 @@ def healthy_false_alarm(model: Any) -> float | None:
     (``cv_labels``, ``cv_predictions``, kept by ``cmtool train``) call a local fault, at least
     one over their number (a finite sample shows no model perfect); None for a bundle
     without them or without a healthy class.
+
+    Parameters
+    ----------
+    model : dict or pipeline
+        A model bundle (``cmtool train``).
+
+    Returns
+    -------
+    float or None
+        The rate, in (0, 1].
     """
     if not isinstance(model, dict) or "cv_labels" not in model or "cv_predictions" not in model:
         return None
@@ -284,6 +365,25 @@ def model_verdict(
     a local fault when more are than the model's false-alarm rate explains, else over all).
     ``segments`` in the result says how many were used, ``segments_read_as_fault`` how many
     the model read as a local fault and ``segments_combined`` which were averaged.
+
+    Parameters
+    ----------
+    model : dict or pipeline
+        A model bundle (``cmtool train``) or a fitted pipeline.
+    x : ndarray
+        The record [its unit].
+    fs : float
+        Sample rate [Hz].
+    freqs : BearingFrequencies
+        The bearing's characteristic frequencies at the record's speed [Hz].
+    extra : dict
+        Further context columns the model reads (as the dataset's).
+
+    Returns
+    -------
+    dict
+        ``label``, ``probabilities`` (class -> probability) where the model gives them,
+        and the segments' counts above.
     """
     import pandas as pd
 

@@ -102,7 +102,25 @@ def check_clipping(x: np.ndarray, name: str = "signal") -> None:
 
 
 def check_signal_quality(x: np.ndarray, name: str = "signal") -> list[str]:
-    """Warnings for clipped signals; raises ValueError for a constant or non-finite one."""
+    """Warnings for clipped signals; raises ValueError for a constant or non-finite one.
+
+    Parameters
+    ----------
+    x : ndarray
+        The record [its unit].
+    name : str
+        Its name in the messages.
+
+    Returns
+    -------
+    list of str
+        The warnings (empty for a clean record).
+
+    Raises
+    ------
+    ValueError
+        When the record holds NaN or inf, or is constant.
+    """
     bad = x.size - int(np.count_nonzero(np.isfinite(x)))
     if bad:
         raise ValueError(f"{name} contains {bad} non-finite values (NaN or inf)")

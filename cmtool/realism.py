@@ -330,6 +330,19 @@ def plot_realism(result: dict[str, Any], path: str | Path, *, top: int = 12) -> 
 
     The features' bars are coloured by which way the measured segments lie
     (:func:`feature_difference`: measured higher, lower, or alike).
+
+    Parameters
+    ----------
+    result : dict
+        :func:`realism`'s result.
+    path : str or Path
+        The PNG written.
+    top : int
+        How many features to show.
+
+    Returns
+    -------
+    Path
     """
     from .plots import plt, save_figure
 

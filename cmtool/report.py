@@ -72,7 +72,26 @@ def _quantity(diagnosis: Diagnosis) -> str:
 def write_report(
     diagnosis: Diagnosis, out: str | Path, *, title: str, x: np.ndarray, fs: float
 ) -> Path:
-    """Write ``report.md`` with the spectrum, envelope spectrum, waveform and kurtogram plots."""
+    """Write ``report.md`` with the spectrum, envelope spectrum, waveform and kurtogram plots.
+
+    Parameters
+    ----------
+    diagnosis : Diagnosis
+        The diagnosis (:func:`cmtool.diagnose.diagnose_signal`).
+    out : path-like
+        The report's folder (created).
+    title : str
+        The record's name, in the report's and the plots' titles.
+    x : ndarray
+        The record diagnosed [its unit] (for the time waveform).
+    fs : float
+        Its sample rate [Hz].
+
+    Returns
+    -------
+    pathlib.Path
+        ``report.md``'s path (``diagnosis.json`` and the PNGs beside it).
+    """
     from .plots import plot_kurtogram, plot_segment_evidence, plot_spectrum, plot_waveform
     from .waviness import comparison_text
 

@@ -80,8 +80,19 @@ GIVEN_LOAD_FACTORS = (0.7, 1.0, 1.4)
 def check_load_n(load_n: object, name: str = "load_n") -> float:
     """A given radial load [N], checked against (0, MAX_RADIAL_LOAD_N / 1.4] N.
 
-    The healthy model runs at up to ``GIVEN_LOAD_FACTORS`` times the load; ``name`` is the
-    parameter's name in the message.
+    The healthy model runs at up to ``GIVEN_LOAD_FACTORS`` times the load.
+
+    Parameters
+    ----------
+    load_n : object
+        The load given [N].
+    name : str
+        The parameter's name in the message.
+
+    Returns
+    -------
+    float
+        The load [N].
 
     Raises
     ------
@@ -131,7 +142,20 @@ class WavinessLine:
 
 
 def candidate_lines(freqs: BearingFrequencies, ball_count: int) -> list[WavinessLine]:
-    """Race waviness lines of orders qZ + m (inner, m = -3..3) and qZ (outer), q = 1..3."""
+    """Race waviness lines of orders qZ + m (inner, m = -3..3) and qZ (outer), q = 1..3.
+
+    Parameters
+    ----------
+    freqs : BearingFrequencies
+        The characteristic frequencies [Hz].
+    ball_count : int
+        Z.
+
+    Returns
+    -------
+    list of WavinessLine
+        Each line's surface, order, frequency [Hz] and harmonic q.
+    """
     out = []
     for q in (1, 2, 3):
         for m in range(-3, 4):
@@ -162,7 +186,21 @@ def line_false_alarm(f: np.ndarray, line: float, snr_db: float) -> float:
     """Probability that Gaussian noise alone makes a candidate line ``snr_db`` over its floor.
 
     :func:`features.separation.plain_line_false_alarm` with the bins :func:`features.line_snr`
-    searches and takes the floor from for this line (``f``: the spectrum's frequencies [Hz]).
+    searches and takes the floor from for this line.
+
+    Parameters
+    ----------
+    f : ndarray
+        The spectrum's frequencies [Hz].
+    line : float
+        The candidate line [Hz].
+    snr_db : float
+        Its height over its floor [dB].
+
+    Returns
+    -------
+    float
+        The probability, in [0, 1].
     """
     return features.separation.plain_line_false_alarm(snr_db, *line_bins(f, line))
 
@@ -170,7 +208,17 @@ def line_false_alarm(f: np.ndarray, line: float, snr_db: float) -> float:
 def line_bins(f: np.ndarray, line: float) -> tuple[int, int]:
     """Bins :func:`features.line_snr` searches for a candidate line, and bins of its floor.
 
-    ``f``: the spectrum's frequencies [Hz]; ``line`` [Hz].
+    Parameters
+    ----------
+    f : ndarray
+        The spectrum's frequencies [Hz].
+    line : float
+        The candidate line [Hz].
+
+    Returns
+    -------
+    searched, floor : int
+        The counts of bins.
     """
     df = float(f[1] - f[0])
     hw = max(_half_width(df, line), df)
@@ -366,7 +414,18 @@ def mains_harmonic_near(line_hz: float, resolution_hz: float) -> float | None:
 
 
 def comparison_text(waviness: dict) -> str:
-    """How a reported waviness line compares with its healthy reference, in words."""
+    """How a reported waviness line compares with its healthy reference, in words.
+
+    Parameters
+    ----------
+    waviness : dict
+        ``Diagnosis.waviness``.
+
+    Returns
+    -------
+    str
+        A clause to append to the line's description (empty without a reference).
+    """
     if waviness.get("over_model_db") is None:
         return ""
     if not waviness.get("healthy_model_has_line", True):
