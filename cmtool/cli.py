@@ -100,7 +100,13 @@ EPILOG = (
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of ``cmtool``."""
+    """The argument parser of ``cmtool``.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        With a sub-parser per command.
+    """
     parser = _Parser(prog="cmtool", description=DESCRIPTION, epilog=EPILOG)
     parser.add_argument("--version", action="version", version=f"cmtool {__version__}")
     parser.add_argument(

@@ -208,6 +208,11 @@ def estimated_file_bytes(path: str | os.PathLike, samples: int, channels: int) -
     channels : int
         Channels written besides ``time``.
 
+    Returns
+    -------
+    int
+        Bytes.
+
     Examples
     --------
     >>> estimated_file_bytes("x.parquet", 1000, 1)

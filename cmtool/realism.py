@@ -59,6 +59,11 @@ def context_columns(frequencies: BearingFrequencies, fs: float) -> dict[str, flo
         The bearing's characteristic frequencies at the signal's speed [Hz].
     fs : float
         Sample rate [Hz].
+
+    Returns
+    -------
+    dict of str to float
+        ``fs_hz`` and each rate's column [Hz].
     """
     f = frequencies
     return {

@@ -20,7 +20,18 @@ logger = logging.getLogger("cmtool")
 
 
 def cmd_diagnose(args: argparse.Namespace) -> int:
-    """Diagnose a recording (or each recording a folder's MANIFEST.csv lists)."""
+    """Diagnose a recording (or each recording a folder's MANIFEST.csv lists).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``cmtool diagnose`` (``cmtool diagnose --help``).
+
+    Returns
+    -------
+    int
+        The exit code, 0 on success.
+    """
     from ..waviness import check_load_n
 
     check_output_folder("--report", args.report, "a folder for report.md")
@@ -546,7 +557,18 @@ def _report_folder(file: str) -> str:
 
 
 def cmd_realism(args: argparse.Namespace) -> int:
-    """Tell simulated from measured signals: ROC AUC and the features that give it away."""
+    """Tell simulated from measured signals: ROC AUC and the features that give it away.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``cmtool realism`` (``cmtool realism --help``).
+
+    Returns
+    -------
+    int
+        The exit code, 0 on success.
+    """
     check_output_folder("--out", args.out, "a folder for realism.json and realism.png")
     import numpy as np
 
@@ -613,7 +635,18 @@ def cmd_realism(args: argparse.Namespace) -> int:
 
 
 def cmd_bench(args: argparse.Namespace) -> int:
-    """Run detectors over a labelled dataset; print and write the scores, curves and report."""
+    """Run detectors over a labelled dataset; print and write the scores, curves and report.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``cmtool bench`` (``cmtool bench --help``).
+
+    Returns
+    -------
+    int
+        The exit code, 0 on success.
+    """
     import pandas as pd
 
     from .. import bench
@@ -763,7 +796,18 @@ def cmd_bench(args: argparse.Namespace) -> int:
 
 
 def cmd_demo(args: argparse.Namespace) -> int:
-    """The main job on the embedded default."""
+    """The main job on the embedded default.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``cmtool demo`` (``cmtool demo --help``).
+
+    Returns
+    -------
+    int
+        The exit code, 0 on success.
+    """
     check_output_folder("--out", args.out, "a folder for the demo's results")
     from ..demo import run_demo
 

@@ -22,7 +22,22 @@ MAX_SEED = 2**32 - 1  # numpy's and scikit-learn's seeds
 
 
 def check_output_file(option: str, path: str | None, what: str = "a file") -> None:
-    """Refuse, before any work, an output file that is an existing folder."""
+    """Refuse, before any work, an output file that is an existing folder.
+
+    Parameters
+    ----------
+    option : str
+        The option that gave it (named in the error).
+    path : str or None
+        The file (None: not asked for).
+    what : str
+        What the option wants, for the error.
+
+    Raises
+    ------
+    CliError
+        When ``path`` is a folder.
+    """
     from pathlib import Path
 
     if path and Path(path).is_dir():
@@ -30,7 +45,22 @@ def check_output_file(option: str, path: str | None, what: str = "a file") -> No
 
 
 def check_output_folder(option: str, path: str | None, what: str = "a folder") -> None:
-    """Refuse, before any work, an output folder that is an existing file."""
+    """Refuse, before any work, an output folder that is an existing file.
+
+    Parameters
+    ----------
+    option : str
+        The option that gave it (named in the error).
+    path : str or None
+        The folder (None: not asked for).
+    what : str
+        What the option wants, for the error.
+
+    Raises
+    ------
+    CliError
+        When ``path`` is a file.
+    """
     from pathlib import Path
 
     if path and Path(path).exists() and not Path(path).is_dir():
@@ -38,7 +68,17 @@ def check_output_folder(option: str, path: str | None, what: str = "a folder") -
 
 
 def seed_int(text: str) -> int:
-    """An argparse type: a random seed, an integer in [0, 2**32 - 1]."""
+    """An argparse type: a random seed, an integer in [0, 2**32 - 1].
+
+    Parameters
+    ----------
+    text : str
+        The option's text.
+
+    Returns
+    -------
+    int
+    """
     try:
         value = int(text)
     except ValueError:
@@ -49,7 +89,17 @@ def seed_int(text: str) -> int:
 
 
 def finite_float(text: str) -> float:
-    """An argparse type: a finite number (no nan, no inf)."""
+    """An argparse type: a finite number (no nan, no inf).
+
+    Parameters
+    ----------
+    text : str
+        The option's text.
+
+    Returns
+    -------
+    float
+    """
     try:
         value = float(text)
     except ValueError:
@@ -60,7 +110,17 @@ def finite_float(text: str) -> float:
 
 
 def positive_float(text: str) -> float:
-    """An argparse type: a finite number above 0."""
+    """An argparse type: a finite number above 0.
+
+    Parameters
+    ----------
+    text : str
+        The option's text.
+
+    Returns
+    -------
+    float
+    """
     value = finite_float(text)
     if value <= 0.0:
         raise argparse.ArgumentTypeError(f"{value:g} is outside the allowed range (0, inf)")
@@ -70,7 +130,25 @@ def positive_float(text: str) -> float:
 def progress_bar(
     total: int, desc: str, unit: str = "run", *, initial: int = 0, unit_scale: bool = False
 ) -> tqdm:
-    """The progress bar of every command: tqdm (count, rate, ETA) on stderr, quiet off a tty."""
+    """The progress bar of every command: tqdm (count, rate, ETA) on stderr, quiet off a tty.
+
+    Parameters
+    ----------
+    total : int
+        The count to reach.
+    desc : str
+        The bar's label.
+    unit : str
+        What is counted.
+    initial : int
+        The count already done (a resumed run).
+    unit_scale : bool
+        Show large counts with SI prefixes.
+
+    Returns
+    -------
+    tqdm.tqdm
+    """
     from tqdm import tqdm as bar
 
     return bar(

@@ -17,7 +17,18 @@ logger = logging.getLogger("cmtool")
 
 
 def cmd_generate(args: argparse.Namespace) -> int:
-    """Generate a dataset from a recipe."""
+    """Generate a dataset from a recipe.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``cmtool generate`` (``cmtool generate --help``).
+
+    Returns
+    -------
+    int
+        The exit code, 0 on success.
+    """
     check_output_folder("--out", args.out, "a folder for the dataset")
     from ..datasets import generate_dataset
 
@@ -60,7 +71,18 @@ def cmd_generate(args: argparse.Namespace) -> int:
 
 
 def cmd_dataset_info(args: argparse.Namespace) -> int:
-    """Print counts per label and parameter ranges."""
+    """Print counts per label and parameter ranges.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``cmtool dataset info`` (``cmtool dataset info --help``).
+
+    Returns
+    -------
+    int
+        The exit code, 0 on success.
+    """
     from ..datasets import dataset_info
 
     print(dataset_info(args.path))
@@ -68,7 +90,18 @@ def cmd_dataset_info(args: argparse.Namespace) -> int:
 
 
 def cmd_train(args: argparse.Namespace) -> int:
-    """Train classifiers with grouped cross-validation and save the best."""
+    """Train classifiers with grouped cross-validation and save the best.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``cmtool train`` (``cmtool train --help``).
+
+    Returns
+    -------
+    int
+        The exit code, 0 on success.
+    """
     check_output_file("--out", args.out, "a model file, e.g. model.skops")
     import numpy as np
 
@@ -118,7 +151,18 @@ def cmd_train(args: argparse.Namespace) -> int:
 
 
 def cmd_evaluate(args: argparse.Namespace) -> int:
-    """Accuracy, per-class precision/recall and confusion matrix of a model on a dataset."""
+    """Accuracy, per-class precision/recall and confusion matrix of a model on a dataset.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``cmtool evaluate`` (``cmtool evaluate --help``).
+
+    Returns
+    -------
+    int
+        The exit code, 0 on success.
+    """
     check_output_folder("--out", args.out, "a folder for confusion.png and evaluation.json")
     from ..bench import confusion_plot_name
     from ..classifier import class_kinds, evaluate, load_model, visible_faults
@@ -207,7 +251,24 @@ def _rig_line(rig: str, part: dict) -> str:
 def check_training_overlap(bundle: dict, frame: pd.DataFrame, args: argparse.Namespace) -> float:
     """Refuse to score a model on its own training signals unless --allow-training-data.
 
-    Returns the fraction of ``frame``'s signals the model was trained on (0 when none).
+    Parameters
+    ----------
+    bundle : dict
+        The model bundle.
+    frame : pandas.DataFrame
+        The dataset to score.
+    args : argparse.Namespace
+        The command's options (``allow_training_data``, and the paths named in the error).
+
+    Returns
+    -------
+    float
+        The fraction of ``frame``'s signals the model was trained on (0 when none).
+
+    Raises
+    ------
+    CliError
+        When some were and ``--allow-training-data`` was not given.
     """
     from ..classifier import training_overlap
 

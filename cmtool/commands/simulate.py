@@ -48,6 +48,15 @@ def _parse_spec(
 def parse_waviness(spec: str) -> Waviness:
     """Parse ``surface:order=N:amplitude=A[:phase=P|random][:ball=J]`` into a Waviness.
 
+    Parameters
+    ----------
+    spec : str
+        The option's text.
+
+    Returns
+    -------
+    Waviness
+
     Examples
     --------
     >>> parse_waviness("outer:order=9:amplitude=1e-6").order
@@ -77,6 +86,15 @@ def parse_defect(spec: str) -> LocalizedDefect:
     inner race and ball default random); ball pits also take ``latitude=A|random`` [rad] and
     ``drift=W`` (spin-axis drift [rad/s]).
 
+    Parameters
+    ----------
+    spec : str
+        The option's text.
+
+    Returns
+    -------
+    LocalizedDefect
+
     Examples
     --------
     >>> parse_defect("outer:length=0.18e-3:depth=20e-6").depth
@@ -104,6 +122,15 @@ def parse_defect(spec: str) -> LocalizedDefect:
 def parse_geometry(spec: str) -> BearingGeometry:
     """``--geometry``: :func:`cmtool.io.geometry_from_spec` (a bearing not in the catalog).
 
+    Parameters
+    ----------
+    spec : str
+        The option's text.
+
+    Returns
+    -------
+    BearingGeometry
+
     Examples
     --------
     >>> parse_geometry("6310:balls=8:ball_diameter=20.64e-3:pitch_diameter=77.5e-3").name
@@ -116,6 +143,16 @@ def parse_geometry(spec: str) -> BearingGeometry:
 
 def parse_form_waviness(spec: str) -> tuple[float, float, float]:
     """Parse ``INNER,OUTER,BALL`` form-error amplitudes [m] (each at least 0).
+
+    Parameters
+    ----------
+    spec : str
+        The option's text.
+
+    Returns
+    -------
+    inner, outer, ball : float
+        The amplitudes [m].
 
     Examples
     --------
@@ -148,7 +185,13 @@ def _default(cls: type, name: str):
 
 
 def add_model_arguments(p: argparse.ArgumentParser) -> None:
-    """The model's arguments (bearing, operating point, defects, scene, rig, settings) on ``p``."""
+    """The model's arguments (bearing, operating point, defects, scene, rig, settings) on ``p``.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser (``simulate``, ``fidelity``).
+    """
     from generators.params import INTEGRATORS, SCENE_LEVELS
 
     g = p.add_argument_group("bearing and operating point")
@@ -457,7 +500,18 @@ def _check_run_size(args: argparse.Namespace, settings, n_samples: int) -> bool:
 
 
 def cmd_simulate(args: argparse.Namespace) -> int:
-    """Run one simulation, write the signal and optionally the spectrum plot."""
+    """Run one simulation, write the signal and optionally the spectrum plot.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``cmtool simulate`` (``cmtool simulate --help``).
+
+    Returns
+    -------
+    int
+        The exit code, 0 on success.
+    """
     import numpy as np
 
     import features
@@ -603,7 +657,20 @@ def _simulate_streamed(args, geometry, operating, defects, scene, rig, settings,
 
 
 def parse_wpf(spec: str) -> tuple[str, list[int]]:
-    """``SURFACE:ORDERS`` of ``frequencies --wpf`` (``outer:9``, ``inner:8-10,17-19``)."""
+    """``SURFACE:ORDERS`` of ``frequencies --wpf`` (``outer:9``, ``inner:8-10,17-19``).
+
+    Parameters
+    ----------
+    spec : str
+        The option's text.
+
+    Returns
+    -------
+    surface : str
+        ``outer``, ``inner`` or ``ball``.
+    orders : list of int
+        The waviness orders.
+    """
     surface, _, orders = str(spec).partition(":")
     usage = "SURFACE:ORDERS, e.g. outer:9 or inner:8-10,17-19"
     if surface not in ("outer", "inner", "ball") or not orders:
@@ -631,6 +698,16 @@ def cmd_frequencies(args: argparse.Namespace) -> int:
     The bearing is a catalog one or a given geometry; the waviness passage frequencies are
     those of the orders asked for (docs/model.md 2.1); with ``--cage-slip`` s, every rate is
     the slipping cage's (docs/realism.md 1).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``cmtool frequencies`` (``cmtool frequencies --help``).
+
+    Returns
+    -------
+    int
+        The exit code, 0 on success.
     """
     geometry = parse_geometry(args.geometry) if args.geometry else bearing(args.bearing)
     rpm = check_shaft_speed_rpm("--rpm", args.rpm)
@@ -698,7 +775,18 @@ def _number_list(option: str, text: str | None) -> tuple[float, ...] | None:
 
 
 def cmd_fidelity(args: argparse.Namespace) -> int:
-    """Run the speed/accuracy study and print, write and plot the table."""
+    """Run the speed/accuracy study and print, write and plot the table.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``cmtool fidelity`` (``cmtool fidelity --help``).
+
+    Returns
+    -------
+    int
+        The exit code, 0 on success.
+    """
     check_output_file("--out", args.out, "a CSV file")
     check_output_file("--plot", args.plot, "a PNG file")
     from ..fidelity import fidelity_study, plot_fidelity, recommend
