@@ -234,6 +234,20 @@ def ratio_for_false_alarm(
     The inverse of ``n_bands x`` :func:`line_false_alarm`: it puts the evidence of several
     lines, combined into one probability, on the scale of :func:`detection_threshold_db`
     (at most ``_CURVE_DB[-1]``).
+
+    Parameters
+    ----------
+    false_alarm : float
+        The probability, in (0, 1].
+    n_bands : int
+        The bands searched.
+    searched_bins, floor_bins : int
+        The bins a line is searched in, and those its floor is the median of.
+
+    Returns
+    -------
+    float
+        The line's ratio to its floor [dB].
     """
     curve = _log_exceedance_curve(max(1, int(searched_bins)), max(3, int(floor_bins)))
     target = math.log(max(false_alarm, _SMALLEST_P)) - math.log(max(1, n_bands))

@@ -116,6 +116,20 @@ def keeping_warnings(function: Callable[..., Any], *args: Any) -> tuple[Any, lis
     caller's filters. The worker's own filters still apply (an ignored warning is not kept);
     a warning kept is not shown by the worker.
 
+    Parameters
+    ----------
+    function : callable
+        The task.
+    *args : Any
+        Its arguments.
+
+    Returns
+    -------
+    result : Any
+        What ``function`` returned.
+    caught : list of (type, str)
+        The warnings' categories and messages.
+
     Examples
     --------
     >>> import warnings
@@ -148,8 +162,24 @@ def map_in_processes(
 
     ``function`` takes a list of items and returns one result per item; each process gets
     every ``n_jobs``-th item (round robin, so that costly items spread), and the results are
-    put back in the items' order. ``None`` or 1: in this process. A warning raised in a
-    process is raised here, once (:func:`keeping_warnings`).
+    put back in the items' order. A warning raised in a process is raised here, once
+    (:func:`keeping_warnings`).
+
+    Parameters
+    ----------
+    function : callable
+        ``function(part, *args)``: one result per item of ``part``.
+    items : list
+        The items.
+    n_jobs : int or None
+        Processes (joblib's: -1 all cores); ``None`` or 1: in this process.
+    *args : Any
+        Further arguments of ``function``.
+
+    Returns
+    -------
+    list
+        The results, in the items' order.
     """
     if n_jobs in (None, 1) or len(items) < 2:
         return function(items, *args)

@@ -168,6 +168,8 @@ def band_error(
         The same record computed two ways [U].
     fs : float
         Sample rate [Hz].
+    levels : bool
+        Compare the octaves' RMS levels instead of their spectra (below).
 
     Returns
     -------
@@ -241,6 +243,20 @@ def on_record_grid(step: float, record_dt: float, oversample: int) -> float:
     RK4's does with the step, and pilots recorded partly on and partly off the grid gave
     Richardson's estimate 3-6 times under the true error (stop 36: the bound missed in 3 of
     the 9 cases of ``benchmarks/bench_error_bound.py``).
+
+    Parameters
+    ----------
+    step : float
+        The step wanted [s].
+    record_dt : float
+        The record interval [s] (the output interval over ``oversample``).
+    oversample : int
+        Records per output sample.
+
+    Returns
+    -------
+    float
+        The step on the record grid [s].
     """
     top = math.floor(math.log2(oversample) + 1e-9)
     power = min(top, math.floor(math.log2(step / record_dt) + 1e-9))

@@ -21,6 +21,15 @@ def lanes_supported(prep: Prepared) -> bool:
 
     RK4 in the ``shaft`` or ``shaft+housing`` scene with waviness only (no local defects, fewer
     than ``MAX_ROWS`` table rows, at most ``MAX_BALLS`` balls) and no contact-load record.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared run (:func:`generators.prepared.prepare`).
+
+    Returns
+    -------
+    bool
     """
     return (
         prep.settings.integrator == "rk4"

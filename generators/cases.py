@@ -99,6 +99,15 @@ CASE_COLUMNS = tuple(f.name for f in fields(CaseRecord))
 def column_kind(name: str) -> str:
     """A metadata column's storage kind: ``text``, ``bool``, ``int``, ``uint`` or ``float``.
 
+    Parameters
+    ----------
+    name : str
+        The column's name.
+
+    Returns
+    -------
+    str
+
     Examples
     --------
     >>> column_kind("seed"), column_kind("rpm"), column_kind("label")
@@ -184,7 +193,17 @@ def _draw(spec: dict, rng: np.random.Generator, cycle: int, *, integer: bool = F
 
 
 def case_count(recipe: dict) -> int:
-    """Number of cases (signals) of a validated recipe."""
+    """Number of cases (signals) of a validated recipe.
+
+    Parameters
+    ----------
+    recipe : dict
+        The recipe, validated (``generators.recipe.validate_recipe``).
+
+    Returns
+    -------
+    int
+    """
     return sum(c["count"] for c in recipe["conditions"])
 
 
@@ -197,6 +216,15 @@ def expand_cases(recipe: dict) -> list[Case]:
     the operating grid, so that no defect value is tied to a single operating point.
     ``operating_point_id`` numbers the distinct (bearing, rpm, load, clearance) points so
     that splits can group by it.
+
+    Parameters
+    ----------
+    recipe : dict
+        The recipe, validated (``generators.recipe.validate_recipe``).
+
+    Returns
+    -------
+    list of Case
     """
     return list(iter_cases(recipe))
 
@@ -207,6 +235,15 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
     Each case is drawn from its own child of the recipe seed's ``SeedSequence`` (children
     spawned one by one are those of a single ``spawn(n)``), so a generator can start
     simulating the first chunk before the last case exists (drawing costs ~50 us per case).
+
+    Parameters
+    ----------
+    recipe : dict
+        The recipe, validated (``generators.recipe.validate_recipe``).
+
+    Yields
+    ------
+    Case
     """
     r = recipe
     op = r["operating"]

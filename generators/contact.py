@@ -487,7 +487,18 @@ def film_stiffness(load: float, central_film_thickness: float) -> float:
 
 
 def squeeze_film_shape_factor(epsilon: float) -> float:
-    """f(eps) ~ 2 - eps^0.75 of the squeeze-film damping (docs/model.md 4.5, +/- 5 %) [-]."""
+    """f(eps) ~ 2 - eps^0.75 of the squeeze-film damping (docs/model.md 4.5, +/- 5 %) [-].
+
+    Parameters
+    ----------
+    epsilon : float
+        The contact's radius ratio R_x / R_y, in [0, 1].
+
+    Returns
+    -------
+    float
+        f(eps), dimensionless.
+    """
     e = check_real("epsilon", epsilon, low=0.0, high=1.0)
     return 2.0 - e**0.75
 

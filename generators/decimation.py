@@ -66,6 +66,16 @@ def filter_reach(factor: int) -> int:
     ``DIFFERENTIATOR_HALF_LENGTH * factor``: a run records this many more before its first
     and after its last output sample (where its settling allows), so that no output sample
     is filtered from the line extension of the record's ends.
+
+    Parameters
+    ----------
+    factor : int
+        The decimation factor (records per output sample).
+
+    Returns
+    -------
+    int
+        Records.
     """
     return 0 if factor <= 1 else (10 + DIFFERENTIATOR_HALF_LENGTH) * factor
 
@@ -75,6 +85,17 @@ def differentiated(name: str, factor: int) -> bool:
 
     An acceleration channel is when ``factor`` > 1; at ``factor`` 1 (no filter) it is its own
     acceleration column.
+
+    Parameters
+    ----------
+    name : str
+        The channel (``<body>_<quantity>_<axis>``).
+    factor : int
+        The decimation factor.
+
+    Returns
+    -------
+    bool
     """
     return factor > 1 and name in VELOCITY_OF
 
@@ -83,6 +104,17 @@ def source_column(name: str, factor: int) -> tuple[int, int]:
     """Record array (0 state, 1 acceleration) and column a channel is decimated from.
 
     The velocity's column where the channel is :func:`differentiated`.
+
+    Parameters
+    ----------
+    name : str
+        The channel.
+    factor : int
+        The decimation factor.
+
+    Returns
+    -------
+    array, column : int
     """
     if differentiated(name, factor):
         return CHANNEL_COLUMNS[VELOCITY_OF[name]]
@@ -92,7 +124,16 @@ def source_column(name: str, factor: int) -> tuple[int, int]:
 def record_columns(channels: Sequence[str], factor: int = 1) -> np.ndarray:
     """Flags of the record's columns (states, then accelerations) that ``channels`` read.
 
-    ``factor``: the decimation factor the record is made for (:func:`source_column`).
+    Parameters
+    ----------
+    channels : sequence of str
+        The channels recorded.
+    factor : int
+        The decimation factor the record is made for (:func:`source_column`).
+
+    Returns
+    -------
+    ndarray of bool
     """
     wanted = np.zeros(N_OUT_STATE + N_OUT_ACCEL, dtype=np.int64)
     for name in channels:
@@ -116,6 +157,24 @@ def decimate(
     row of one block. An acceleration channel is its velocity column through the same FIR
     convolved with a differentiator, divided by ``record_dt`` (the record interval [s],
     required then); at ``factor`` 1 the record's columns are returned as they are.
+
+    Parameters
+    ----------
+    out_state : ndarray
+        The record of the states (records, states) [m, m/s].
+    out_accel : ndarray
+        The record of the accelerations (records, bodies' axes) [m/s^2].
+    factor : int
+        The decimation factor.
+    channels : sequence of str
+        The output channels.
+    record_dt : float, optional
+        The record interval [s] (needed for accelerations when ``factor`` > 1).
+
+    Returns
+    -------
+    dict of str to ndarray
+        Each channel at the output rate [SI unit].
     """
     records = (out_state, out_accel)
     if factor > 1 and out_state.shape[0] >= 2:
@@ -159,6 +218,20 @@ def decimate_rows(
     same order, two to three times faster (``tests/tests_generators/test_decimation.py``).
     With ``derivative_dt`` (the record interval [s]) the rows are velocities and the result
     their band-limited derivative, the accelerations (:func:`fir_design`).
+
+    Parameters
+    ----------
+    records : ndarray
+        (records, n) [U].
+    factor : int
+        The decimation factor.
+    derivative_dt : float, optional
+        The record interval [s], for the derivative.
+
+    Returns
+    -------
+    ndarray
+        (records, ceil(n / factor)) [U, or U/s with ``derivative_dt``].
     """
     if factor <= 1:
         return records
@@ -182,6 +255,18 @@ def decimation_taps(factor: int, derivative: bool = False) -> np.ndarray:
     (``cos(pi k) / k``, k != 0) over ``DIFFERENTIATOR_HALF_LENGTH * factor`` records each side
     under a Kaiser window (``DIFFERENTIATOR_BETA``), scaled to a unit slope at 0 Hz: applied
     to a record, the derivative per record interval, centred as the FIR's output is.
+
+    Parameters
+    ----------
+    factor : int
+        The decimation factor.
+    derivative : bool
+        The differentiating filter.
+
+    Returns
+    -------
+    ndarray
+        The taps.
     """
     taps = sp_signal.firwin(20 * factor + 1, 1.0 / factor, window=("kaiser", 5.0))
     if not derivative:
@@ -200,9 +285,24 @@ def decimation_taps(factor: int, derivative: bool = False) -> np.ndarray:
 def fir_design(factor: int, n: int, derivative: bool = False) -> tuple[np.ndarray, int, int]:
     """The decimation filter as ``resample_poly(x, 1, factor)`` applies it to ``n`` samples.
 
-    Returns the taps of :func:`decimation_taps` as scipy applies them (zero-padded so that
-    the kept outputs are centred, then reversed), the number of leading outputs scipy drops,
-    and the output length.
+    Parameters
+    ----------
+    factor : int
+        The decimation factor.
+    n : int
+        The record's samples.
+    derivative : bool
+        The differentiating filter (:func:`decimation_taps`).
+
+    Returns
+    -------
+    taps : ndarray
+        The taps of :func:`decimation_taps` as scipy applies them (zero-padded so that the
+        kept outputs are centred, then reversed).
+    dropped : int
+        The leading outputs scipy drops.
+    length : int
+        The output's length.
     """
     taps = decimation_taps(factor, derivative)
     half_len = (taps.shape[0] - 1) // 2

@@ -24,7 +24,19 @@ STAMP = "cmtool-kernels.sha256"
 
 
 def sources_digest(package: Path, modules: Sequence[str] = KERNEL_MODULES) -> str:
-    """SHA-256 of the kernel modules' sources, in order (hex)."""
+    """SHA-256 of the kernel modules' sources, in order (hex).
+
+    Parameters
+    ----------
+    package : pathlib.Path
+        The package's folder.
+    modules : sequence of str
+        The kernel modules' names.
+
+    Returns
+    -------
+    str
+    """
     digest = hashlib.sha256()
     for name in modules:
         digest.update((package / f"{name}.py").read_bytes())
@@ -34,8 +46,22 @@ def sources_digest(package: Path, modules: Sequence[str] = KERNEL_MODULES) -> st
 def clear_stale(cache_dir: Path, digest: str, modules: Sequence[str] = KERNEL_MODULES) -> int:
     """Remove the modules' numba cache files in ``cache_dir`` unless ``digest`` is recorded.
 
-    Returns the number of files removed. Nothing is raised for a cache directory that cannot
-    be read or written (numba then compiles without caching, or another process cleans it).
+    Nothing is raised for a cache directory that cannot be read or written (numba then
+    compiles without caching, or another process cleans it).
+
+    Parameters
+    ----------
+    cache_dir : pathlib.Path
+        numba's cache directory.
+    digest : str
+        The sources' digest (:func:`sources_digest`).
+    modules : sequence of str
+        The kernel modules' names.
+
+    Returns
+    -------
+    int
+        The number of files removed.
     """
     stamp = cache_dir / STAMP
     try:
@@ -62,7 +88,13 @@ def clear_stale(cache_dir: Path, digest: str, modules: Sequence[str] = KERNEL_MO
 
 
 def guard(dispatcher: object) -> None:
-    """Run :func:`clear_stale` for the cache directory of a cached numba ``dispatcher``."""
+    """Run :func:`clear_stale` for the cache directory of a cached numba ``dispatcher``.
+
+    Parameters
+    ----------
+    dispatcher : object
+        A numba dispatcher compiled with ``cache=True``.
+    """
     cache = getattr(dispatcher, "_cache", None)
     path = getattr(cache, "_cache_path", None)
     if path:

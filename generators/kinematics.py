@@ -206,7 +206,26 @@ def waviness_passage_frequencies(
 def passage_lines(
     f: BearingFrequencies, z: int, surface: str, k: int, qmax: int
 ) -> list[WavinessLine]:
-    """:func:`waviness_passage_frequencies` from checked inputs and known frequencies ``f``."""
+    """:func:`waviness_passage_frequencies` from checked inputs and known frequencies ``f``.
+
+    Parameters
+    ----------
+    f : BearingFrequencies
+        The characteristic frequencies [Hz].
+    z : int
+        Ball count Z.
+    surface : {"outer", "inner", "ball"}
+        Surface with waviness.
+    k : int
+        Waviness order (lobes per circumference).
+    qmax : int
+        Largest ball-pass harmonic q considered.
+
+    Returns
+    -------
+    list of WavinessLine
+        As :func:`waviness_passage_frequencies`.
+    """
     lines: list[WavinessLine] = []
     if surface == "outer":
         for q in range(1, qmax + 1):

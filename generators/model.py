@@ -205,6 +205,16 @@ def integrate(prep: Prepared) -> SimulationResult:
     integration (:func:`_run_rk4` or :func:`_run_dopri5`), the divergence check, and the
     result (:func:`_result`: decimated signals and the parameter record).
 
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared run.
+
+    Returns
+    -------
+    SimulationResult
+        As :func:`simulate`.
+
     Raises
     ------
     SimulationDivergedError

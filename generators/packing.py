@@ -37,7 +37,20 @@ from .params import (
 def contact_geometries(
     geometry: BearingGeometry,
 ) -> tuple[HertzContact, HertzContact, tuple[float, float, float]]:
-    """Inner and outer contact geometry and the Hertz constants (K_i, K_o, K_series) [N/m^1.5]."""
+    """Inner and outer contact geometry and the Hertz constants (K_i, K_o, K_series) [N/m^1.5].
+
+    Parameters
+    ----------
+    geometry : BearingGeometry
+        The bearing.
+
+    Returns
+    -------
+    inner, outer : HertzContact
+        The contacts.
+    constants : (float, float, float)
+        K_i, K_o and their series constant [N/m^1.5].
+    """
     ci = hertz_contact(geometry, "inner")
     co = hertz_contact(geometry, "outer")
     return ci, co, load_deflection_constants(geometry)
@@ -47,7 +60,18 @@ Defect = Waviness | LocalizedDefect
 
 
 def as_defects(defects: Defect | Sequence[Defect] | None) -> tuple[Defect, ...]:
-    """``simulate``'s ``defects`` argument as a tuple of checked defect objects."""
+    """``simulate``'s ``defects`` argument as a tuple of checked defect objects.
+
+    Parameters
+    ----------
+    defects : Waviness, LocalizedDefect, sequence of them, or None
+        As given to ``simulate``.
+
+    Returns
+    -------
+    tuple
+        The defects (empty for None).
+    """
     if defects is None:
         return ()
     if isinstance(defects, (Waviness, LocalizedDefect)):
@@ -107,7 +131,21 @@ def waviness_table(
 ) -> np.ndarray:
     """Expand defects into the kernel table (ball rows per ball, phases drawn).
 
-    ``radial_load`` [N] sets the contact track width of ball pits (Stribeck load).
+    Parameters
+    ----------
+    defects : sequence of Waviness or LocalizedDefect
+        The run's defects, checked (:func:`as_defects`).
+    geometry : BearingGeometry
+        The bearing.
+    rng : numpy.random.Generator
+        Draws the phases and positions asked for as random.
+    radial_load : float
+        Sets the contact track width of ball pits (Stribeck load) [N].
+
+    Returns
+    -------
+    ndarray
+        The kernels' table, a row per surface term (``_kernels.W_*`` columns).
     """
     ball_count = geometry.ball_count
     rows = []
@@ -245,7 +283,26 @@ def pack_parameters(
     ehl: bool,
     freqs: BearingFrequencies | None,
 ) -> np.ndarray:
-    """Pack the parameter objects into the kernel's float64 vector (indices ``K.P_*``)."""
+    """Pack the parameter objects into the kernel's float64 vector (indices ``K.P_*``).
+
+    Parameters
+    ----------
+    geometry : BearingGeometry
+        The bearing.
+    operating : OperatingCondition
+        Speed [Hz], load [N], its angle [rad], slip.
+    rig : Rig
+        Masses [kg], stiffnesses [N/m] and damping of the rig.
+    ehl : bool
+        With the lubricant film.
+    freqs : BearingFrequencies or None
+        The characteristic frequencies [Hz], when computed already.
+
+    Returns
+    -------
+    ndarray
+        The parameter vector (SI units).
+    """
     ci, co, (ki, ko, kt) = contact_geometries(geometry)
     p = np.zeros(K.P_SIZE)
     z = geometry.ball_count
@@ -319,6 +376,16 @@ def with_film_tables(p: np.ndarray) -> np.ndarray:
     tables depend on thirteen of ``p``'s values only; a faulty case and its healthy twin share
     them, so the last few are kept
     (:func:`_film_tables`).
+
+    Parameters
+    ----------
+    p : ndarray
+        The parameter vector (:func:`pack_parameters`).
+
+    Returns
+    -------
+    ndarray
+        ``p`` with the tables appended.
     """
     keys = (
         K.P_FILM_LOAD_FLOOR,
@@ -422,13 +489,41 @@ def _film_tables(values: tuple[float, ...]) -> tuple[tuple[float, ...], np.ndarr
 
 
 def film_sum(p: np.ndarray, loads: np.ndarray) -> np.ndarray:
-    """Inner plus outer central film [m] of each ball at its load [N] (docs/model.md 4.2)."""
+    """Inner plus outer central film [m] of each ball at its load [N] (docs/model.md 4.2).
+
+    Parameters
+    ----------
+    p : ndarray
+        The parameter vector.
+    loads : ndarray
+        Each ball's load [N].
+
+    Returns
+    -------
+    ndarray
+        Each ball's film [m].
+    """
     q = loads + p[K.P_FILM_LOAD_FLOOR]  # smooth floor, as in the kernel
     return (p[K.P_FILM_INNER] + p[K.P_FILM_OUTER]) * q**K.FILM_EXPONENT
 
 
 def waviness_at_start(p: np.ndarray, wav: np.ndarray, z: int) -> np.ndarray:
-    """Waviness values seen by each ball at t = 0: rows [w_o, w_i, wb_o, wb_i] [m]."""
+    """Waviness values seen by each ball at t = 0: rows [w_o, w_i, wb_o, wb_i] [m].
+
+    Parameters
+    ----------
+    p : ndarray
+        The parameter vector.
+    wav : ndarray
+        The waviness table (:func:`waviness_table`).
+    z : int
+        Ball count.
+
+    Returns
+    -------
+    ndarray
+        (4, z) [m].
+    """
     out = np.zeros((11, z))
     K._start_waviness(p, wav, z, out)
     return out[[0, 2, 4, 6]]

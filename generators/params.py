@@ -328,6 +328,25 @@ def check_shaft_speed_rpm(name: str, rpm: object, *, standing: bool = False) -> 
     (0, 120000] rpm, or [0, 120000] where a standing shaft makes sense (``standing=True``: a
     simulation's static start).
 
+    Parameters
+    ----------
+    name : str
+        The parameter's name in the message.
+    rpm : object
+        The speed given [rev/min].
+    standing : bool
+        Allow 0.
+
+    Returns
+    -------
+    float
+        The speed [rev/min].
+
+    Raises
+    ------
+    ParameterError
+        Naming ``name``, the value and the allowed range.
+
     Examples
     --------
     >>> check_shaft_speed_rpm("rpm", 1797)

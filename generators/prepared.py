@@ -177,7 +177,31 @@ def params_record(
     defects: tuple[Defect, ...],
     extra: dict,
 ) -> dict:
-    """Every parameter of a run as a JSON-serialisable dict (the result's ``parameters``)."""
+    """Every parameter of a run as a JSON-serialisable dict (the result's ``parameters``).
+
+    Parameters
+    ----------
+    geometry : BearingGeometry
+        The bearing.
+    operating : OperatingCondition
+        The operating point.
+    rig : Rig
+        The rig.
+    scene : Scene
+        The scene asked for.
+    level, reason : str
+        The level run and why (:func:`resolve_scene`).
+    settings : SimulationSettings
+        The settings.
+    defects : tuple
+        The defects.
+    extra : dict
+        Further entries (the integrator's statistics).
+
+    Returns
+    -------
+    dict
+    """
     clean = _plain
 
     return {
@@ -217,7 +241,18 @@ T = TypeVar("T")
 
 @functools.cache
 def default_instance(cls: type[T]) -> T:
-    """The default instance of a frozen parameter class (built and validated once)."""
+    """The default instance of a frozen parameter class (built and validated once).
+
+    Parameters
+    ----------
+    cls : type
+        A parameter class (``Scene``, ``Rig``, ``SimulationSettings``).
+
+    Returns
+    -------
+    object
+        ``cls()``, the same object on every call.
+    """
     return cls()
 
 
@@ -233,8 +268,16 @@ def prepare(
 ) -> Prepared:
     """Validate the inputs, resolve the scene, pack parameters and find the static start.
 
-    Parameters are those of :func:`simulate`; returns the packed vector ``p``, the waviness
-    table ``wav`` and the initial state ``y0`` (static equilibrium, velocities zero).
+    Parameters
+    ----------
+    bearing, operating, defects, scene, rig, settings, random_state
+        As for :func:`generators.simulate`.
+
+    Returns
+    -------
+    Prepared
+        The run: among its fields the packed vector ``p``, the waviness table ``wav`` and
+        the initial state ``y0`` (static equilibrium, velocities zero).
     """
     if not isinstance(bearing, BearingGeometry):
         raise ParameterError(f"bearing = {bearing!r} is not a BearingGeometry")
@@ -279,6 +322,23 @@ def prepare_checked(
     Parameter objects of the right types, the defects as a tuple, the phase generator, and
     the bearing's frequencies at the operating point (``characteristic_frequencies`` with its
     cage slip; None for a standing shaft).
+
+    Parameters
+    ----------
+    geometry, operating : BearingGeometry, OperatingCondition
+        Checked.
+    defect_list : tuple
+        The defects, checked.
+    scene, rig, settings : Scene, Rig, SimulationSettings
+        Checked.
+    rng : numpy.random.Generator
+        The phase generator.
+    freqs : BearingFrequencies or None
+        As above [Hz].
+
+    Returns
+    -------
+    Prepared
     """
     z = geometry.ball_count
     level, reason = resolve_scene(scene, geometry, operating, rig, settings)
@@ -351,13 +411,28 @@ class Plan:
         return self.t_first - self.lead * self.record_dt
 
     def output_slice(self) -> slice:
-        """The output samples of the decimated record (without its lead and tail)."""
+        """The output samples of the decimated record (without its lead and tail).
+
+        Returns
+        -------
+        slice
+        """
         first = self.lead // self.oversample
         return slice(first, first + self.n_out)
 
 
 def plan_run(prep: Prepared) -> Plan:
-    """Step, record rate and record count of a prepared run (as :func:`simulate` does)."""
+    """Step, record rate and record count of a prepared run (as :func:`simulate` does).
+
+    Parameters
+    ----------
+    prep : Prepared
+        The run.
+
+    Returns
+    -------
+    Plan
+    """
     settings = prep.settings
     step = None
     error = math.nan
@@ -404,7 +479,21 @@ def plan_run(prep: Prepared) -> Plan:
 
 
 def diverged_error(prep: Prepared, status: int, t_fail: float) -> SimulationDivergedError:
-    """The error that names the scene, the time and the reason of a diverged run."""
+    """The error that names the scene, the time and the reason of a diverged run.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The run.
+    status : int
+        The kernel's status code (why it stopped).
+    t_fail : float
+        When [s].
+
+    Returns
+    -------
+    SimulationDivergedError
+    """
     why = STATUS_REASONS.get(status, f"status {status}")
     return SimulationDivergedError(
         f"simulation diverged in scene {prep.scene_name}/{'ehl' if prep.ehl else 'dry'} at t = "

@@ -478,6 +478,11 @@ _DEFECT_KEYS = frozenset({"defect", *_KIND_KEYS["waviness"], *_KIND_KEYS["locali
 def schema_table() -> str:
     """The recipe schema as a Markdown table (datasets/README.md shows it; a test keeps them equal).
 
+    Returns
+    -------
+    str
+        A row per key: key, kind, range, default and meaning.
+
     Examples
     --------
     >>> print(schema_table().splitlines()[2])
@@ -774,7 +779,18 @@ def _shown(value: Any) -> Any:
 
 
 def recipe_value(normalised: dict) -> Any:
-    """A normalised ``values`` key as the recipe wrote it (for error messages)."""
+    """A normalised ``values`` key as the recipe wrote it (for error messages).
+
+    Parameters
+    ----------
+    normalised : dict
+        The key's normalised form, ``{"grid": [...]}`` or ``{"range": (low, high)}``.
+
+    Returns
+    -------
+    Any
+        The value as written in the TOML.
+    """
     if "grid" in normalised:
         grid = normalised["grid"]
         return grid[0] if len(grid) == 1 else grid

@@ -120,7 +120,32 @@ def static_state(
     p: np.ndarray,
     wav: np.ndarray,
 ) -> tuple[np.ndarray, float]:
-    """Static equilibrium at t = 0 (velocities 0): the initial state, and the largest ball load."""
+    """Static equilibrium at t = 0 (velocities 0): the initial state, and the largest ball load.
+
+    Parameters
+    ----------
+    level : str
+        The scene's level (``shaft``, ``shaft+housing``, ``full``).
+    ehl : bool
+        With the lubricant film.
+    geometry : BearingGeometry
+        The bearing.
+    operating : OperatingCondition
+        The operating point.
+    rig : Rig
+        The rig.
+    p : ndarray
+        The parameter vector.
+    wav : ndarray
+        The waviness table.
+
+    Returns
+    -------
+    state : ndarray
+        The initial state [m, m/s].
+    max_load : float
+        The largest ball load [N].
+    """
     z = geometry.ball_count
     g = p[K.P_GRAVITY]
     fx = p[K.P_LOAD_X]

@@ -131,8 +131,30 @@ def solve_equilibrium(
 ) -> tuple[float, float, np.ndarray, float]:
     """Displacement (x, y) [m], ball loads [N] and radial stiffness [N/m] from checked inputs.
 
-    ``gap`` per ball [m] (contiguous; the extra approach already subtracted). The dynamic
-    model's static start calls this directly: its inputs are validated once, in ``prepare``.
+    The dynamic model's static start calls this directly: its inputs are validated once, in
+    ``prepare``.
+
+    Parameters
+    ----------
+    cos_t, sin_t : ndarray
+        Cosine and sine of each ball's angle.
+    gap : ndarray
+        Each ball's gap [m] (contiguous; the extra approach already subtracted).
+    k : float
+        The ball's series load-deflection constant [N/m^1.5].
+    fr : float
+        The radial load [N].
+    load_angle : float
+        Its direction [rad].
+
+    Returns
+    -------
+    x, y : float
+        The displacement [m].
+    loads : ndarray
+        Each ball's load [N].
+    stiffness : float
+        The radial stiffness [N/m].
     """
     ex, ey = math.cos(load_angle), math.sin(load_angle)
     fx, fy = fr * ex, fr * ey

@@ -33,6 +33,24 @@ def jacobian(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarra
     """Jacobian of the first-order right-hand side at ``y0``, t = 0, by central differences.
 
     Displacements are perturbed by 1e-11 m, velocities by 1e-7 m/s (docs/model.md 7.5).
+
+    Parameters
+    ----------
+    code : int
+        The scene's kernel code (``_kernels.SCENE_SHAFT``, ``SCENE_SHAFT_HOUSING``, ``SCENE_FULL``).
+    ehl : bool
+        With the lubricant film.
+    p : ndarray
+        The parameter vector (``generators.packing.pack_parameters``).
+    wav : ndarray
+        The waviness table.
+    y0 : ndarray
+        The state [m, m/s].
+
+    Returns
+    -------
+    ndarray
+        (n, n), n the states: d(dy/dt)/dy, each in its state's units per second.
     """
     n = y0.size
     nd = n // 2
@@ -68,6 +86,26 @@ def default_step(
     axis, 2.79 on the real axis, 2.62 at its narrowest, near 120 degrees). The fastest mode is
     the ball radial mode in the ``full`` scene (lightly damped, or well damped with the squeeze
     film), otherwise the shaft-on-bearing or a stiff pedestal's housing mode.
+
+    Parameters
+    ----------
+    level : str
+        The scene's level.
+    code : int
+        The scene's kernel code (``_kernels.SCENE_SHAFT``, ``SCENE_SHAFT_HOUSING``, ``SCENE_FULL``).
+    ehl : bool
+        With the lubricant film.
+    p : ndarray
+        The parameter vector (``generators.packing.pack_parameters``).
+    wav : ndarray
+        The waviness table.
+    y0 : ndarray
+        The static start [m, m/s].
+
+    Returns
+    -------
+    float
+        The step [s].
     """
     return default_step_and_growth(level, code, ehl, p, wav, y0)[0]
 
@@ -81,6 +119,28 @@ def default_step_and_growth(
     ``DEFAULT_ALIGN_LONGEST`` at most and never beyond the stability step
     (:func:`stability_step`: ``STABILITY_SAFETY`` of RK4's limit); where the stability step
     binds, not at all (1).
+
+    Parameters
+    ----------
+    level : str
+        The scene's level.
+    code : int
+        The scene's kernel code (``_kernels.SCENE_SHAFT``, ``SCENE_SHAFT_HOUSING``, ``SCENE_FULL``).
+    ehl : bool
+        With the lubricant film.
+    p : ndarray
+        The parameter vector (``generators.packing.pack_parameters``).
+    wav : ndarray
+        The waviness table.
+    y0 : ndarray
+        The static start [m, m/s].
+
+    Returns
+    -------
+    step : float
+        The step [s].
+    longest : float
+        The factor it may grow by (>= 1).
     """
     lam = np.linalg.eigvals(jacobian(code, ehl, p, wav, y0))
     largest = float(np.max(np.abs(lam))) if lam.size else 0.0
@@ -102,6 +162,19 @@ def defect_substeps(step: float, p: np.ndarray, wav: np.ndarray) -> int:
     without local defects. Only the steps near a crossing are split (the kernel's
     ``_defect_near``): a pit acts for a few per cent of the time, and the dynamics between its
     crossings are the scene's.
+
+    Parameters
+    ----------
+    step : float
+        The run's step [s].
+    p : ndarray
+        The parameter vector.
+    wav : ndarray
+        The waviness table (local defects among its rows).
+
+    Returns
+    -------
+    int
     """
     limit = defect_step(p, wav)
     if not math.isfinite(limit):
@@ -114,6 +187,24 @@ def stability_step(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.
 
     min_i r(arg lambda_i) / |lambda_i| over the eigenvalues of the Jacobian
     (:func:`rk4_stability_radius`); ``inf`` when every eigenvalue is zero.
+
+    Parameters
+    ----------
+    code : int
+        The scene's kernel code (``_kernels.SCENE_SHAFT``, ``SCENE_SHAFT_HOUSING``, ``SCENE_FULL``).
+    ehl : bool
+        With the lubricant film.
+    p : ndarray
+        The parameter vector (``generators.packing.pack_parameters``).
+    wav : ndarray
+        The waviness table.
+    y0 : ndarray
+        The state linearised at [m, m/s].
+
+    Returns
+    -------
+    float
+        The step [s].
     """
     return _stability_limit(np.linalg.eigvals(jacobian(code, ehl, p, wav, y0)))
 
@@ -169,8 +260,17 @@ def rk4_stability_radius(angle: np.ndarray | float) -> np.ndarray:
     The first r > 0 where |R(z)| = 1, R(z) = 1 + z + z^2/2 + z^3/6 + z^4/24 (scan on a 0.001
     grid, then bisection to 1e-9). A ray into the right half-plane (|angle| < pi/2: an
     eigenvalue whose real part is rounding noise of a finite-difference Jacobian, or a growing
-    mode the divergence check reports) is given the imaginary-axis value. ``angle`` in rad;
-    returns r [-] (2.7853 at pi, 2.8284 at pi/2).
+    mode the divergence check reports) is given the imaginary-axis value.
+
+    Parameters
+    ----------
+    angle : float or ndarray
+        The rays' angles [rad].
+
+    Returns
+    -------
+    ndarray
+        r, dimensionless (2.7853 at pi, 2.8284 at pi/2).
     """
 
     def amplification(r, ray):  # |R(r ray)|, ray = exp(i angle); Horner's form
@@ -199,6 +299,18 @@ def defect_step(p: np.ndarray, wav: np.ndarray) -> float:
     A contact crosses a pit of half width w [rad] in 2 w / |rate|, rate the angular speed of
     the contact point on the defective surface (cage for the outer race, cage minus shaft for
     the inner race, ball spin for a ball). ``inf`` without local defects.
+
+    Parameters
+    ----------
+    p : ndarray
+        The parameter vector.
+    wav : ndarray
+        The waviness table.
+
+    Returns
+    -------
+    float
+        The step [s].
     """
     rates = {
         K.SURF_OUTER_DEFECT: p[K.P_CAGE_SPEED],
@@ -230,6 +342,15 @@ def default_oversample(fs: float) -> int:
     (docs/performance.md, "Records at 96 kHz or more, on the step grid").
     Until stop 36 a step longer than a quarter of the output interval lowered the record rate
     to about one record per step, down to the output rate.
+
+    Parameters
+    ----------
+    fs : float
+        The output rate [Hz].
+
+    Returns
+    -------
+    int
     """
     return int(min(DEFAULT_OVERSAMPLE, max(2, math.ceil(MIN_RECORD_RATE / fs - 1e-9))))
 
@@ -268,6 +389,30 @@ def rk4_schedule(
     different steps). Where no shortening reaches the pattern, ``longest`` > 1 lets the step
     grow to it by that factor at most (the default step only: ``DEFAULT_ALIGN_LONGEST``; a
     requested step is never lengthened).
+
+    Parameters
+    ----------
+    step : float
+        The step requested [s].
+    record_dt : float
+        The record interval [s].
+    settle_time : float
+        The time before the first record [s].
+    n_record : int
+        The records.
+    oversample : int
+        Records per output sample.
+    longest : float
+        The most the step may grow by (see above).
+
+    Returns
+    -------
+    step : float
+        The step [s].
+    steps : int
+        The number of steps.
+    first : float
+        The first record's time [s].
     """
     if step <= record_dt * (1 + 1e-9):
         aligned = record_dt / int(math.ceil(record_dt / step - 1e-9))

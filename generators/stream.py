@@ -123,7 +123,12 @@ class SignalStream:
         )
 
     def peak_memory_bytes(self) -> int:
-        """Memory the blocks hold at once (integration record, decimated block) [bytes]."""
+        """Memory the blocks hold at once (integration record, decimated block) [bytes].
+
+        Returns
+        -------
+        int
+        """
         q = self.plan_run.oversample
         margin = _margin_records(q)
         records = self.block_samples * q + 2 * margin

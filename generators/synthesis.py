@@ -299,8 +299,22 @@ def case_rig(case: Case, geometry: BearingGeometry) -> Rig:
 def bearing_stiffness(geometry: BearingGeometry, radial_load: float, rig: Rig) -> float:
     """The bearing's static radial stiffness k_r [N/m] at a case's load (dry Hertz).
 
-    At ``radial_load`` [N]; where that leaves a bearing with clearance unloaded (no load),
-    at the shaft's weight, which the model applies (``Rig.gravity``); 0 if neither loads it.
+    Where ``radial_load`` leaves a bearing with clearance unloaded (no load), at the shaft's
+    weight, which the model applies (``Rig.gravity``); 0 if neither loads it.
+
+    Parameters
+    ----------
+    geometry : BearingGeometry
+        The bearing.
+    radial_load : float
+        The case's load [N].
+    rig : Rig
+        The rig (the shaft's mass [kg] and gravity).
+
+    Returns
+    -------
+    float
+        k_r [N/m].
     """
     k_r = _radial_stiffness(geometry, radial_load)
     if k_r <= 0.0 and rig.gravity:
@@ -600,6 +614,22 @@ def generate_cases(
     fewer per signal when the rows go straight into a file). ``workspace``: output buffers
     reused from call to call (:func:`generators.model.simulate_lanes`); float64 signals are
     then views into them, valid until the next call with the same workspace.
+
+    Parameters
+    ----------
+    recipe : dict
+        The recipe, validated.
+    cases : list of Case
+        The cases.
+    signal_dtype : type
+        See above.
+    workspace : list of ndarray, optional
+        See above.
+
+    Returns
+    -------
+    list of dict
+        A row per case, in order.
     """
     sensor = recipe["sensor"]
     channel = f"{sensor['body']}_{sensor['quantity']}_{sensor['direction']}"
@@ -643,7 +673,20 @@ def generate_cases(
 
 
 def generate_case(recipe: dict, case: Case) -> dict:
-    """Simulate one case: :func:`generate_cases` of that case alone (the same row)."""
+    """Simulate one case: :func:`generate_cases` of that case alone (the same row).
+
+    Parameters
+    ----------
+    recipe : dict
+        The recipe, validated.
+    case : Case
+        The case.
+
+    Returns
+    -------
+    dict
+        Its row.
+    """
     return generate_cases(recipe, [case])[0]
 
 
@@ -652,7 +695,18 @@ BOUND_SAMPLE = 32
 
 
 def step_group(case: Case) -> tuple:
-    """The cases that share one error-bound step: same bearing, sample rate and label."""
+    """The cases that share one error-bound step: same bearing, sample rate and label.
+
+    Parameters
+    ----------
+    case : Case
+        A case.
+
+    Returns
+    -------
+    tuple
+        Its group's key.
+    """
     return (case.bearing, case.fs_hz, case.label)
 
 
@@ -668,6 +722,13 @@ def bound_steps(recipe: dict, cases: Iterable[Case]) -> dict[tuple, tuple[float,
     defects are left out of the pilots: near a pit every run splits its steps to a tenth of a
     passage (``steps.defect_substeps``), so the bound is that of the dynamics between the
     crossings. The step depends on the recipe alone (its cases in order), never on a chunk.
+
+    Parameters
+    ----------
+    recipe : dict
+        The recipe, validated.
+    cases : iterable of Case
+        Its cases, in order.
 
     Returns
     -------
