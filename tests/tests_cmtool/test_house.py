@@ -307,6 +307,37 @@ def _numpydoc_section(doc: str, title: str) -> set[str] | None:
     return names
 
 
+def test_public_functions_document_their_parameters_and_returns():
+    """The brief: numpydoc docstrings with units. Every public function of the three
+    packages' public modules, and every public method of their public classes (properties
+    aside), has a docstring whose Parameters section names each parameter and, unless it
+    returns None, a Returns (or Yields) section."""
+    gaps = []
+    for path in _modules():
+        if path.name.startswith("_") and path.name != "__init__.py":
+            continue
+        for node in _public_functions(ast.parse(path.read_text())):
+            if any(getattr(d, "id", None) == "property" for d in node.decorator_list):
+                continue
+            where = f"{path.relative_to(REPO)}:{node.lineno} {node.name}"
+            doc = ast.get_docstring(node) or ""
+            arguments = node.args.posonlyargs + node.args.args + node.args.kwonlyargs
+            arguments += [a for a in (node.args.vararg, node.args.kwarg) if a is not None]
+            listed = _numpydoc_section(doc, "Parameters") or set()
+            missing = [
+                a.arg for a in arguments if a.arg not in ("self", "cls") and a.arg not in listed
+            ]
+            if missing:
+                gaps.append(f"{where}: {missing} not documented")
+            returns_none = isinstance(node.returns, ast.Constant) and node.returns.value is None
+            if not returns_none and (
+                _numpydoc_section(doc, "Returns") is None
+                and _numpydoc_section(doc, "Yields") is None
+            ):
+                gaps.append(f"{where}: no Returns section")
+    assert not gaps, gaps
+
+
 def test_exported_functions_document_their_parameters_and_returns():
     """The brief: numpydoc docstrings. Every function the three packages export, and every
     public method of an exported class, has a docstring whose Parameters section names each
