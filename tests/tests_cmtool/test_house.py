@@ -401,3 +401,47 @@ def test_documented_python_names_exist():
                 missing.append(dotted)
                 break
     assert not missing, missing
+
+
+def test_documented_command_lines_name_options_that_exist():
+    """Every ``cmtool ...`` line of the README's and the docs' shell blocks parses with the
+    command line's own parser (optional ``[...]`` parts included, the first of ``A|B``), and
+    no command the docs quote inline names an option or a choice it does not have: a copied
+    command runs."""
+    import contextlib
+    import io
+    import re
+    import shlex
+
+    from cmtool.cli import build_parser
+
+    def parse(line: str) -> str:
+        text = re.sub(r"(\S+)\|\S+", r"\1", re.sub(r"\[([^\]]*)\]", r"\1", line))
+        err = io.StringIO()
+        try:
+            with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+                build_parser().parse_args(shlex.split(text)[1:])
+        except SystemExit as stop:
+            return "" if stop.code == 0 else err.getvalue().strip()
+        return ""
+
+    readme = (REPO / "README.md").read_text()
+    docs = [p.read_text() for p in sorted((REPO / "docs").glob("*.md"))] + [readme]
+    lines = []
+    fence = r"```(?:bash|sh|console)?\n(.*?)```"
+    blocks = [b for text in docs for b in re.findall(fence, text, re.S)]
+    for block in blocks:
+        for line in re.sub(r"\\\n\s*", " ", block).splitlines():
+            line = line.strip().removeprefix("$ ")
+            if line.startswith("cmtool "):
+                lines.append(line.split(" #")[0])
+    assert len(lines) > 15
+    failed = {line: why for line in lines if (why := parse(line))}
+    flat = [re.sub(r"\n\s*", " ", text) for text in docs]
+    quoted = {m for text in flat for m in re.findall(r"`(cmtool [^`]+)`", text)}
+    assert len(quoted) > 30
+    for line in quoted:
+        why = parse(line.split(";")[0])
+        if "unrecognized arguments" in why or "invalid choice" in why:
+            failed[line] = why
+    assert not failed, failed
