@@ -71,6 +71,8 @@ def line_snr(
     f = np.asarray(frequencies, dtype=float)
     s = np.asarray(spectrum, dtype=float)
     half_width = check_positive("half_width", half_width, unit="Hz")
+    if not math.isfinite(center):
+        raise FeatureError(f"center = {center!r} Hz is not a finite frequency")
     df = f[1] - f[0]
     hw = max(half_width, df)
     reach = max(FLOOR_WINDOW * center, 10 * df)
@@ -133,6 +135,8 @@ def band_amplitude(
     f = np.asarray(frequencies, dtype=float)
     s = np.asarray(spectrum, dtype=float)
     half_width = check_positive("half_width", half_width, unit="Hz")
+    if not math.isfinite(center):
+        raise FeatureError(f"center = {center!r} Hz is not a finite frequency")
     df = f[1] - f[0] if f.size > 1 else 1.0
     hw = max(half_width, 0.5 * df)
     mask = (f >= center - hw) & (f <= center + hw)

@@ -47,9 +47,11 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ._validate import FeatureError, check_fs, check_signal
+from ._validate import FeatureError, check_fs, check_positive, check_signal
 from .envelope import envelope
 from .separation import (
+    ANALYSER_RATIO,
+    BAND_FLOOR_FACTOR,
     FALSE_ALARM,
     FLOOR_BINS,
     BandSelection,
@@ -223,6 +225,13 @@ def fault_evidence(x: np.ndarray, fs: float, fault_frequencies: Mapping[str, flo
     Evidence
         Features, band, threshold, the lines found and the spectra.
 
+    Raises
+    ------
+    FeatureError
+        A rate missing or not a positive number, the shaft or cage rate at or above fs / 2,
+        or the fastest fault rate too high for the bands (``BAND_FLOOR_FACTOR`` times it must
+        lie under fs / ``ANALYSER_RATIO``), each named by its key.
+
     Examples
     --------
     >>> import numpy as np
@@ -237,7 +246,26 @@ def fault_evidence(x: np.ndarray, fs: float, fault_frequencies: Mapping[str, flo
     missing = [k for k in (*EVIDENCE_FAULTS, "shaft", "ftf") if k not in fault_frequencies]
     if missing:
         raise FeatureError(f"fault_frequencies has no {missing}; it needs those rates in Hz")
-    ctx = {k: float(v) for k, v in fault_frequencies.items()}
+    checked = {
+        name: check_positive(f"fault_frequencies[{name!r}]", fault_frequencies[name], unit="Hz")
+        for name in (*EVIDENCE_FAULTS, "shaft", "ftf")
+    }
+    ctx = {**{k: float(v) for k, v in fault_frequencies.items()}, **checked}
+    for name in ("shaft", "ftf"):
+        if ctx[name] >= fs / 2:
+            raise FeatureError(
+                f"fault_frequencies[{name!r}] = {ctx[name]:g} Hz is outside the allowed range "
+                f"(0, {fs / 2:g}) Hz (below fs / 2)"
+            )
+    fastest = max(EVIDENCE_FAULTS, key=ctx.__getitem__)
+    top = fs / ANALYSER_RATIO  # the bands start at BAND_FLOOR_FACTOR x the fastest fault rate
+    if BAND_FLOOR_FACTOR * ctx[fastest] >= top:
+        raise FeatureError(
+            f"fault_frequencies[{fastest!r}] = {ctx[fastest]:g} Hz is too high for fs = {fs:g} "
+            f"Hz: the demodulation bands start at {BAND_FLOOR_FACTOR:g} x the fastest fault "
+            f"rate, under fs / {ANALYSER_RATIO:g} = {top:g} Hz (fault rates below "
+            f"{top / BAND_FLOOR_FACTOR:g} Hz)"
+        )
     rates = {k: ctx[k] for k in EVIDENCE_FAULTS}
     random_part = separate_discrete(x, fs, fundamentals=(ctx["shaft"], ctx["bpfo"]))
     selection = fault_band(random_part, fs, rates, ctx["ftf"])

@@ -139,11 +139,13 @@ def remove_harmonics(x: np.ndarray, fs: float, fundamentals: Sequence[float]) ->
     n = y.size
     duration = n / fs
     families = []
-    for f0 in fundamentals:
-        f0 = check_positive("fundamentals[]", f0, unit="Hz")
+    for i, f0 in enumerate(fundamentals):
+        f0 = check_positive(f"fundamentals[{i}]", f0, unit="Hz")
         if f0 * duration < 4:  # fewer than four periods: the harmonics cannot be resolved
             continue
-        families.append((f0, int((0.5 * fs - COUPLED_BINS / duration) // f0)))
+        count = int((0.5 * fs - COUPLED_BINS / duration) // f0)
+        if count >= 1:  # none below fs / 2: nothing of it in the record to remove
+            families.append((f0, count))
     if not families:
         return y
     weights = np.hanning(n)

@@ -73,6 +73,17 @@ def test_line_snr_floor_guard_and_edge():
         line_snr(f, a, 100.0, half_width=0.0)
 
 
+@pytest.mark.parametrize("center", [float("nan"), float("inf")])
+def test_a_line_that_is_no_frequency_is_refused_by_name(center):
+    from features import FeatureError, band_amplitude, line_snr
+
+    f = np.arange(0.0, 500.0, 0.5)
+    a = np.full(f.size, 0.01)
+    for measure in (line_snr, band_amplitude):
+        with pytest.raises(FeatureError, match=rf"center = {center} Hz is not a finite"):
+            measure(f, a, center, half_width=1.0)
+
+
 def _line_snr_whole_spectrum(f, s, center, half_width, guard):
     """line_snr's definition over every bin (before stop 36 it ran so)."""
     df = f[1] - f[0]

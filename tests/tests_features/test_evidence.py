@@ -1,5 +1,9 @@
 """A line shared by two faults' harmonic series counts for the stronger fault only."""
 
+import numpy as np
+import pytest
+
+from features import FeatureError, fault_evidence
 from features.evidence import FALSE_ALARM, SHARED_LINE_SLIP, explain_shared_lines
 
 BPFO, BPFI, TWO_BSF = 107.36, 162.19, 141.17  # a 6205 at 1797 rpm [Hz]
@@ -182,3 +186,25 @@ def test_the_cage_lines_are_weighed_only_in_records_of_enough_cage_revolutions()
     assert {"cage 1x", "cage 2x"} <= set(whole)
     assert not {"cage 1x", "cage 2x"} & set(short)
     assert [n for n in whole if not n.startswith("cage")] == short  # 1x-3x and sidebands
+
+
+RATES = {"bpfo": BPFO, "bpfi": BPFI, "two_bsf": TWO_BSF, "shaft": 29.95, "ftf": 11.93}
+
+
+@pytest.mark.parametrize(
+    ("name", "value", "said"),
+    [
+        ("bpfi", 1600.0, r"'bpfi'\] = 1600 Hz is too high for fs = 12000 Hz.*below 1562\.5 Hz"),
+        ("bpfo", -1.0, r"'bpfo'\] = -1\.0 Hz is outside the allowed range \(0, inf\)"),
+        ("shaft", 7000.0, r"'shaft'\] = 7000 Hz is outside the allowed range \(0, 6000\) Hz"),
+        ("ftf", float("nan"), r"'ftf'\] = nan Hz"),
+    ],
+)
+def test_fault_evidence_names_a_rate_it_cannot_weigh(name, value, said):
+    """A rate that is no frequency, or too fast for the record's rate, is refused by its key
+    (before: an internal min_frequency, or scipy's CZT, in the message); the fastest rate
+    the bands allow, just under fs / (2.56 x 3), is weighed."""
+    x = np.random.default_rng(0).standard_normal(12000)
+    with pytest.raises(FeatureError, match=r"fault_frequencies\[" + said):
+        fault_evidence(x, 12000.0, {**RATES, name: value})
+    assert fault_evidence(x, 12000.0, {**RATES, "bpfi": 1562.0}).threshold_db > 0
