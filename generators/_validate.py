@@ -9,6 +9,8 @@ from __future__ import annotations
 import math
 from numbers import Integral, Real
 
+import numpy as np
+
 
 class ParameterError(ValueError):
     """A parameter is outside its valid range (message names parameter, value and range)."""
@@ -82,6 +84,56 @@ def check_real(
             f"{name} = {v:g}{(' ' + unit) if unit else ''} is outside the allowed range {allowed()}"
         )
     return v
+
+
+def check_real_array(
+    name: str,
+    value: object,
+    *,
+    low: float | None = None,
+    low_inclusive: bool = True,
+    unit: str = "",
+) -> np.ndarray:
+    """``value`` (a number or an array of numbers) as floats, each finite and not below ``low``.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the message (with the index of the first bad element).
+    value : object
+        Value to check.
+    low : float, optional
+        Lower bound of the valid range (``None`` for unbounded).
+    low_inclusive : bool
+        Whether the bound itself is valid.
+    unit : str
+        Unit shown in the message.
+
+    Returns
+    -------
+    ndarray
+        ``value`` as a float array (0-d for a number).
+
+    Raises
+    ------
+    ParameterError
+        Naming the parameter (and the first bad element's index), its value and the range,
+        as :func:`check_real`.
+    """
+    try:
+        values = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(
+            f"{name} = {value!r} is not a real number or an array of real numbers"
+        ) from None
+    bad = ~np.isfinite(values)
+    if low is not None:
+        bad |= (values < low) if low_inclusive else (values <= low)
+    if bad.any():
+        where = tuple(int(k) for k in np.argwhere(bad)[0])
+        label = f"{name}[{', '.join(map(str, where))}]" if where else name
+        check_real(label, float(values[where]), low=low, low_inclusive=low_inclusive, unit=unit)
+    return values
 
 
 def check_int(name: str, value: object, *, low: int | None = None, high: int | None = None) -> int:

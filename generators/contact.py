@@ -21,7 +21,7 @@ from typing import Literal
 import numpy as np
 from scipy import optimize, special
 
-from ._validate import ParameterError, check_choice, check_real
+from ._validate import ParameterError, check_choice, check_real, check_real_array
 from .params import BearingGeometry, Lubricant
 
 __all__ = [
@@ -208,7 +208,7 @@ class HertzContact:
         float or ndarray
             Contact load [N].
         """
-        d = np.maximum(np.asarray(deflection, dtype=float), 0.0)
+        d = np.maximum(check_real_array("deflection", deflection, unit="m"), 0.0)
         return self.stiffness_constant * d**1.5
 
     def deflection(self, load: float | np.ndarray) -> float | np.ndarray:
@@ -224,7 +224,7 @@ class HertzContact:
         float or ndarray
             Elastic approach [m].
         """
-        q = np.asarray(load, dtype=float)
+        q = check_real_array("load", load, low=0.0, unit="N")
         return (q / self.stiffness_constant) ** (2.0 / 3.0)
 
     def linear_stiffness(self, load: float | np.ndarray) -> float | np.ndarray:
@@ -240,7 +240,7 @@ class HertzContact:
         float or ndarray
             Tangent stiffness at that load [N/m] (0 unloaded).
         """
-        q = np.asarray(load, dtype=float)
+        q = check_real_array("load", load, low=0.0, unit="N")
         return 1.5 * self.stiffness_constant ** (2.0 / 3.0) * np.cbrt(q)
 
     def semi_axes(self, load: float) -> tuple[float, float]:
@@ -256,6 +256,7 @@ class HertzContact:
         a, b : float
             Semi-axes across and along the rolling direction [m].
         """
+        check_real("load", load, low=0.0, unit="N")
         r = self.geometry.effective_radius
         base = 6.0 * self.elliptic_e * load * r / (math.pi * self.effective_modulus)
         return (self.kappa**2 * base) ** (1 / 3), (base / self.kappa) ** (1 / 3)
@@ -273,7 +274,7 @@ class HertzContact:
         float
             Maximum contact pressure [Pa]; 0 for a load <= 0.
         """
-        if load <= 0:
+        if check_real("load", load, unit="N") <= 0:
             return 0.0
         a, b = self.semi_axes(load)
         return 3.0 * load / (2.0 * math.pi * a * b)
@@ -329,6 +330,8 @@ def series_constant(k_inner: float, k_outer: float) -> float:
     float
         The two contacts' series constant [N/m^1.5].
     """
+    check_real("k_inner", k_inner, low=0.0, low_inclusive=False, unit="N/m^1.5")
+    check_real("k_outer", k_outer, low=0.0, low_inclusive=False, unit="N/m^1.5")
     return (k_inner ** (-2.0 / 3.0) + k_outer ** (-2.0 / 3.0)) ** (-1.5)
 
 
@@ -444,7 +447,7 @@ def film_thickness(
     check_real("load_floor", load_floor, low=0.0, low_inclusive=False, unit="N")
     cg, ep = contact.geometry, contact.effective_modulus
     rx, ry = cg.rx, cg.ry
-    q = np.maximum(np.asarray(load, dtype=float), load_floor)
+    q = np.maximum(check_real_array("load", load, unit="N"), load_floor)
     big_u = lubricant.viscosity * u / (ep * rx)
     big_g = lubricant.pressure_viscosity_coefficient * ep
     big_w = q / (ep * rx**2)
@@ -525,6 +528,9 @@ def squeeze_film_damping(
     float or ndarray
         Squeeze-film damping coefficient [N s/m].
     """
+    check_real_array(
+        "central_film_thickness", central_film_thickness, low=0.0, low_inclusive=False, unit="m"
+    )
     cg = contact.geometry
     f = squeeze_film_shape_factor(min(cg.rx / cg.ry, 1.0))
     coef = 6.0 * math.pi * lubricant.viscosity * cg.rx**1.5 * cg.ry**0.5 * f

@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from ._validate import check_real
 from .contact import contact_geometry
 from .params import BearingGeometry, LocalizedDefect
 
@@ -40,6 +41,8 @@ def sagitta(bridge_radius: float, distance: float) -> float:
     float
         How far the ball sinks below the intact surface [m].
     """
+    check_real("bridge_radius", bridge_radius, low=0.0, low_inclusive=False, unit="m")
+    check_real("distance", distance, low=0.0, unit="m")
     if distance >= bridge_radius:
         return bridge_radius
     return bridge_radius - math.sqrt(bridge_radius * bridge_radius - distance * distance)

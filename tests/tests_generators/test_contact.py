@@ -32,6 +32,7 @@ from generators import (
     film_thickness,
     hertz_contact,
     load_deflection_constants,
+    sagitta,
     series_constant,
     squeeze_film_damping,
 )
@@ -347,3 +348,45 @@ def test_film_tables_give_the_film_contact_force(load):
     for delta in rng.uniform(-2.0 * args[-1], top, 50):
         expected = K._hertz_ehl_table(delta, 1e-3, *args, p, K.TABLE_SERIES)
         assert L._series_film(delta, 1e-3, c, 1, tab, nodes) == expected
+
+
+def _contact():
+    return hertz_contact(bearing("6205"), "inner")
+
+
+@pytest.mark.parametrize(
+    ("call", "said"),
+    [
+        (lambda: _contact().load([1e-6, float("nan")]), r"deflection\[1\] = nan is not finite"),
+        (lambda: _contact().deflection(-1.0), r"load = -1 N is outside the allowed range \[0, "),
+        (lambda: _contact().linear_stiffness([[5.0, -2.0]]), r"load\[0, 1\] = -2 N is outside"),
+        (lambda: _contact().semi_axes(-1.0), r"load = -1 N is outside the allowed range"),
+        (lambda: _contact().max_pressure(float("inf")), r"load = inf is not finite"),
+        (lambda: series_constant(0.0, 1e10), r"k_inner = 0 N/m\^1\.5 is outside .*\(0, inf\)"),
+        (lambda: sagitta(4e-3, float("nan")), r"distance = nan is not finite"),
+        (
+            lambda: squeeze_film_damping(_contact(), LUBRICANTS["VG68"], 0.0),
+            r"central_film_thickness = 0 m is outside the allowed range \(0, inf\) m",
+        ),
+        (
+            lambda: film_thickness(_contact(), LUBRICANTS["VG68"], 5.0, float("nan")),
+            r"load = nan is not finite",
+        ),
+    ],
+)
+def test_the_contact_laws_refuse_input_that_is_no_load_or_approach(call, said):
+    """Bad input is refused by name, value and range, where before it gave NaN, complex
+    semi-axes (a negative load), a ZeroDivisionError (no film) or numpy's power warning."""
+    with pytest.raises(ParameterError, match=said):
+        call()
+
+
+def test_the_contact_laws_keep_their_values_for_valid_input():
+    """The checks change nothing the laws return: the same values as the formulas."""
+    c = _contact()
+    approach = np.array([-1e-6, 0.0, 5e-6])
+    np.testing.assert_array_equal(
+        c.load(approach), c.stiffness_constant * np.maximum(approach, 0) ** 1.5
+    )
+    assert c.deflection(500.0) == (500.0 / c.stiffness_constant) ** (2.0 / 3.0)
+    assert c.max_pressure(0.0) == 0.0 and c.semi_axes(0.0) == (0.0, 0.0)
