@@ -429,7 +429,8 @@ def diagnose_signal(
         A healthy recording of the same machine (same sensor and unit); the ISO 15242
         velocity bands and the waviness line are then reported against it [dB].
     baseline_fs : float, optional
-        Its sample rate [Hz] (default ``fs``).
+        Its sample rate [Hz] (default ``fs``); a baseline of fewer than
+        ``BASELINE_MIN_SAMPLES`` samples, or not one record, is refused by name.
     load_n : float, optional
         Radial load [N] of the healthy model whose lines race waviness is judged against
         when no baseline is given (default ``cmtool.waviness.DEFAULT_LOAD_N``, said in the
@@ -526,7 +527,13 @@ def diagnose_signal(
             f"({x.size} samples) are diagnosed (memory grows by about 270 bytes a sample)"
         )
     if baseline is not None:  # before the work: a NaN, an inf or a constant baseline
-        baseline = np.asarray(baseline, dtype=float)[:MAX_RECORD_SAMPLES]
+        baseline = checked_record(baseline, "baseline")[:MAX_RECORD_SAMPLES]
+        baseline_fs = fs if baseline_fs is None else checked_rate(baseline_fs, "baseline_fs")
+        if baseline.size < BASELINE_MIN_SAMPLES:
+            raise ValueError(
+                f"baseline has {baseline.size} samples: its velocity bands need at least "
+                f"{BASELINE_MIN_SAMPLES}"
+            )
         check_signal_quality(baseline, "baseline")
     fastest = max(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])
     evidence = features.fault_evidence(x, fs, {**ctx, "ftf": freqs.ftf})
@@ -795,6 +802,8 @@ def overall_velocity(
     }
 
 
+#: The shortest baseline recording read [samples] (``features.velocity_band_rms``'s least).
+BASELINE_MIN_SAMPLES = 16
 #: Acceleration units a signal may be given in, and their size [m/s^2].
 ACCELERATION_UNITS = {"g": 9.80665, "m/s^2": 1.0, "m/s2": 1.0}
 #: The longest record diagnosed whole (87 s at 48 kHz, 350 s at 12 kHz); a longer one is

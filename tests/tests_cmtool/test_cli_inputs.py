@@ -956,3 +956,26 @@ def test_an_output_of_the_wrong_kind_is_refused_before_any_work(
     assert main([names.get(a, a) for a in argv]) == 2
     assert message in _one_line_error(capsys)
     assert out.is_dir() if kind == "dir" else out.read_text() == "keep me"
+
+
+@pytest.mark.parametrize(
+    ("given", "said"),
+    [
+        ({"baseline_fs": -1.0}, r"baseline_fs = -1\.0 Hz is outside the allowed range"),
+        ({"baseline_fs": 0.0}, r"baseline_fs = 0\.0 Hz is outside the allowed range"),
+        ({"baseline": "short"}, r"baseline has 10 samples: its velocity bands need at least 16"),
+        ({"baseline": "two"}, r"baseline has shape \(2, 50\): give one record"),
+    ],
+)
+def test_a_baseline_that_cannot_be_read_is_refused_by_its_own_name(rng, given, said):
+    """diagnose_signal names the baseline and its rate, not the record's ``x`` and ``fs``
+    (before: "fs = -1.0 Hz", "x has 10 samples"; a rate of 0 was taken as the record's)."""
+    from cmtool.diagnose import diagnose_signal
+
+    x = rng.standard_normal(12000)
+    baseline = {"short": x[:10], "two": np.ones((2, 50))}.get(given.get("baseline"), x)
+    rate = given.get("baseline_fs")
+    with pytest.raises(ValueError, match=said):
+        diagnose_signal(
+            x, 12000.0, 1797, "6205", waviness=False, baseline=baseline, baseline_fs=rate
+        )
