@@ -74,6 +74,7 @@ from .bench_scores import (  # noqa: F401 (moved in stop 56, still exported here
     write_report,
 )
 from .diagnose import CANONICAL, FAULTS, diagnose_signal
+from .inputs import checked_workers
 from .io import read_recording
 from .manifest import read_manifest
 
@@ -414,6 +415,7 @@ def run_bench(
         ``score_inner_race``, ``score_ball`` and the dataset's factors (``fault_snr_db``,
         ``rpm``, ``radial_load_n``, ``defect_length_m``, ..., ``bearing``, ``fs_hz``).
     """
+    workers = checked_workers(workers)
     path = Path(path)
     records = list(_records(path, bearing, allow_incomplete))
     specs: tuple[str, ...] = ()

@@ -40,8 +40,10 @@ from sklearn.preprocessing import StandardScaler
 
 import features
 from generators import bearing
+from generators.params import check_int
 
 from . import __version__
+from .inputs import checked_workers
 from .model_files import (  # the model files, kept importable from here
     MODEL_FORMAT,
     TRUSTED_TYPES,
@@ -627,6 +629,7 @@ def train(
         raise ValueError(
             f"random_state = {random_state!r} is outside the allowed range [0, 2**32 - 1]"
         )
+    workers = checked_workers(workers)
     kept = visible_faults(frame, min_fault_snr_db)
     left_out = int((~kept).sum())
     faint = frame[~kept.to_numpy()].reset_index(drop=True)
@@ -638,6 +641,22 @@ def train(
             f"({', '.join(labels) or 'none'}; {left_out} faint faults left out by "
             f"min_fault_snr_db = {min_fault_snr_db}): a classifier needs at least two"
         )
+    groups = frame["operating_point_id"].to_numpy()
+    n_groups = len(np.unique(groups))
+    if n_groups < 2:
+        raise ValueError("the dataset has one operating point: grouped validation needs two")
+    if n_splits is None:
+        n_splits = min(5, n_groups)
+    else:  # folds by operating point: at least two, at most one point each
+        n_splits = check_int("n_splits", n_splits, low=2, high=n_groups)
+    if classifier == FROM_RECIPE:
+        classifier = recipe_classifier(recipe)
+    candidates = candidate_classifiers(random_state)
+    if classifier is not None and classifier not in candidates:
+        raise ValueError(
+            f"classifier = {classifier!r} is not one of {sorted(candidates)} (or None: the "
+            "best grouped cross-validation score)"
+        )
     # one pass computes every signal's features and the rule's evidence for the calibration
     # (kept signals first, then the faint ones, as pooled_calibration orders them)
     table, names, rule = _table_and_rule(
@@ -648,19 +667,6 @@ def train(
     )
     X, X_faint = table[: len(frame)], (table[len(frame) :] if len(faint) else None)
     y = frame["label"].astype(str).to_numpy()
-    groups = frame["operating_point_id"].to_numpy()
-    n_groups = len(np.unique(groups))
-    if n_groups < 2:
-        raise ValueError("the dataset has one operating point: grouped validation needs two")
-    n_splits = n_splits or min(5, n_groups)
-    if classifier == FROM_RECIPE:
-        classifier = recipe_classifier(recipe)
-    candidates = candidate_classifiers(random_state)
-    if classifier is not None and classifier not in candidates:
-        raise ValueError(
-            f"classifier = {classifier!r} is not one of {sorted(candidates)} (or None: the "
-            "best grouped cross-validation score)"
-        )
     scores, cv_predictions, probabilities = {}, {}, {}
     for name, clf in candidates.items():
         est = make_pipeline(StandardScaler(), clf)
@@ -754,6 +760,7 @@ def evaluate(
         the order of ``labels``), ``per_class`` precision, recall and F1, ``predictions``
         and ``by_rig``.
     """
+    workers = checked_workers(workers)
     y = frame["label"].astype(str).to_numpy()
     pipeline = bundle["pipeline"]
     extractor = copy.copy(pipeline[0])  # the bundle's own extractor is left as it came

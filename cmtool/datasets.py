@@ -275,6 +275,9 @@ def generate_dataset(
     dict
         Summary: counts of signals written, failed and skipped (already present).
     """
+    from .inputs import checked_workers
+
+    workers = checked_workers(workers)
     recipe, text = load_recipe(recipe_path)
     for message in recipe_rating_warnings(recipe):  # once, not per case
         warnings.warn(message, OperatingRangeWarning, stacklevel=2)

@@ -143,3 +143,27 @@ def checked_model(model: Any) -> Any:
             f"model = {type(model).__name__} is not a model bundle or a fitted pipeline"
         )
     return model
+
+
+def checked_workers(workers: Any, name: str = "workers") -> int:
+    """A count of worker processes or threads: an integer of at least 1.
+
+    Parameters
+    ----------
+    workers : object
+        The count given.
+    name : str
+        Its name in an error message.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    generators.ParameterError
+        Not an integer, or below 1 (naming it and the range).
+    """
+    from generators.params import check_int
+
+    return check_int(name, workers, low=1)

@@ -979,3 +979,39 @@ def test_a_baseline_that_cannot_be_read_is_refused_by_its_own_name(rng, given, s
         diagnose_signal(
             x, 12000.0, 1797, "6205", waviness=False, baseline=baseline, baseline_fs=rate
         )
+
+
+def test_the_python_api_refuses_worker_counts_and_folds_before_any_work(small_dataset, tmp_path):
+    """train, evaluate, run_bench and generate_dataset name a worker count that is no
+    positive integer, and train a fold count outside [2, operating points], before they
+    compute anything (before: joblib's "n_jobs == 0 has no meaning", a silent 0 or -1 taken
+    as one thread, n_splits = 0 taken as the default, scikit-learn's messages after the
+    features). The small dataset has 12 operating points."""
+    from cmtool.bench import run_bench
+    from cmtool.classifier import evaluate, train
+    from cmtool.datasets import generate_dataset
+    from generators import ParameterError
+
+    repo = Path(__file__).resolve().parents[2]
+    refused = {
+        r"workers = 0 is outside the allowed range \[1, inf\]": [
+            lambda: train(small_dataset, workers=0),
+            lambda: evaluate({"pipeline": None}, small_dataset, workers=0),
+            lambda: run_bench(repo / "datasets" / "small", workers=0),
+            lambda: generate_dataset(repo / "datasets" / "small.toml", tmp_path / "d", workers=0),
+        ],
+        r"workers = 2\.5 is not an integer": [
+            lambda: generate_dataset(repo / "datasets" / "small.toml", tmp_path / "d", workers=2.5)
+        ],
+        r"n_splits = 0 is outside the allowed range \[2, 12\]": [
+            lambda: train(small_dataset, n_splits=0)
+        ],
+        r"n_splits = 13 is outside the allowed range \[2, 12\]": [
+            lambda: train(small_dataset, n_splits=13)
+        ],
+    }
+    for said, calls in refused.items():
+        for call in calls:
+            with pytest.raises(ParameterError, match=said):
+                call()
+    assert not (tmp_path / "d").exists()
