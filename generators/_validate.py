@@ -8,8 +8,10 @@ from __future__ import annotations
 
 import math
 from numbers import Integral, Real
+from typing import TYPE_CHECKING
 
-import numpy as np
+if TYPE_CHECKING:  # numpy is loaded where an array is checked: `cmtool --help` stays light
+    import numpy as np
 
 
 class ParameterError(ValueError):
@@ -120,6 +122,8 @@ def check_real_array(
         Naming the parameter (and the first bad element's index), its value and the range,
         as :func:`check_real`.
     """
+    import numpy as np
+
     try:
         values = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
