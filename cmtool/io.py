@@ -603,6 +603,27 @@ def read_recording(
         raise RecordingError(f"{path}: no such file")
     suffix = path.suffix.lower()
     meta: dict[str, Any] = {"file": str(path)}
+    try:
+        x = _read_samples(path, suffix, variable, channel, meta)
+    except RecordingError:
+        raise
+    except (ValueError, TypeError, KeyError, OSError, EOFError) as error:
+        # a file that is not what its suffix says, or samples that are not numbers
+        raise RecordingError(
+            f"{path}: cannot be read as a {suffix.lstrip('.')} recording ({error})"
+        ) from error
+    if x.size < 16:
+        raise RecordingError(f"{path}: only {x.size} samples")
+    return np.ascontiguousarray(x, dtype=float), meta
+
+
+def _read_samples(
+    path: Path, suffix: str, variable: str | None, channel: str | int | None, meta: dict
+) -> np.ndarray:
+    """The samples of one channel of ``path``, read by its format.
+
+    ``meta`` gains what the file says (rate, speed, bearing, unit, variable, channels).
+    """
     if suffix == ".mat":
         data = _mat_variables(path)
         if variable is None and "bearing" in data:
@@ -613,6 +634,10 @@ def read_recording(
             variable = _drive_end_variable(de, path) if de else None
             if variable is None and not de and len(numeric) == 1:
                 variable = numeric[0]
+            if variable is None and not de and not numeric:
+                raise RecordingError(
+                    f"{path}: no numeric array of more than 16 samples; it holds {sorted(data)}"
+                )
             if variable is None:
                 raise RecordingError(
                     f"{path}: choose a variable with --variable; it holds {sorted(data)}"
@@ -664,8 +689,10 @@ def read_recording(
         loaded = np.load(path, allow_pickle=False)
         if suffix == ".npz":
             keys = list(loaded.keys())
+            if variable is not None and variable not in keys:
+                raise RecordingError(f"{path}: variable {variable!r} not found; it holds {keys}")
             key = variable or (keys[0] if len(keys) == 1 else None)
-            if key is None or key not in keys:
+            if key is None:
                 raise RecordingError(f"{path}: choose a variable with --variable; it holds {keys}")
             loaded = loaded[key]
             meta["variable"] = key
@@ -730,6 +757,4 @@ def read_recording(
         raise RecordingError(
             f"{path}: unknown format {suffix!r} (mat, csv, wav, npy, npz, parquet)"
         )
-    if x.size < 16:
-        raise RecordingError(f"{path}: only {x.size} samples")
-    return np.ascontiguousarray(x, dtype=float), meta
+    return x

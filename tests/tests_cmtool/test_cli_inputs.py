@@ -461,6 +461,28 @@ def test_recording_readers_wav_npy_npz_parquet(tmp_path):
         read_recording(tmp_path / "empty.csv")
 
 
+def test_a_file_that_is_not_what_its_suffix_says_is_refused_by_name(tmp_path):
+    """A recording whose content does not match its suffix, or holds no numbers, is a
+    RecordingError naming the file (before: scipy's, numpy's and pyarrow's own errors, some
+    without the file's name, and "choose a variable" for a MATLAB file with no numbers)."""
+    from scipy.io import savemat
+
+    from cmtool.io import RecordingError, read_recording
+
+    (tmp_path / "x.wav").write_bytes(b"RIFFxxxx")
+    (tmp_path / "x.parquet").write_bytes(b"PAR1 not parquet")
+    np.save(tmp_path / "words.npy", np.array(["a", "b"]))
+    savemat(tmp_path / "text.mat", {"note": "calibrated 2024"})
+    for name, said in (
+        ("x.wav", r"x\.wav: cannot be read as a wav recording \(Not a WAV file"),
+        ("x.parquet", r"x\.parquet: cannot be read as a parquet recording"),
+        ("words.npy", r"words\.npy: cannot be read as a npy recording \(could not convert"),
+        ("text.mat", r"text\.mat: no numeric array of more than 16 samples; it holds \['note'\]"),
+    ):
+        with pytest.raises(RecordingError, match=said):
+            read_recording(tmp_path / name)
+
+
 def test_diagnose_reads_the_asked_variable_of_an_npz(outer_race_csv, tmp_path, capsys):
     """--variable picks the array of an .npz (and is refused when it names none)."""
     x = np.loadtxt(outer_race_csv, delimiter=",")[:, 1]
@@ -470,7 +492,7 @@ def test_diagnose_reads_the_asked_variable_of_an_npz(outer_race_csv, tmp_path, c
     assert main([*base, "--variable", "accel", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["verdict"] == "outer race"
     assert main([*base, "--variable", "nosuch"]) == 2
-    assert "choose a variable" in _one_line_error(capsys)
+    assert "variable 'nosuch' not found; it holds ['noise', 'accel']" in _one_line_error(capsys)
 
 
 def test_form_waviness_flag_simulates_the_bearings_own_form_errors(tmp_path, capsys):
