@@ -55,6 +55,17 @@ def check_positive(name: str, value: object, *, unit: str = "") -> float:
     return v
 
 
+def check_count(name: str, value: object, *, low: int = 1, high: int | None = None) -> int:
+    """Return ``value`` as an int in ``[low, high]`` (a float or a bool is refused)."""
+    allowed = f"[{low}, {'inf' if high is None else high}]"
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise FeatureError(f"{name} = {value!r} is not an integer; allowed range {allowed}")
+    v = int(value)
+    if v < low or (high is not None and v > high):
+        raise FeatureError(f"{name} = {v} is outside the allowed range {allowed}")
+    return v
+
+
 def check_band(band: object, fs: float) -> tuple[float, float]:
     """Return a (low, high) band [Hz] with 0 <= low < high <= fs/2."""
     try:

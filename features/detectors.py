@@ -22,7 +22,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ._validate import FeatureError, check_fs, check_signal
+from ._validate import FeatureError, check_count, check_fs, check_signal
 from .envelope import envelope_spectrum, kurtogram
 from .evidence import slip_line
 
@@ -51,6 +51,7 @@ def _ses_line_scores(
     Each line is searched within the slip of real bearings (:func:`features.slip_line`); a
     harmonic beyond the spectrum counts as 0 dB (no evidence).
     """
+    harmonics = check_count("harmonics", harmonics)
     scores = {}
     for key, rate in rates.items():
         rate = float(rate)

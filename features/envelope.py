@@ -23,7 +23,7 @@ import numpy as np
 from scipy import fft as sp_fft
 
 from . import _windows
-from ._validate import FeatureError, check_band, check_fs, check_signal
+from ._validate import FeatureError, check_band, check_count, check_fs, check_positive, check_signal
 from .separation import fault_band, separate_discrete
 from .spectra import amplitude_spectrum
 
@@ -289,8 +289,9 @@ def kurtogram(
     fs = check_fs(fs)
     if x.ndim != 1:
         raise FeatureError(f"x has shape {x.shape}; kurtogram takes a 1-D signal")
-    if not 1 <= int(nlevel) <= 12:
-        raise FeatureError(f"nlevel = {nlevel} is outside the allowed range [1, 12]")
+    nlevel = check_count("nlevel", nlevel, low=1, high=12)
+    if min_bandwidth is not None:
+        min_bandwidth = check_positive("min_bandwidth", min_bandwidth, unit="Hz")
     n = x.size
     # the FFT treats the record as circular: a record that ends where it did not start has a
     # jump at the seam, a broadband impulse that dominates the kurtosis of quiet bands (e.g.

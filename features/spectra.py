@@ -12,7 +12,14 @@ import numpy as np
 from scipy import signal as sp_signal
 
 from . import _windows
-from ._validate import FeatureError, check_band, check_fs, check_positive, check_signal
+from ._validate import (
+    FeatureError,
+    check_band,
+    check_count,
+    check_fs,
+    check_positive,
+    check_signal,
+)
 
 __all__ = [
     "amplitude_spectrum",
@@ -191,6 +198,7 @@ def integrate_spectrum(
         The integrated spectrum [U s^order], shaped as ``spectrum``.
     """
     low_cut = check_positive("low_cut", low_cut, unit="Hz")
+    order = check_count("order", order)
     f = np.asarray(frequencies, dtype=float)
     out = np.zeros_like(np.asarray(spectrum, dtype=float))
     keep = f >= low_cut
@@ -227,6 +235,7 @@ def integrate_signal(
     x = check_signal(x, min_length=4, axis=axis)
     fs = check_fs(fs)
     low_cut = check_positive("low_cut", low_cut, unit="Hz")
+    order = check_count("order", order)
     if low_cut >= fs / 2:
         raise FeatureError(
             f"low_cut = {low_cut:g} Hz is outside the allowed range (0, {fs / 2:g}) Hz"
@@ -284,7 +293,18 @@ def velocity_band_rms(
     velocity[1:] = spec[1:] / (2j * np.pi * f[1:])
     power = _power_per_bin(velocity, n)
     out = {}
-    for name, (low, high) in bands.items():
+    for name, band in bands.items():
+        try:
+            low, high = (float(v) for v in band)
+        except (TypeError, ValueError):
+            raise FeatureError(
+                f"bands[{name!r}] = {band!r} is not a (low, high) pair in Hz"
+            ) from None
+        if not (math.isfinite(high) and 0.0 <= low < high):
+            raise FeatureError(
+                f"bands[{name!r}] = ({low:g}, {high:g}) Hz is outside the allowed range: "
+                "0 <= low < high, finite"
+            )
         if low >= fs / 2:
             out[name] = float("nan")
             continue

@@ -55,8 +55,9 @@ def time_statistics(x: np.ndarray, *, axis: int = -1) -> dict[str, np.ndarray | 
         "peak": peak,
         "peak_to_peak": np.ptp(x, axis=axis),
         "crest_factor": peak / np.maximum(rms, tiny),
-        "kurtosis": np.mean(x2 * x2, axis=axis) / safe_m2**2,
-        "skewness": np.mean(x2 * x, axis=axis) / safe_m2**1.5,
+        # 0 for a constant signal (tiny**2 underflows to 0: 0 / 0), as crest factor and the rest
+        "kurtosis": _ratio(np.mean(x2 * x2, axis=axis), safe_m2**2, m2 > 0),
+        "skewness": _ratio(np.mean(x2 * x, axis=axis), safe_m2**1.5, m2 > 0),
         "shape_factor": rms / np.maximum(mean_abs, tiny),
         "impulse_factor": peak / np.maximum(mean_abs, tiny),
         "clearance_factor": peak / np.maximum(np.mean(np.sqrt(a), axis=axis) ** 2, tiny),
@@ -64,3 +65,8 @@ def time_statistics(x: np.ndarray, *, axis: int = -1) -> dict[str, np.ndarray | 
     if x.ndim == 1:
         return {k: float(v) for k, v in out.items()}
     return out
+
+
+def _ratio(numerator: np.ndarray, denominator: np.ndarray, where: np.ndarray) -> np.ndarray:
+    """``numerator / denominator`` where ``where``, else 0."""
+    return np.divide(numerator, denominator, out=np.zeros(np.shape(numerator)), where=where)

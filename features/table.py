@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import FeatureError, check_fs, check_positive, check_signal
+from ._validate import FeatureError, check_count, check_fs, check_positive, check_signal
 from .bands import line_snr
 from .envelope import KurtogramResult, envelope, kurtogram
 from .spectra import amplitude_spectrum
@@ -236,6 +236,7 @@ def extract_features(
         Features in the order of :func:`feature_names`.
     """
     fs = check_fs(fs)
+    n_harmonics = check_count("n_harmonics", n_harmonics)
     context = dict(fault_frequencies)
     if shaft_frequency is not None:
         context["shaft"] = shaft_frequency

@@ -99,3 +99,33 @@ def test_bad_input(x, fs, match):
 def test_nperseg_too_long():
     with pytest.raises(F.FeatureError, match="nperseg = 200"):
         F.amplitude_spectrum(np.ones(100), 10.0, nperseg=200)
+
+
+_X = np.random.default_rng(7).standard_normal(12000)
+_RATES = {"bpfo": 107.4, "bpfi": 162.2, "two_bsf": 141.2, "ftf": 11.9, "shaft": 29.95}
+
+
+@pytest.mark.parametrize(
+    ("call", "said"),
+    [
+        (lambda: F.kurtogram(_X, 12e3, nlevel=2.5), r"nlevel = 2\.5 is not an integer"),
+        (lambda: F.kurtogram(_X, 12e3, min_bandwidth=-1.0), r"min_bandwidth = -1\.0 Hz is out"),
+        (lambda: F.integrate_signal(_X, 12e3, order=0), r"order = 0 is outside .*\[1, inf\]"),
+        (lambda: F.integrate_spectrum(np.arange(9.0), np.ones(9), order=-1), r"order = -1"),
+        (
+            lambda: F.velocity_band_rms(_X, 12e3, {"low": (300.0, 50.0)}),
+            r"bands\['low'\] = \(300, 50\) Hz is outside the allowed range",
+        ),
+        (
+            lambda: F.extract_features(_X, 12e3, fault_frequencies=_RATES, n_harmonics=0),
+            r"n_harmonics = 0 is outside the allowed range \[1, inf\]",
+        ),
+        (lambda: F.envelope_scores(_X, 12e3, _RATES, harmonics=0), r"harmonics = 0 is outside"),
+    ],
+)
+def test_counts_orders_and_bands_that_mean_nothing_are_refused_by_name(call, said):
+    """Before: a fractional nlevel truncated, a negative band width, an order of 0 or -1 (no
+    integration, or a derivative), a reversed band read as empty, and no harmonics (numpy's
+    'mean of empty slice', 'max() arg is an empty sequence') all passed or failed obscurely."""
+    with pytest.raises(F.FeatureError, match=said):
+        call()

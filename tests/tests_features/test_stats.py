@@ -24,3 +24,16 @@ def test_gaussian_kurtosis_and_batch(rng):
     np.testing.assert_allclose(s["kurtosis"], 3.0, atol=0.05)
     assert s["rms"].shape == (3,)
     assert set(s) == set(F.TIME_STATISTICS)
+
+
+def test_a_constant_signal_has_statistics_of_zero_not_nan():
+    """Kurtosis and skewness of a constant record are 0, as its crest and shape factors are
+    (before: 0 / 0 = NaN with numpy's warning, which a feature table then carried)."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        one = F.time_statistics(np.full(50, 3.0))
+        rows = F.time_statistics(np.vstack([np.full(50, 2.0), np.sin(np.arange(50.0))]))
+    assert all(v == 0.0 for v in one.values())
+    assert rows["kurtosis"][0] == 0.0 and rows["kurtosis"][1] > 1.0
