@@ -76,6 +76,10 @@ def as_defects(defects: Defect | Sequence[Defect] | None) -> tuple[Defect, ...]:
         return ()
     if isinstance(defects, (Waviness, LocalizedDefect)):
         return (defects,)
+    if isinstance(defects, str) or not hasattr(defects, "__iter__"):
+        raise ParameterError(
+            f"defects = {defects!r} is not a Waviness or LocalizedDefect, or a sequence of them"
+        )
     out = tuple(defects)
     for i, d in enumerate(out):
         if not isinstance(d, (Waviness, LocalizedDefect)):

@@ -12,7 +12,6 @@ import math
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
-from numbers import Integral
 from typing import TypeVar
 
 import numpy as np
@@ -280,7 +279,10 @@ def prepare(
         the initial state ``y0`` (static equilibrium, velocities zero).
     """
     if not isinstance(bearing, BearingGeometry):
-        raise ParameterError(f"bearing = {bearing!r} is not a BearingGeometry")
+        hint = ""
+        if isinstance(bearing, str):
+            hint = f" (generators.bearing({bearing!r}) gives the catalog's)"
+        raise ParameterError(f"bearing = {bearing!r} is not a BearingGeometry{hint}")
     if not isinstance(operating, OperatingCondition):
         raise ParameterError(f"operating = {operating!r} is not an OperatingCondition")
     scene = default_instance(Scene) if scene is None else scene
@@ -294,8 +296,8 @@ def prepare(
         if not isinstance(obj, cls):
             raise ParameterError(f"{name} = {obj!r} is not a {cls.__name__}")
     defect_list = as_defects(defects)
-    if isinstance(random_state, Integral) and not isinstance(random_state, bool):
-        check_int("random_state", random_state, low=0)
+    if random_state is not None and not isinstance(random_state, np.random.Generator):
+        check_int("random_state", random_state, low=0)  # a seed: an integer of at least 0
     rng = np.random.default_rng(random_state)
     for message in operating_range_warnings(bearing, operating):
         warnings.warn(message, OperatingRangeWarning, stacklevel=3)

@@ -174,3 +174,29 @@ def test_a_run_beyond_the_catalogue_ratings_is_warned_about_and_still_runs(capsy
     assert main(argv) == 0
     err = capsys.readouterr().err
     assert err.count("warning: shaft speed 14000 rpm is above") == 1, err
+
+
+@pytest.mark.parametrize(
+    ("given", "said"),
+    [
+        ({"random_state": 1.5}, r"random_state = 1\.5 is not an integer; allowed range \[0, inf\]"),
+        ({"defects": "outer"}, r"defects = 'outer' is not a Waviness or LocalizedDefect, or a seq"),
+        ({"bearing": "6205"}, r"bearing = '6205' is not a BearingGeometry \(generators\.bearing"),
+    ],
+)
+def test_simulate_refuses_a_seed_defects_or_bearing_it_cannot_use_by_name(given, said):
+    """Before: numpy's SeedSequence TypeError for a fractional seed, "defects[0] = 'o'" for a
+    string (its letters read as defects), and no hint that a catalog name goes through
+    generators.bearing."""
+    from generators import simulate
+
+    args = {"bearing": bearing("6205"), "defects": None, "random_state": 0, **given}
+    settings = SimulationSettings(duration=0.01, settle_time=0.005)
+    with pytest.raises(ParameterError, match=said):
+        simulate(
+            args["bearing"],
+            OperatingCondition.from_rpm(1800, 500.0),
+            args["defects"],
+            settings=settings,
+            random_state=args["random_state"],
+        )
