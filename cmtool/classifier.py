@@ -43,7 +43,7 @@ from generators import bearing
 from generators.params import check_int
 
 from . import __version__
-from .inputs import checked_workers
+from .inputs import checked_frame, checked_workers
 from .model_files import (  # the model files, kept importable from here
     MODEL_FORMAT,
     TRUSTED_TYPES,
@@ -173,6 +173,23 @@ def make_classifier(
     )
 
 
+#: The columns :func:`train` reads of a dataset: the signals, their labels and operating
+#: points, and what the features, the rule's evidence and the extrapolation check need of
+#: each (rate [Hz], speed [rev/min], load [N], bearing, characteristic frequencies [Hz]).
+TRAINING_COLUMNS = (
+    "signal",
+    "label",
+    "operating_point_id",
+    "fs_hz",
+    "rpm",
+    "radial_load_n",
+    "bearing",
+    "shaft_frequency_hz",
+    "ftf_hz",
+    "bpfo_hz",
+    "bpfi_hz",
+    "two_bsf_hz",
+)
 #: Default feature set of :func:`train` and ``cmtool train``: the one that carried over best
 #: between simulated rigs (``benchmarks/cross_domain.py``; features.FEATURE_SETS).
 DEFAULT_FEATURE_SET = "evidence+scale-free"
@@ -630,6 +647,7 @@ def train(
             f"random_state = {random_state!r} is outside the allowed range [0, 2**32 - 1]"
         )
     workers = checked_workers(workers)
+    frame = checked_frame(frame, "frame", TRAINING_COLUMNS, "cmtool.datasets.read_dataset")
     kept = visible_faults(frame, min_fault_snr_db)
     left_out = int((~kept).sum())
     faint = frame[~kept.to_numpy()].reset_index(drop=True)

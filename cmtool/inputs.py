@@ -7,6 +7,7 @@ what is allowed, before any work.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -167,3 +168,38 @@ def checked_workers(workers: Any, name: str = "workers") -> int:
     from generators.params import check_int
 
     return check_int(name, workers, low=1)
+
+
+def checked_frame(frame: Any, name: str, columns: Sequence[str], source: str) -> Any:
+    """A table of signals with the columns a function reads.
+
+    Parameters
+    ----------
+    frame : object
+        The table given.
+    name : str
+        Its name in an error message.
+    columns : sequence of str
+        The columns it must have.
+    source : str
+        What makes such a table, for the message (``cmtool.datasets.read_dataset``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``frame``.
+
+    Raises
+    ------
+    ValueError
+        When ``frame`` is not a table, or lacks a column (naming every one missing).
+    """
+    if not hasattr(frame, "columns") or not hasattr(frame, "iloc"):
+        raise ValueError(f"{name} is a {type(frame).__name__}, not a DataFrame ({source})")
+    missing = [c for c in columns if c not in frame.columns]
+    if missing:
+        noun = "column" if len(missing) == 1 else "columns"
+        raise ValueError(
+            f"{name} has no {noun} {', '.join(map(repr, missing))} ({source} gives every one)"
+        )
+    return frame

@@ -28,6 +28,7 @@ from generators import BearingFrequencies, characteristic_frequencies
 from generators import bearing as catalog_bearing
 
 from .bench import CANONICAL
+from .inputs import checked_frame
 from .io import read_recording
 from .manifest import read_manifest
 
@@ -178,6 +179,8 @@ def realism(
 
     if isinstance(n_estimators, bool) or not isinstance(n_estimators, int) or n_estimators < 1:
         raise ValueError(f"n_estimators = {n_estimators!r} is outside the allowed range [1, inf)")
+    checked_frame(simulated, "simulated", ("signal", "fs_hz"), "cmtool.datasets.read_dataset")
+    checked_frame(measured, "measured", ("signal", "group", "fs_hz"), "recording_segments")
     groups_measured = measured["group"].astype(str).to_numpy()
     recordings = len(set(groups_measured))
     if recordings < 2:

@@ -1037,3 +1037,20 @@ def test_the_python_api_refuses_worker_counts_and_folds_before_any_work(small_da
             with pytest.raises(ParameterError, match=said):
                 call()
     assert not (tmp_path / "d").exists()
+
+
+def test_train_and_the_realism_gauge_name_the_columns_a_table_lacks(small_dataset):
+    """Before: KeyError 'label' (or 'operating_point_id', 'fs_hz', 'group'), and an
+    AttributeError for a table that is no DataFrame. train reads TRAINING_COLUMNS."""
+    from cmtool.classifier import TRAINING_COLUMNS, train
+    from cmtool.realism import realism
+
+    with pytest.raises(ValueError, match=r"frame has no column 'label' \(cmtool\.datasets"):
+        train(small_dataset.drop(columns=["label"]))
+    with pytest.raises(ValueError, match=r"frame has no columns 'operating_point_id', 'fs_hz'"):
+        train(small_dataset.drop(columns=["fs_hz", "operating_point_id"]))
+    with pytest.raises(ValueError, match=r"frame is a list, not a DataFrame"):
+        train([1.0, 2.0])
+    with pytest.raises(ValueError, match=r"measured has no column 'group' \(recording_segments"):
+        realism(small_dataset, small_dataset)
+    assert set(TRAINING_COLUMNS) <= set(small_dataset.columns)
