@@ -12,7 +12,7 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
-from ._validate import FeatureError, check_positive
+from ._validate import FeatureError, check_count, check_positive
 
 __all__ = [
     "line_snr",
@@ -177,6 +177,7 @@ def harmonic_amplitudes(
         axis.
     """
     fundamental = check_positive("fundamental", fundamental, unit="Hz")
+    n_harmonics = check_count("n_harmonics", n_harmonics)
     return np.stack(
         [
             np.asarray(

@@ -50,6 +50,11 @@ def peak_offset_bins(amplitude: np.ndarray, k: int) -> float:
     float
         The peak's offset from bin ``k`` [bins].
     """
+    if not 1 <= k <= len(amplitude) - 2:
+        raise FeatureError(
+            f"k = {k} is outside the allowed range [1, {len(amplitude) - 2}] (a bin with a "
+            "neighbour on each side)"
+        )
     left, mid, right = (math.log(max(float(v), 1e-300)) for v in amplitude[k - 1 : k + 2])
     curvature = left - 2.0 * mid + right
     return 0.5 * (left - right) / curvature if curvature < 0 else 0.0

@@ -121,11 +121,19 @@ _RATES = {"bpfo": 107.4, "bpfi": 162.2, "two_bsf": 141.2, "ftf": 11.9, "shaft": 
             r"n_harmonics = 0 is outside the allowed range \[1, inf\]",
         ),
         (lambda: F.envelope_scores(_X, 12e3, _RATES, harmonics=0), r"harmonics = 0 is outside"),
+        (
+            lambda: F.harmonic_amplitudes(
+                np.arange(9.0), np.ones(9), 2.0, n_harmonics=0, half_width=1.0
+            ),
+            r"n_harmonics = 0 is outside",
+        ),
+        (lambda: F.peak_offset_bins(np.ones(9), 0), r"k = 0 is outside the allowed range \[1, 7\]"),
     ],
 )
 def test_counts_orders_and_bands_that_mean_nothing_are_refused_by_name(call, said):
     """Before: a fractional nlevel truncated, a negative band width, an order of 0 or -1 (no
-    integration, or a derivative), a reversed band read as empty, and no harmonics (numpy's
-    'mean of empty slice', 'max() arg is an empty sequence') all passed or failed obscurely."""
+    integration, or a derivative), a reversed band read as empty, no harmonics (numpy's
+    'mean of empty slice', 'max() arg is an empty sequence', 'need at least one array to
+    stack') and a peak bin without neighbours all passed or failed obscurely."""
     with pytest.raises(F.FeatureError, match=said):
         call()
