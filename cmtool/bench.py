@@ -406,7 +406,7 @@ def run_bench(
     allow_incomplete : bool
         Read a dataset whose generation did not finish.
     workers : int
-        Processes (each runs whole signals).
+        Processes (each runs whole signals), at least 1.
 
     Returns
     -------

@@ -609,7 +609,7 @@ def train(
     random_state : int
         Seed of the classifiers.
     n_splits : int, optional
-        Grouped folds (default: min(5, number of operating points)).
+        Grouped folds, 2 .. the number of operating points (default: min(5, that number)).
     feature_set : str
         Features used (``features.FEATURE_SETS``); the default ``evidence+scale-free`` carried
         over best between simulated rigs and holds nothing in the signal's unit (any sensor
@@ -623,8 +623,8 @@ def train(
         None always keeps.
     workers : int
         Processes for the long stage, every signal's features and the rule detector's
-        evidence for the pooled calibration (one ``fault_evidence`` serves both); the bundle
-        is the same for any count.
+        evidence for the pooled calibration (one ``fault_evidence`` serves both), at least 1;
+        the bundle is the same for any count.
     progress : callable, optional
         ``progress(stage, done, total)`` after each chunk of signals (``stage``: ``"features
         and rule evidence"``).
@@ -767,7 +767,8 @@ def evaluate(
     frame : pandas.DataFrame
         The dataset scored (labels in ``label``).
     workers : int
-        Processes that extract the features (the result is the same for any count).
+        Processes that extract the features, at least 1 (the result is the same for any
+        count).
     progress : callable, optional
         ``progress(stage, done, total)``, called after each chunk of signals.
 

@@ -262,7 +262,7 @@ def generate_dataset(
     out : path
         Dataset folder (created).
     workers : int
-        Local worker threads (1: no extra thread).
+        Local worker threads, at least 1 (1: no extra thread).
     resume : bool
         Continue an interrupted run in ``out`` (same recipe required).
     scheduler : str, optional
