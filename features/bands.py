@@ -282,6 +282,10 @@ def band_metrics(
         mean-square values of the bins in the band [U^2] (A^2 / 2 per tone). A last row named
         ``total`` sums the band powers and takes the largest peak.
     """
+    if not hasattr(bands, "itertuples"):
+        raise FeatureError(
+            f"bands is a {type(bands).__name__}; give the DataFrame of features.fault_bands"
+        )
     f = np.asarray(frequencies, dtype=float)
     s = np.asarray(spectrum, dtype=float)
     if s.ndim != 1 or s.shape != f.shape:

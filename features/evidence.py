@@ -127,8 +127,15 @@ def slip_line(
     searched_bins, floor_bins : int
         Bins searched and bins of the floor's median (for :func:`detection_threshold_db`).
     """
+    line = check_positive("line", line, unit="Hz")
+    below, above = (float(v) for v in search)
+    if not (0.0 <= below < 1.0 and 0.0 <= above < 1.0):
+        raise FeatureError(
+            f"search = {tuple(search)!r} is outside the allowed range: each share of the line "
+            "in [0, 1)"
+        )
     df = freqs[1] - freqs[0]
-    low, high = line * (1 - search[0]) - df, line * (1 + search[1]) + df
+    low, high = line * (1 - below) - df, line * (1 + above) + df
     inside = (freqs >= low) & (freqs <= high)
     reach = max(0.1 * line, FLOOR_BINS * df)
     window = (np.abs(freqs - line) <= reach) & ~inside

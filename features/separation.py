@@ -35,7 +35,7 @@ from scipy import signal as sp_signal
 from scipy.sparse import linalg as sparse_linalg
 
 from . import _windows
-from ._validate import FeatureError, check_fs, check_positive, check_signal
+from ._validate import FeatureError, check_count, check_fs, check_positive, check_signal
 from .false_alarm import (  # noqa: F401 (moved in stop 56, still exported here)
     CALIBRATION_DB,
     FALSE_ALARM,
@@ -448,7 +448,14 @@ def candidate_bands(
         (low, high) [Hz], widest first.
     """
     fs = check_fs(fs)
-    top = fs / ANALYSER_RATIO if max_frequency is None else float(max_frequency)
+    n = check_count("n", n)
+    min_bandwidth = check_positive("min_bandwidth", min_bandwidth, unit="Hz")
+    nlevel = check_count("nlevel", nlevel, low=1, high=12)
+    top = (
+        fs / ANALYSER_RATIO
+        if max_frequency is None
+        else check_positive("max_frequency", max_frequency, unit="Hz")
+    )
     min_frequency = float(min_frequency)
     if not 0.0 <= min_frequency < top:
         raise FeatureError(

@@ -128,6 +128,14 @@ _RATES = {"bpfo": 107.4, "bpfi": 162.2, "two_bsf": 141.2, "ftf": 11.9, "shaft": 
             r"n_harmonics = 0 is outside",
         ),
         (lambda: F.peak_offset_bins(np.ones(9), 0), r"k = 0 is outside the allowed range \[1, 7\]"),
+        (lambda: F.slip_line(np.arange(99.0), np.ones(99), -5.0), r"line = -5\.0 Hz is outside"),
+        (
+            lambda: F.slip_line(np.arange(99.0), np.ones(99), 50.0, search=(0.01, -0.02)),
+            r"search = \(0\.01, -0\.02\) is outside the allowed range",
+        ),
+        (lambda: F.candidate_bands(12e3, 0, min_bandwidth=100.0), r"n = 0 is outside"),
+        (lambda: F.candidate_bands(12e3, 9000, min_bandwidth=-1.0), r"min_bandwidth = -1\.0 Hz"),
+        (lambda: F.band_metrics(np.arange(9.0), np.ones(9), []), r"bands is a list; give the"),
     ],
 )
 def test_counts_orders_and_bands_that_mean_nothing_are_refused_by_name(call, said):
