@@ -8,19 +8,17 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
-
-if TYPE_CHECKING:
-    from matplotlib.figure import Figure
-
-    from features import KurtogramResult
-    from generators import SimulationResult, Waviness
+from typing import Any
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
+
+from features import KurtogramResult  # noqa: E402
+from generators import SimulationResult, Waviness  # noqa: E402
 
 __all__ = [
     "save_figure",
@@ -521,7 +519,7 @@ def waviness_markers(result: SimulationResult, defects: Sequence[Waviness]) -> d
     dict of str to float
         Marker name -> frequency [Hz] (:func:`plot_spectrum`'s ``markers``).
     """
-    from generators import Waviness, bearing, waviness_passage_frequencies
+    from generators import bearing, waviness_passage_frequencies
 
     f = result.frequencies
     markers = {"shaft": f.shaft, "bpfo": f.bpfo, "bpfi": f.bpfi, "two_bsf": f.two_bsf}

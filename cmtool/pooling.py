@@ -12,14 +12,13 @@ every public name.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
-if TYPE_CHECKING:
-    from generators.kinematics import BearingFrequencies
+from generators.kinematics import BearingFrequencies
 
-    from .diagnosis import Diagnosis
+from .diagnosis import Diagnosis
 
 __all__ = [
     "CANONICAL",
