@@ -41,6 +41,7 @@ from generators.recipe import recipe_rating_warnings, validate_recipe
 from generators.synthesis import GENERATOR_REVISION, bound_steps, generate_cases
 
 from . import __version__
+from .inputs import checked_workers
 from .io import atomic_write, json_text, to_jsonable
 
 __all__ = [
@@ -275,8 +276,6 @@ def generate_dataset(
     dict
         Summary: counts of signals written, failed and skipped (already present).
     """
-    from .inputs import checked_workers
-
     workers = checked_workers(workers)
     recipe, text = load_recipe(recipe_path)
     for message in recipe_rating_warnings(recipe):  # once, not per case
