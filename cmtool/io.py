@@ -8,6 +8,7 @@ frequencies go into the parquet key-value metadata (key ``cmtool``) or a JSON si
 from __future__ import annotations
 
 import json
+import math
 import os
 import re
 import tempfile
@@ -24,6 +25,7 @@ from generators import BearingGeometry, SimulationResult
 from generators.stream import SignalStream
 
 from . import __version__
+from .csv_layout import CsvLayout, csv_layout
 
 __all__ = [
     "write_signal",
@@ -503,6 +505,20 @@ def _pick(count: int, channel: str | int | None, path: Path) -> int:
     return index
 
 
+def _real_samples(value: object, path: Path) -> np.ndarray:
+    """An array of samples as float64; complex samples refused.
+
+    numpy would drop the imaginary part with only a warning.
+    """
+    array = np.asarray(value)
+    if np.iscomplexobj(array):
+        raise RecordingError(
+            f"{path}: the samples are complex numbers; a vibration recording is real (save "
+            "its real part, or each part as a channel)"
+        )
+    return np.asarray(array, dtype=float)
+
+
 def _one_channel(
     x: np.ndarray, channel: str | int | None, path: Path, meta: dict[str, Any]
 ) -> np.ndarray:
@@ -526,22 +542,55 @@ def _one_channel(
     return squeezed.ravel()
 
 
-def _is_number(text: object) -> bool:
+def _read_csv_table(path: Path) -> tuple[pd.DataFrame, CsvLayout]:
+    """A CSV recording's table of numbers, read in the dialect :func:`csv_layout` finds."""
     try:
-        float(str(text))
-    except ValueError:
-        return False
-    return True
+        layout = csv_layout(path)
+    except ValueError as error:
+        raise RecordingError(f"{path}: {error}") from None
+    frame = pd.read_csv(
+        path,
+        sep=layout.pandas_separator,
+        decimal=layout.decimal,
+        header=None,
+        skiprows=layout.data_line,
+        index_col=False,
+        encoding="utf-8-sig",
+    )
+    width = len(layout.columns)
+    if frame.shape[1] == width + 1 and frame.iloc[:, -1].isna().all():
+        frame = frame.iloc[:, :-1]  # the empty field after a separator at each line's end
+    if frame.shape[1] != width:
+        raise RecordingError(
+            f"{path}: the rows from line {layout.data_line + 1} have {frame.shape[1]} fields "
+            f"where the table has {width} ({layout.columns})"
+        )
+    frame.columns = layout.columns
+    for name in frame.columns:
+        if not pd.api.types.is_numeric_dtype(frame[name]):
+            text = frame[name][pd.to_numeric(frame[name], errors="coerce").isna()]
+            text = text[text.notna()]
+            raise RecordingError(
+                f"{path}: column {name!r} holds text among its numbers ({text.iloc[0]!r}, "
+                f"row {int(text.index[0]) + 1} of the table from line {layout.data_line + 1})"
+            )
+    return frame, layout
 
 
 def _time_axis(values: np.ndarray) -> float | None:
-    """The sample rate [Hz] if ``values`` is a time axis (rising in equal steps), else None."""
-    if values.size < 3:
+    """The sample rate [Hz] if ``values`` is a time axis, else None.
+
+    A time axis rises at every sample in steps whose median is within 1 % of their mean
+    (equal steps, written to however few digits: 1 / 12000 s as 0.000083 and 0.000084); the
+    rate is the mean's, the span over the steps, which the rounding of each value moves by
+    at most a quantum over the whole span.
+    """
+    if values.size < 3 or not np.all(np.isfinite(values)):
         return None
     steps = np.diff(values)
-    step = float(np.median(steps))
-    if step > 0 and np.all(np.abs(steps - step) <= 1e-3 * step):
-        return 1.0 / step
+    mean = float(values[-1] - values[0]) / (values.size - 1)
+    if np.all(steps > 0) and abs(float(np.median(steps)) - mean) <= 0.01 * mean:
+        return 1.0 / mean
     return None
 
 
@@ -576,7 +625,10 @@ def read_recording(
     Formats: MATLAB ``.mat`` (CWRU files: ``X###_DE_time`` by default, of several the one the
     file's name numbers, rpm from ``X###RPM``;
     MFPT files: struct ``bearing`` with ``gs``, ``sr`` and ``rate``), ``.csv`` (a column by name
-    or index), ``.wav``, ``.npy``/``.npz`` and ``.parquet``.
+    or index; the dialect, preamble and units row found by :func:`cmtool.csv_layout.csv_layout`;
+    a time column, named ``time``, ``t`` or ``time_s`` or the first column rising in equal
+    steps, gives the rate), ``.wav``, ``.npy``/``.npz`` and ``.parquet``. Complex samples are
+    refused.
 
     Parameters
     ----------
@@ -659,7 +711,7 @@ def _read_samples(
             meta["unit"] = "g"
             meta["bearing"] = "mfpt"  # the MFPT layout: struct bearing.gs/sr/rate
         else:
-            x = _one_channel(np.asarray(value, dtype=float), channel, path, meta)
+            x = _one_channel(_real_samples(value, path), channel, path, meta)
             prefix = variable.split("_")[0]
             rpm_key = f"{prefix}RPM"
             if rpm_key in data:
@@ -696,17 +748,12 @@ def _read_samples(
                 raise RecordingError(f"{path}: choose a variable with --variable; it holds {keys}")
             loaded = loaded[key]
             meta["variable"] = key
-        x = _one_channel(np.asarray(loaded, dtype=float), channel, path, meta)
+        x = _one_channel(_real_samples(loaded, path), channel, path, meta)
     elif suffix in (".csv", ".parquet"):
         info = None  # a cmtool simulate file's metadata: rate, speed, bearing, SI units
+        layout = None
         if suffix == ".csv":
-            try:
-                frame = pd.read_csv(path)
-            except pd.errors.EmptyDataError:
-                raise RecordingError(f"{path}: the file holds no data") from None
-            if all(_is_number(c) for c in frame.columns):  # no header: the first row is data
-                frame = pd.read_csv(path, header=None)
-                frame.columns = [f"column {i}" for i in range(frame.shape[1])]
+            frame, layout = _read_csv_table(path)
             info = _csv_sidecar(path)
         else:
             frame = pd.read_parquet(path)
@@ -750,9 +797,20 @@ def _read_samples(
         meta["variable"] = str(col)
         if simulated and "_acceleration_" in str(col):
             meta["unit"] = "m/s^2"  # a cmtool simulate file: channels in SI units
+        elif layout is not None and layout.acceleration_unit(str(col)):
+            meta["unit"] = layout.acceleration_unit(str(col))  # the file's units row
         if time_cols and len(frame) > 2 and "fs_hz" not in meta:
-            dt = np.diff(frame[time_cols[0]].to_numpy(dtype=float))
-            meta["fs_hz"] = float(1.0 / np.median(dt))
+            times = frame[time_cols[0]].to_numpy(dtype=float)
+            rate = _time_axis(times)
+            if rate is None:  # gaps in the record: the median step is the rate's
+                step = float(np.median(np.diff(times)))
+                if not (math.isfinite(step) and step > 0):
+                    raise RecordingError(
+                        f"{path}: column {time_cols[0]!r} is no time axis (its median step "
+                        f"is {step:g} s; a time axis rises)"
+                    )
+                rate = 1.0 / step
+            meta["fs_hz"] = rate
     else:
         raise RecordingError(
             f"{path}: unknown format {suffix!r} (mat, csv, wav, npy, npz, parquet)"

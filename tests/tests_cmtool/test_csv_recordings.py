@@ -1,0 +1,142 @@
+"""CSV recordings in the dialects instruments and spreadsheets write (cmtool.csv_layout).
+
+Each file is written from one known record; read back, it must give those samples (to the
+digits written) and the rate its time column says, or be refused with the line or column
+that stops it. Before cmtool.csv_layout, a decimal-comma column and a separator at each
+line's end were read as other numbers without a word (a rate of -248 Hz from the second).
+"""
+
+import numpy as np
+import pytest
+
+from cmtool.cli import main
+from cmtool.io import RecordingError, read_recording
+
+FS = 12000.0
+N = 12000
+X = np.random.default_rng(7).standard_normal(N)
+T = np.arange(N) / FS
+
+
+def _rows(sep: str, decimal: str, *, time: bool = True, end: str = "", digits: int = 6) -> str:
+    def number(v: float) -> str:
+        text = f"{v:.{digits}f}"
+        return text.replace(".", ",") if decimal == "," else text
+
+    return "\n".join(
+        (f"{number(t)}{sep}{number(v)}" if time else number(v)) + end
+        for t, v in zip(T, X, strict=True)
+    )
+
+
+DIALECTS = {
+    "comma": "time,acc\n" + _rows(",", "."),
+    "semicolon": "time;acc\n" + _rows(";", "."),
+    "semicolon, decimal comma": "time;acc\n" + _rows(";", ","),
+    "tab, decimal comma": "time\tacc\n" + _rows("\t", ","),
+    "spaces": "time acc\n" + _rows(" ", "."),
+    "separator at each line's end": "time,acc\n" + _rows(",", ".", end=","),
+    "preamble and units row": "# logger 7\n# channel 1: drive end\ntime,acc\ns,g\n"
+    + _rows(",", "."),
+    "Windows line ends and a byte-order mark": "\ufefftime,acc\r\n"
+    + _rows(",", ".").replace("\n", "\r\n"),
+    "one column, decimal comma": "acc\n" + _rows("", ",", time=False),
+    "one column, quoted decimal comma": "acc\n"
+    + "\n".join(f'"{v:.6f}"'.replace(".", ",") for v in X),
+}
+
+
+@pytest.mark.parametrize("dialect", list(DIALECTS))
+def test_each_dialect_reads_the_samples_and_the_rate(tmp_path, dialect):
+    path = tmp_path / "rec.csv"
+    path.write_text(DIALECTS[dialect], encoding="utf-8", newline="")
+    x, meta = read_recording(path)
+    np.testing.assert_allclose(x, X, rtol=0, atol=5e-7)  # six decimals written
+    assert meta["variable"] == "acc" and meta["channels"] == 1
+    if "one column" in dialect:
+        assert "fs_hz" not in meta
+    else:
+        # the time column's 1 / 12000 s steps written as 0.000083 and 0.000084: the rate
+        # from the span (within 1e-6 s over 1 s), not the median step (12048 Hz)
+        assert meta["fs_hz"] == pytest.approx(FS, rel=1e-5)
+    assert meta.get("unit") == ("g" if "units row" in dialect else None)
+
+
+def test_a_decimal_comma_recording_gets_the_verdict_of_its_numbers(tmp_path, capsys):
+    """The same record as .npy and as a spreadsheet's decimal-comma CSV: the same diagnosis."""
+    from scipy import signal as sp_signal
+
+    from generators import bearing, characteristic_frequencies
+
+    bpfo = characteristic_frequencies(bearing("6205"), 1797 / 60).bpfo
+    rng = np.random.default_rng(5)
+    impacts = np.zeros(N)
+    times = np.arange(0.0, 1.0, 1 / bpfo) + rng.normal(0.0, 0.01 / bpfo, int(np.ceil(bpfo)))
+    impacts[np.clip((times * FS).astype(int), 0, N - 1)] = 1.0
+    x = sp_signal.lfilter(*sp_signal.iirpeak(3000.0, 15.0, FS), impacts)
+    x = np.round(x + 0.05 * rng.standard_normal(N), 6)
+    np.save(tmp_path / "rec.npy", x)
+    text = "Zeit [s];Beschleunigung [g]\n" + "\n".join(
+        f"{t:.8f};{v:.6f}".replace(".", ",") for t, v in zip(T, x, strict=True)
+    )
+    (tmp_path / "rec.csv").write_text(text)
+    said = []
+    for name, extra in (("rec.npy", ["--fs", "12000"]), ("rec.csv", [])):
+        argv = ["diagnose", str(tmp_path / name), "--rpm", "1797", "--bearing", "6205", "--json"]
+        assert main(argv + extra) == 0
+        said.append(capsys.readouterr().out)
+    import json
+
+    npy, csv = (json.loads(s) for s in said)
+    assert npy["verdict"] == "outer race"
+    assert csv["verdict"] == npy["verdict"] and csv["confidence"] == npy["confidence"]
+    assert csv["assumptions"]["fs_hz"] == pytest.approx(FS, rel=1e-6)
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        (
+            "acc\n" + "\n".join(f"{v:.6f}" for v in X[:50]) + "\nERROR\n" + "0.1\n" * 50,
+            r"line 52 \('ERROR'\) interrupts the table",
+        ),
+        (
+            "acc\n" + "\n".join(f"{v:.6f}" for v in X) + "\nEnd of data\n",
+            r"column 'acc' holds text among its numbers \('End of data', row 12001",
+        ),
+        (
+            "acc\n" + "\n".join(f"{v:.6f}" for v in X[:500]) + "\nacc\n" + "0.1\n" * 50,
+            r"column 'acc' holds text among its numbers \('acc', row 501",
+        ),
+        (
+            "time,acc\n" + "\n".join(f"{-t:.8f},{v:.6f}" for t, v in zip(T, X, strict=True)),
+            r"column 'time' is no time axis \(its median step is -8.333e-05 s",
+        ),
+        ("a note\nanother\n", r"line 2 \('another'\) is no row of numbers"),
+        ("\n\n", "the file holds no data"),
+    ],
+    ids=["text inside", "footer", "second header", "falling time", "no numbers", "blank"],
+)
+def test_what_is_no_table_is_refused_by_its_line(tmp_path, text, message):
+    path = tmp_path / "rec.csv"
+    path.write_text(text)
+    with pytest.raises(RecordingError, match=message):
+        read_recording(path)
+
+
+def test_a_headerless_file_of_integer_pairs_stays_two_columns(tmp_path):
+    """Without a header, "125,-3" is two columns of counts (a logger's integers), not one
+    number with a decimal comma."""
+    counts = np.round(X * 1000).astype(int)
+    path = tmp_path / "counts.csv"
+    path.write_text("\n".join(f"{a},{a // 2}" for a in counts))
+    x, meta = read_recording(path)
+    assert meta["channels"] == 2 and meta["variable"] == "column 0"
+    np.testing.assert_array_equal(x, counts)
+    assert np.array_equal(read_recording(path, channel=1)[0], counts // 2)
+
+
+def test_complex_samples_are_refused_not_cut_to_their_real_part(tmp_path):
+    np.save(tmp_path / "iq.npy", X + 1j * X)
+    with pytest.raises(RecordingError, match=r"iq.npy: the samples are complex numbers"):
+        read_recording(tmp_path / "iq.npy")
