@@ -11,12 +11,15 @@ machine or measurement point), ``baseline`` (a healthy recording of the same mac
 relative to the folder, that ``cmtool diagnose FOLDER`` compares the recording with) and
 ``unit`` (the acceleration's unit, ``g`` or ``m/s^2``, for velocities in mm/s). A row
 that cannot be used is an error naming the manifest, its line, the column, the value and
-what is allowed, before any recording is read.
+what is allowed, before any recording is read. Columns are separated by commas, or by
+semicolons or tabs as a spreadsheet saves CSV where the decimal mark is a comma (its rates and
+speeds may then be written with one: ``1797,5``); a byte-order mark is ignored.
 """
 
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -100,10 +103,39 @@ def _text(value: object) -> str | None:
     return text or None
 
 
-def _number(where: str, column: str, value: object, low: float, high: float, unit: str) -> float:
-    """A cell as a number in (low, high], or an error naming the row, column and range."""
+#: Column separators a manifest may use (a spreadsheet saving CSV where the decimal mark is a
+#: comma writes semicolons).
+MANIFEST_SEPARATORS = (",", ";", "\t")
+_DECIMAL_COMMA = re.compile(r"[+-]?\d*,\d+([eE][+-]?\d+)?")
+
+
+def _manifest_separator(manifest: Path) -> str:
+    """The separator of a manifest: the one its header line holds most of (a comma if none)."""
+    with open(manifest, encoding="utf-8-sig", errors="replace") as handle:
+        header = handle.readline()
+    counts = [header.count(sep) for sep in MANIFEST_SEPARATORS]
+    return MANIFEST_SEPARATORS[counts.index(max(counts))] if max(counts) else ","
+
+
+def _number(
+    where: str,
+    column: str,
+    value: object,
+    low: float,
+    high: float,
+    unit: str,
+    decimal_comma: bool = False,
+) -> float:
+    """A cell as a number in (low, high], or an error naming the row, column and range.
+
+    With ``decimal_comma`` (a manifest whose columns a semicolon or tab separates) a number
+    written with a decimal comma (``1797,5``) is read as one.
+    """
+    text = str(value).strip()
+    if decimal_comma and _DECIMAL_COMMA.fullmatch(text):
+        text = text.replace(",", ".")
     try:
-        number = float(str(value).strip())
+        number = float(text)
     except ValueError:
         raise RecordingError(f"{where}: {column} = {value!r} is not a number [{unit}]") from None
     if not (math.isfinite(number) and low < number <= high):
@@ -145,8 +177,11 @@ def read_manifest(
     manifest = folder / "MANIFEST.csv"
     if not manifest.is_file():
         raise FileNotFoundError(f"{folder}: no MANIFEST.csv (a folder of recordings needs one)")
+    separator = _manifest_separator(manifest)
     try:
-        rows = pd.read_csv(manifest, dtype=str, keep_default_na=False)
+        rows = pd.read_csv(
+            manifest, sep=separator, dtype=str, keep_default_na=False, encoding="utf-8-sig"
+        )
     except pd.errors.EmptyDataError:
         raise RecordingError(f"{manifest}: the file holds no data") from None
     required = ["file", "sampling_rate_hz", "shaft_rpm"] + (["fault_location"] if labelled else [])
@@ -167,8 +202,9 @@ def read_manifest(
         if file is None:
             raise RecordingError(f"{where}: file is empty")
         where = f"{where} ({file})"
-        fs = _number(where, "sampling_rate_hz", row["sampling_rate_hz"], 0.0, 1e7, "Hz")
-        rpm = _number(where, "shaft_rpm", row["shaft_rpm"], *_RPM_RANGE, "rpm")
+        comma = separator != ","
+        fs = _number(where, "sampling_rate_hz", row["sampling_rate_hz"], 0.0, 1e7, "Hz", comma)
+        rpm = _number(where, "shaft_rpm", row["shaft_rpm"], *_RPM_RANGE, "rpm", comma)
         rig = _text(row.get("dataset"))
         name = _text(row.get("bearing")) or MANIFEST_BEARINGS.get(rig or "", bearing_default)
         geometry = None

@@ -46,6 +46,26 @@ def test_a_manifest_gives_each_recordings_rate_speed_bearing_rig_and_label(tmp_p
 
 
 @pytest.mark.parametrize(
+    ("separator", "decimal"), [(";", ","), ("\t", ","), (";", "."), (",", ".")]
+)
+def test_a_spreadsheets_manifest_reads_as_the_comma_separated_one(tmp_path, separator, decimal):
+    """Where the decimal mark is a comma, spreadsheets save CSV with semicolons (or tabs)
+    between columns and a byte-order mark first; the entries are those of the plain file."""
+    rows = [
+        {**GOOD, "shaft_rpm": 1797.5, "dataset": "CWRU", "time": "2026-01-01T08:00"},
+        {**GOOD, "file": "b.npy", "sampling_rate_hz": 48828.125, "bearing": "6308"},
+    ]
+    plain = read_manifest(_folder(tmp_path, rows))
+    text = pd.DataFrame(rows).to_csv(index=False, sep=separator, decimal=decimal)
+    (tmp_path / "MANIFEST.csv").write_text(text, encoding="utf-8-sig")
+    assert read_manifest(tmp_path) == plain
+    assert [(e.fs_hz, e.rpm, e.bearing) for e in plain] == [
+        (12000.0, 1797.5, "6205"),
+        (48828.125, 1797.0, "6308"),
+    ]
+
+
+@pytest.mark.parametrize(
     ("change", "message"),
     [
         ({"shaft_rpm": "abc"}, r"line 2 \(a.npy\): shaft_rpm = 'abc' is not a number \[rpm\]"),
