@@ -31,7 +31,7 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["CsvLayout", "csv_layout", "SAMPLE_LINES", "SEPARATORS", "UNITS"]
+__all__ = ["CsvLayout", "csv_layout", "unit_in_name", "SAMPLE_LINES", "SEPARATORS", "UNITS"]
 
 #: Lines at the start of a file read to find its layout (pandas reads the rest with it).
 SAMPLE_LINES = 200
@@ -107,6 +107,32 @@ class CsvLayout:
         if self.units is None or column not in self.columns:
             return None
         return UNITS.get(_unit_key(self.units[self.columns.index(column)]))
+
+
+_BRACKETED = re.compile(r".*?[\[(]\s*([^\[\]()]+?)\s*[\])]\s*$")
+
+
+def unit_in_name(name: str) -> str | None:
+    """The acceleration unit a column's name gives in brackets at its end, if any.
+
+    Parameters
+    ----------
+    name : str
+        A column's name, e.g. ``acc [g]``, ``Beschleunigung (m/s^2)``, ``AI0 [m/s\u00b2]``.
+
+    Returns
+    -------
+    str or None
+        ``g`` or ``m/s^2``; None when the name ends in no bracketed unit or in another
+        quantity's (``[mm/s]``, ``(V)``).
+
+    Examples
+    --------
+    >>> unit_in_name("acc [g]"), unit_in_name("DE (m/s2)"), unit_in_name("velocity [mm/s]")
+    ('g', 'm/s^2', None)
+    """
+    match = _BRACKETED.fullmatch(str(name))
+    return None if match is None else UNITS.get(_unit_key(match.group(1)))
 
 
 def _unit_key(text: str) -> str:

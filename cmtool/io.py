@@ -25,7 +25,7 @@ from generators import BearingGeometry, SimulationResult
 from generators.stream import SignalStream
 
 from . import __version__
-from .csv_layout import CsvLayout, csv_layout
+from .csv_layout import CsvLayout, csv_layout, unit_in_name
 
 __all__ = [
     "write_signal",
@@ -648,7 +648,9 @@ def read_recording(
     metadata : dict
         ``fs_hz``, ``rpm`` and ``bearing`` when the file holds them (cmtool parquet files,
         cmtool CSV files with their ``.csv.json`` sidecar; the CWRU and MFPT layouts name
-        their bearing), ``variable``, ``unit`` when known.
+        their bearing), ``variable``, ``unit`` when known (g in the CWRU and MFPT layouts;
+        a CSV's units row, or a CSV or parquet column's name ending in ``[g]`` or
+        ``(m/s^2)``: :func:`cmtool.csv_layout.unit_in_name`).
     """
     path = Path(path)
     if not path.is_file():
@@ -799,6 +801,8 @@ def _read_samples(
             meta["unit"] = "m/s^2"  # a cmtool simulate file: channels in SI units
         elif layout is not None and layout.acceleration_unit(str(col)):
             meta["unit"] = layout.acceleration_unit(str(col))  # the file's units row
+        elif not simulated and unit_in_name(str(col)):
+            meta["unit"] = unit_in_name(str(col))  # the column's name: "acc [g]"
         if time_cols and len(frame) > 2 and "fs_hz" not in meta:
             times = frame[time_cols[0]].to_numpy(dtype=float)
             rate = _time_axis(times)

@@ -91,6 +91,25 @@ def test_a_decimal_comma_recording_gets_the_verdict_of_its_numbers(tmp_path, cap
     assert npy["verdict"] == "outer race"
     assert csv["verdict"] == npy["verdict"] and csv["confidence"] == npy["confidence"]
     assert csv["assumptions"]["fs_hz"] == pytest.approx(FS, rel=1e-6)
+    # the header's "[g]": velocities in mm/s, which a record of unknown unit does not get
+    assert csv["assumptions"]["unit"] == "g" and npy["assumptions"].get("unit") is None
+
+
+@pytest.mark.parametrize(
+    ("name", "unit"),
+    [
+        ("acc [g]", "g"),
+        ("AI0 (m/s^2)", "m/s^2"),
+        ("a [m/s\u00b2]", "m/s^2"),
+        ("v [mm/s]", None),
+        ("acc", None),
+        ("g", None),
+    ],
+)
+def test_a_columns_bracketed_unit_is_the_recordings(tmp_path, name, unit):
+    path = tmp_path / "rec.csv"
+    path.write_text(f"{name}\n" + "\n".join(f"{v:.6f}" for v in X))
+    assert read_recording(path)[1].get("unit") == unit
 
 
 @pytest.mark.parametrize(
