@@ -37,7 +37,8 @@ import pyarrow.parquet as pq
 
 from generators import OperatingRangeWarning
 from generators.cases import CASE_COLUMNS, Case, case_count, column_kind, iter_cases
-from generators.recipe import recipe_rating_warnings, validate_recipe
+from generators.content import RecordContentWarning
+from generators.recipe import recipe_content_warnings, recipe_rating_warnings, validate_recipe
 from generators.synthesis import GENERATOR_REVISION, bound_steps, generate_cases
 
 from . import __version__
@@ -280,6 +281,8 @@ def generate_dataset(
     recipe, text = load_recipe(recipe_path)
     for message in recipe_rating_warnings(recipe):  # once, not per case
         warnings.warn(message, OperatingRangeWarning, stacklevel=2)
+    for message in recipe_content_warnings(recipe):
+        warnings.warn(message, RecordContentWarning, stacklevel=2)
     out = Path(out)
     digest = _recipe_hash(recipe)
     stamp = out / "recipe.toml"

@@ -20,6 +20,7 @@ from typing import Any
 
 from ._validate import ParameterError
 from .catalog import BEARINGS, bearing
+from .content import fault_rates_outside_record, odd_ball_waviness
 from .params import (
     INTEGRATORS,
     MAX_SHAFT_SPEED_RPM,
@@ -31,6 +32,7 @@ from .params import (
 __all__ = [
     "validate_recipe",
     "recipe_rating_warnings",
+    "recipe_content_warnings",
     "schema_table",
     "RECIPE_SCHEMA",
     "Key",
@@ -710,6 +712,46 @@ def recipe_rating_warnings(recipe: dict) -> list[str]:
         for name in recipe["bearings"]
         for message in operating_range_warnings(bearing(name), operating)
     ]
+
+
+def recipe_content_warnings(recipe: dict) -> list[str]:
+    """Where a validated recipe's signals cannot show what their labels name.
+
+    :func:`generators.content.record_content_warnings` for each bearing at the recipe's
+    fastest speed and lowest sample rate (fault rates above fs / 2) and for each ball
+    waviness condition's orders (odd orders make a healthy bearing's signal); one message per
+    bearing or condition, prefixed by it.
+
+    Parameters
+    ----------
+    recipe : dict
+        :func:`validate_recipe`'s result.
+
+    Returns
+    -------
+    list of str
+    """
+
+    def values(spec: dict) -> list[float]:
+        return list(spec["grid"]) if "grid" in spec else list(spec["range"])
+
+    fastest = max(values(recipe["operating"]["rpm"])) / 60.0
+    lowest_fs = min(values(recipe["sensor"]["fs_hz"]))
+    messages = []
+    for name in recipe["bearings"]:
+        message = fault_rates_outside_record(bearing(name), fastest, lowest_fs)
+        if message is not None:
+            messages.append(f"recipe bearing {name}: {message}")
+    for i, c in enumerate(recipe["conditions"]):
+        if c.get("surface") == "ball" and c.get("defect") == "waviness":
+            spec = c["order"]
+            orders = spec["grid"] if "grid" in spec else range(
+                math.ceil(spec["range"][0]), math.floor(spec["range"][1]) + 1
+            )
+            message = odd_ball_waviness((int(k) for k in orders), recipe["model"]["scene"])
+            if message is not None:
+                messages.append(f"recipe conditions[{i}] ({c['label']!r}): {message}")
+    return messages
 
 
 def _noise_rules(sensor: dict) -> None:

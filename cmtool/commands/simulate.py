@@ -499,6 +499,18 @@ def _check_run_size(args: argparse.Namespace, settings, n_samples: int) -> bool:
     return streams
 
 
+def _warn_of_content(geometry, shaft_frequency, fs, defects, level) -> None:
+    """Warn of what the record cannot show of its faults (generators.content)."""
+    import warnings
+
+    from generators import Waviness
+    from generators.content import RecordContentWarning, record_content_warnings
+
+    orders = [d.order for d in defects if isinstance(d, Waviness) and d.surface == "ball"]
+    for message in record_content_warnings(geometry, shaft_frequency, fs, orders, level):
+        warnings.warn(message, RecordContentWarning, stacklevel=3)
+
+
 def cmd_simulate(args: argparse.Namespace) -> int:
     """Run one simulation, write the signal and optionally the spectrum plot.
 
@@ -523,6 +535,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
 
     _check_outputs(args)
     geometry, operating, defects, scene, rig, settings = _model_inputs(args)
+    _warn_of_content(geometry, operating.shaft_frequency, settings.fs, defects, scene.level)
     n_samples = int(round(settings.duration * settings.fs))
     streams = _check_run_size(args, settings, n_samples)
     if args.seed is None:  # a run's random draws (slip, phases) are always repeatable: a seed

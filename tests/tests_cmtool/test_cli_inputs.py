@@ -1054,3 +1054,33 @@ def test_train_and_the_realism_gauge_name_the_columns_a_table_lacks(small_datase
     with pytest.raises(ValueError, match=r"measured has no column 'group' \(recording_segments"):
         realism(small_dataset, small_dataset)
     assert set(TRAINING_COLUMNS) <= set(small_dataset.columns)
+
+
+@pytest.mark.parametrize(
+    ("argv", "warned"),
+    [
+        (["--fs", "200", "--duration", "0.2"], "lie at or above fs / 2 = 100 Hz"),
+        (["--waviness", "ball:order=5:amplitude=1e-6"], "odd order 5 does not change"),
+        (["--waviness", "ball:order=5:amplitude=1e-6", "--scene", "full"], None),
+    ],
+)
+def test_cmtool_simulate_says_what_its_record_cannot_show(tmp_path, capsys, argv, warned):
+    out = tmp_path / "s.parquet"
+    assert main(["simulate", "--duration", "0.05", "--out", str(out), *argv]) == 0
+    err = capsys.readouterr().err
+    if warned is None:
+        assert "warning" not in err, err
+    else:
+        assert "cmtool simulate: warning:" in err and warned in err, err
+
+
+def test_cmtool_generate_says_what_a_recipes_signals_cannot_show(tmp_path, capsys):
+    text = (REPO / "datasets" / "small.toml").read_text()
+    text = text.replace("count = 48", "count = 1").replace("fs_hz = 6400", "fs_hz = 400")
+    text = text.replace("order = [2, 4, 6]", "order = [3]")
+    (tmp_path / "recipe.toml").write_text(text)
+    argv = ["generate", str(tmp_path / "recipe.toml"), "--out", str(tmp_path / "d")]
+    assert main([*argv, "--workers", "1"]) == 0
+    err = capsys.readouterr().err
+    assert "warning: recipe bearing 6205: fs = 400 Hz: at 2400 rpm" in err, err
+    assert "warning: recipe conditions[3] ('ball'): ball waviness of odd order 3" in err, err
