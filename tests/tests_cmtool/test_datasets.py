@@ -60,10 +60,16 @@ def test_chunk_size_defaults_to_whole_simd_blocks():
 
 
 def test_shipped_recipes_validate():
+    from generators.recipe import recipe_content_warnings
+
     for name in ("small.toml", "waviness.toml", "cwru-rig.toml"):
         recipe = validate_recipe(tomllib.loads((REPO / "datasets" / name).read_text()))
         cases = expand_cases(recipe)
         assert len(cases) == sum(c["count"] for c in recipe["conditions"])
+    # and every shipped recipe's signals can show their labels (generators.content)
+    for path in sorted((REPO / "datasets").glob("*.toml")):
+        recipe = validate_recipe(tomllib.loads(path.read_text()))
+        assert recipe_content_warnings(recipe) == [], path.name
     big = validate_recipe(tomllib.loads((REPO / "datasets" / "waviness.toml").read_text()))
     assert len(expand_cases(big)) >= 1000
 
