@@ -27,6 +27,7 @@ read from the interruption on).
 
 from __future__ import annotations
 
+import codecs
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -78,6 +79,9 @@ class CsvLayout:
         or ``column 0``, ``column 1``, ... without a header.
     units : list of str or None
         The row of units under the header, as written, if the file has one.
+    encoding : str
+        ``utf-8-sig`` (UTF-8, a byte-order mark skipped), or ``cp1252`` where the file's
+        first lines are no UTF-8 (a Windows spreadsheet's ``m/s\u00b2`` or ``\u00b5m``).
     """
 
     separator: str | None
@@ -85,6 +89,7 @@ class CsvLayout:
     data_line: int
     columns: list[str]
     units: list[str] | None
+    encoding: str = "utf-8-sig"
 
     @property
     def pandas_separator(self) -> str:
@@ -189,6 +194,17 @@ def _unique(names: list[str]) -> list[str]:
     return out
 
 
+def _encoding(path: str | Path) -> str:
+    """UTF-8 if the file's first 64 kB decode as it, else Windows-1252."""
+    with open(path, "rb") as handle:
+        head = handle.read(65536)
+    try:
+        codecs.getincrementaldecoder("utf-8")().decode(head, final=False)
+    except UnicodeDecodeError:
+        return "cp1252"
+    return "utf-8-sig"
+
+
 def csv_layout(path: str | Path) -> CsvLayout:
     """Find the dialect, header and first data line of a CSV recording.
 
@@ -208,8 +224,9 @@ def csv_layout(path: str | Path) -> CsvLayout:
         The file has no lines, or its first ``SAMPLE_LINES`` lines end in no table of
         numbers under any dialect (the message names the line where the table breaks).
     """
+    encoding = _encoding(path)
     lines: list[tuple[int, str]] = []  # (line number, text) of the non-blank lines
-    with open(path, encoding="utf-8-sig", errors="replace") as handle:
+    with open(path, encoding=encoding, errors="replace") as handle:
         for number, text in enumerate(handle):
             if number >= SAMPLE_LINES:
                 break
@@ -244,6 +261,7 @@ def csv_layout(path: str | Path) -> CsvLayout:
                 data_line=lines[start][0],
                 columns=_unique([str(c) for c in columns]),
                 units=units,
+                encoding=encoding,
             )
             key = (header is not None, width, -preference)
             if best is None or key > best[0]:

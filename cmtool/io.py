@@ -555,7 +555,8 @@ def _read_csv_table(path: Path) -> tuple[pd.DataFrame, CsvLayout]:
         header=None,
         skiprows=layout.data_line,
         index_col=False,
-        encoding="utf-8-sig",
+        encoding=layout.encoding,
+        encoding_errors="replace",  # numbers are ASCII; a stray byte in a skipped line
     )
     width = len(layout.columns)
     if frame.shape[1] == width + 1 and frame.iloc[:, -1].isna().all():

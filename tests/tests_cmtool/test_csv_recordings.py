@@ -143,6 +143,18 @@ def test_what_is_no_table_is_refused_by_its_line(tmp_path, text, message):
         read_recording(path)
 
 
+def test_a_windows_spreadsheets_encoding_is_read(tmp_path):
+    """Windows-1252 text (a German spreadsheet's header) is no UTF-8: its table and its
+    unit are read all the same."""
+    path = tmp_path / "rec.csv"
+    text = "Zeit [s];Beschleunigung [m/s\u00b2]\n" + _rows(";", ",")
+    path.write_bytes(text.encode("cp1252"))
+    x, meta = read_recording(path)
+    np.testing.assert_allclose(x, X, rtol=0, atol=5e-7)
+    assert meta["unit"] == "m/s^2" and meta["variable"] == "Beschleunigung [m/s\u00b2]"
+    assert meta["fs_hz"] == pytest.approx(FS, rel=1e-5)
+
+
 def test_a_headerless_file_of_integer_pairs_stays_two_columns(tmp_path):
     """Without a header, "125,-3" is two columns of counts (a logger's integers), not one
     number with a decimal comma."""
