@@ -32,7 +32,15 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["CsvLayout", "csv_layout", "unit_in_name", "SAMPLE_LINES", "SEPARATORS", "UNITS"]
+__all__ = [
+    "CsvLayout",
+    "csv_layout",
+    "text_encoding",
+    "unit_in_name",
+    "SAMPLE_LINES",
+    "SEPARATORS",
+    "UNITS",
+]
 
 #: Lines at the start of a file read to find its layout (pandas reads the rest with it).
 SAMPLE_LINES = 200
@@ -194,8 +202,19 @@ def _unique(names: list[str]) -> list[str]:
     return out
 
 
-def _encoding(path: str | Path) -> str:
-    """UTF-8 if the file's first 64 kB decode as it, else Windows-1252."""
+def text_encoding(path: str | Path) -> str:
+    """The encoding of a text file: UTF-8 if its first 64 kB decode as it, else Windows-1252.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+
+    Returns
+    -------
+    str
+        ``utf-8-sig`` (a byte-order mark skipped) or ``cp1252``.
+    """
     with open(path, "rb") as handle:
         head = handle.read(65536)
     try:
@@ -224,7 +243,7 @@ def csv_layout(path: str | Path) -> CsvLayout:
         The file has no lines, or its first ``SAMPLE_LINES`` lines end in no table of
         numbers under any dialect (the message names the line where the table breaks).
     """
-    encoding = _encoding(path)
+    encoding = text_encoding(path)
     lines: list[tuple[int, str]] = []  # (line number, text) of the non-blank lines
     with open(path, encoding=encoding, errors="replace") as handle:
         for number, text in enumerate(handle):

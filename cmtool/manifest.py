@@ -13,7 +13,8 @@ relative to the folder, that ``cmtool diagnose FOLDER`` compares the recording w
 that cannot be used is an error naming the manifest, its line, the column, the value and
 what is allowed, before any recording is read. Columns are separated by commas, or by
 semicolons or tabs as a spreadsheet saves CSV where the decimal mark is a comma (its rates and
-speeds may then be written with one: ``1797,5``); a byte-order mark is ignored.
+speeds may then be written with one: ``1797,5``); a byte-order mark is ignored, and a file that
+is no UTF-8 is read as Windows-1252.
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ import pandas as pd
 
 from generators import BEARINGS, BearingGeometry
 
+from .csv_layout import text_encoding
 from .diagnose import ACCELERATION_UNITS, CANONICAL
 from .io import RecordingError, geometry_from_spec
 
@@ -109,9 +111,9 @@ MANIFEST_SEPARATORS = (",", ";", "\t")
 _DECIMAL_COMMA = re.compile(r"[+-]?\d*,\d+([eE][+-]?\d+)?")
 
 
-def _manifest_separator(manifest: Path) -> str:
+def _manifest_separator(manifest: Path, encoding: str) -> str:
     """The separator of a manifest: the one its header line holds most of (a comma if none)."""
-    with open(manifest, encoding="utf-8-sig", errors="replace") as handle:
+    with open(manifest, encoding=encoding, errors="replace") as handle:
         header = handle.readline()
     counts = [header.count(sep) for sep in MANIFEST_SEPARATORS]
     return MANIFEST_SEPARATORS[counts.index(max(counts))] if max(counts) else ","
@@ -177,10 +179,11 @@ def read_manifest(
     manifest = folder / "MANIFEST.csv"
     if not manifest.is_file():
         raise FileNotFoundError(f"{folder}: no MANIFEST.csv (a folder of recordings needs one)")
-    separator = _manifest_separator(manifest)
+    encoding = text_encoding(manifest)  # a Windows spreadsheet's file names: cp1252
+    separator = _manifest_separator(manifest, encoding)
     try:
         rows = pd.read_csv(
-            manifest, sep=separator, dtype=str, keep_default_na=False, encoding="utf-8-sig"
+            manifest, sep=separator, dtype=str, keep_default_na=False, encoding=encoding
         )
     except pd.errors.EmptyDataError:
         raise RecordingError(f"{manifest}: the file holds no data") from None

@@ -65,6 +65,15 @@ def test_a_spreadsheets_manifest_reads_as_the_comma_separated_one(tmp_path, sepa
     ]
 
 
+def test_a_windows_spreadsheets_manifest_names_its_files_in_its_own_encoding(tmp_path):
+    name = "Lager_\u00d6l.npy"
+    _folder(tmp_path, [{**GOOD, "file": name}])
+    text = f"file;sampling_rate_hz;shaft_rpm\n{name};12000;1797,5\n"
+    (tmp_path / "MANIFEST.csv").write_bytes(text.encode("cp1252"))
+    (entry,) = read_manifest(tmp_path)
+    assert entry.path == tmp_path / name and entry.rpm == 1797.5
+
+
 @pytest.mark.parametrize(
     ("change", "message"),
     [
