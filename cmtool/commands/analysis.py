@@ -54,11 +54,8 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     fs = args.fs if args.fs is not None else meta.get("fs_hz")
     if fs is None:
         raise CliError(f"{args.recording}: the file holds no sample rate; give --fs")
-    if args.fs is not None and "fs_hz" in meta and abs(meta["fs_hz"] - args.fs) > 1e-6 * args.fs:
-        warnings.append(
-            f"--fs {args.fs:g} Hz differs from the file's {meta['fs_hz']:g} Hz; using --fs"
-        )
     rpm = check_shaft_speed_rpm("--rpm", args.rpm) if args.rpm is not None else meta.get("rpm")
+    warnings += _differs_from_file(meta, args.fs, args.rpm, "--fs", "--rpm")
     if rpm is None:
         raise CliError(f"{args.recording}: the file holds no shaft speed; give --rpm")
     geometry = None
@@ -112,6 +109,29 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     else:
         _print_diagnosis(diagnosis)
     return 0
+
+
+#: A rate or speed given differs from the file's where they are this far apart, relative (a
+#: CSV's time column written to microseconds gives a 1 s record's rate to about 1e-6).
+GIVEN_AGAINST_FILE = 1e-4
+
+
+def _differs_from_file(
+    meta: dict, fs: float | None, rpm: float | None, fs_name: str, rpm_name: str
+) -> list[str]:
+    """Warnings where a rate or speed given is not the one the file holds (the given is used)."""
+    said = []
+    for key, given, name, unit in (("fs_hz", fs, fs_name, "Hz"), ("rpm", rpm, rpm_name, "rpm")):
+        held = meta.get(key)
+        if (
+            given is not None
+            and held is not None
+            and abs(held - given) > GIVEN_AGAINST_FILE * given
+        ):
+            said.append(
+                f"{name} {given:g} {unit} differs from the file's {held:g} {unit}; using {name}"
+            )
+    return said
 
 
 def _model(args: argparse.Namespace):
@@ -446,6 +466,9 @@ def _folder_row(task) -> tuple[dict, dict]:
             unit=entry.unit or args.unit or meta.get("unit"),  # the manifest's, --unit, the file's
             baseline=baseline,
             baseline_fs=baseline_fs,
+            warnings=_differs_from_file(
+                meta, entry.fs_hz, entry.rpm, "the manifest's sampling_rate_hz", "shaft_rpm"
+            ),
         )
     except (ValueError, FileNotFoundError) as error:  # this recording only
         row["error"] = str(error)

@@ -1084,3 +1084,44 @@ def test_cmtool_generate_says_what_a_recipes_signals_cannot_show(tmp_path, capsy
     err = capsys.readouterr().err
     assert "warning: recipe bearing 6205: fs = 400 Hz: at 2400 rpm" in err, err
     assert "warning: recipe conditions[3] ('ball'): ball waviness of odd order 3" in err, err
+
+
+def test_a_rate_or_speed_given_against_the_files_own_is_warned_of(tmp_path, capsys):
+    """--fs and --rpm win over the file's, with a warning where they differ; a rate read
+    from a CSV's time column written to microseconds does not differ from the one it means."""
+    from scipy.io import wavfile
+
+    x = np.random.default_rng(9).standard_normal(24000)
+    wavfile.write(tmp_path / "rec.wav", 12000, x.astype(np.float32))
+    argv = ["diagnose", str(tmp_path / "rec.wav"), "--bearing", "6205", "--json"]
+
+    def said(*extra):
+        assert main([*argv, "--rpm", "1797", *extra]) == 0
+        return json.loads(capsys.readouterr().out)
+
+    d = said("--fs", "48000")
+    assert d["assumptions"]["fs_hz"] == 48000.0
+    assert "--fs 48000 Hz differs from the file's 12000 Hz; using --fs" in d["warnings"]
+    assert not any("differs" in w for w in said("--fs", "12000")["warnings"])
+    # 0.2 s: the last time written 3.3e-7 s off, the rate 1.7e-6 off the one meant
+    times = "\n".join(f"{k / 12000:.6f},{v:.6f}" for k, v in enumerate(x[:2400]))
+    (tmp_path / "rec.csv").write_text("time,acc\n" + times)
+    argv[1] = str(tmp_path / "rec.csv")
+    assert not any("differs" in w for w in said("--fs", "12000")["warnings"])
+    # a simulated file holds its speed
+    sim = tmp_path / "sim.parquet"
+    assert main(["simulate", "--duration", "0.5", "--rpm", "1800", "--out", str(sim)]) == 0
+    capsys.readouterr()
+    argv[1] = str(sim)
+    assert "--rpm 1797 rpm differs from the file's 1800 rpm; using --rpm" in said()["warnings"]
+    # a folder: the manifest's rate against the file's, in verdicts.csv
+    folder = tmp_path / "route"
+    folder.mkdir()
+    shutil.copy(tmp_path / "rec.wav", folder / "rec.wav")
+    (folder / "MANIFEST.csv").write_text("file,sampling_rate_hz,shaft_rpm\nrec.wav,48000,1797\n")
+    assert main(["diagnose", str(folder), "--report", str(tmp_path / "out")]) == 0
+    table = pd.read_csv(tmp_path / "out" / "verdicts.csv")
+    assert (
+        "the manifest's sampling_rate_hz 48000 Hz differs from the file's 12000 Hz"
+        in (table.loc[0, "warnings"])
+    )
