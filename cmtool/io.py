@@ -12,6 +12,7 @@ import math
 import os
 import re
 import tempfile
+import zipfile
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -662,7 +663,7 @@ def read_recording(
         x = _read_samples(path, suffix, variable, channel, meta)
     except RecordingError:
         raise
-    except (ValueError, TypeError, KeyError, OSError, EOFError) as error:
+    except (ValueError, TypeError, KeyError, OSError, EOFError, zipfile.BadZipFile) as error:
         # a file that is not what its suffix says, or samples that are not numbers
         raise RecordingError(
             f"{path}: cannot be read as a {suffix.lstrip('.')} recording ({error})"

@@ -1,4 +1,7 @@
-"""CSV recordings in the dialects instruments and spreadsheets write (cmtool.csv_layout).
+"""Recording files as instruments and spreadsheets write them, and files that are not.
+
+CSV recordings in the dialects instruments and spreadsheets write (cmtool.csv_layout), their
+encodings and units; complex samples; cut or foreign files.
 
 Each file is written from one known record; read back, it must give those samples (to the
 digits written) and the rate its time column says, or be refused with the line or column
@@ -171,3 +174,25 @@ def test_complex_samples_are_refused_not_cut_to_their_real_part(tmp_path):
     np.save(tmp_path / "iq.npy", X + 1j * X)
     with pytest.raises(RecordingError, match=r"iq.npy: the samples are complex numbers"):
         read_recording(tmp_path / "iq.npy")
+
+
+@pytest.mark.parametrize("suffix", [".npz", ".npy", ".parquet"])
+def test_a_cut_or_foreign_file_is_refused_by_name(tmp_path, suffix):
+    """Half of a file (a copy that stopped), or another file under the suffix: a
+    RecordingError naming the file, not another library's traceback (a cut .npz raised
+    zipfile.BadZipFile)."""
+    import pandas as pd
+
+    whole = tmp_path / f"whole{suffix}"
+    if suffix == ".npz":
+        np.savez(whole, a=X)
+    elif suffix == ".npy":
+        np.save(whole, X)
+    else:
+        pd.DataFrame({"a": X}).to_parquet(whole)
+    data = whole.read_bytes()
+    for name, content in (("cut", data[: len(data) // 2]), ("foreign", b"PK\x03\x04not a file")):
+        path = tmp_path / f"{name}{suffix}"
+        path.write_bytes(content)
+        with pytest.raises(RecordingError, match=rf"{name}{suffix}: cannot be read as a"):
+            read_recording(path)
