@@ -235,11 +235,21 @@ def _written_versions(out: Path) -> tuple[int, int] | None:
     None when there is no file yet; a file without a generator revision is of revision 1
     (written before stop 46).
     """
-    first = next(iter(sorted((out / "data").glob("[!.]*.parquet"))), None)
-    if first is None:
-        return None
-    meta = pq.read_schema(first).metadata or {}
-    return int(meta.get(b"schema_version", b"0")), int(meta.get(b"generator_revision", b"1"))
+    for part in sorted((out / "data").glob("[!.]*.parquet")):
+        if _readable(part):  # an unreadable part is generated again (_ChunkFeed)
+            meta = pq.read_schema(part).metadata or {}
+            version = int(meta.get(b"schema_version", b"0"))
+            return version, int(meta.get(b"generator_revision", b"1"))
+    return None
+
+
+def _readable(part: Path) -> bool:
+    """Whether a parquet file's footer reads (a cut or overwritten file's does not)."""
+    try:
+        pq.read_metadata(part)
+    except (ValueError, OSError):  # pyarrow's ArrowInvalid is a ValueError
+        return False
+    return True
 
 
 def _recipe_hash(recipe: dict) -> str:
@@ -384,9 +394,18 @@ class _ChunkFeed:
                     return None
                 chunk = self.chunks
                 self.chunks += 1
-                if (self._data / f"part-{chunk:05d}.parquet").is_file():
-                    self.skipped += len(cases)
-                    continue
+                part = self._data / f"part-{chunk:05d}.parquet"
+                if part.is_file():
+                    if _readable(part):
+                        self.skipped += len(cases)
+                        continue
+                    aside = part.with_name(f".{part.name}.unreadable")
+                    part.replace(aside)  # kept, out of the dataset, and generated again
+                    warnings.warn(
+                        f"{part}: unreadable (cut or overwritten); moved to {aside.name} and "
+                        "generated again",
+                        stacklevel=2,
+                    )
                 return chunk, cases
             return None
 
@@ -539,7 +558,18 @@ def read_dataset(
             "points may be missing): finish it with `cmtool generate RECIPE --out "
             f"{path} --resume`, or pass --allow-incomplete to use it as it is"
         )
-    frame = pq.read_table(data, columns=columns).to_pandas()
+    try:
+        table = pq.read_table(data, columns=columns)
+    except (ValueError, OSError) as error:  # pyarrow's ArrowInvalid is a ValueError
+        bad = [p.name for p in sorted(data.glob("[!.]*.parquet")) if not _readable(p)]
+        if not bad:
+            raise
+        raise DatasetError(
+            f"{path}: {', '.join(bad)} unreadable (cut or overwritten): `cmtool generate "
+            f"{path / 'recipe.toml'} --out {path} --resume` generates "
+            f"{'it' if len(bad) == 1 else 'them'} again"
+        ) from error
+    frame = table.to_pandas()
     if "index" in frame.columns:
         frame = frame.sort_values("index").reset_index(drop=True)
     return frame

@@ -235,6 +235,27 @@ def test_resume_removes_what_a_killed_write_left(tiny, tmp_path):
     assert sorted(read_dataset(out)["id"]) == [f"tiny-{i:06d}" for i in range(6)]
 
 
+@pytest.mark.parametrize("part", ["part-00000.parquet", "part-00001.parquet"])
+def test_a_cut_part_is_named_and_resume_generates_it_again(tiny, tmp_path, part):
+    """A part cut short (a copy that stopped, a full disk outside cmtool's atomic writes) is
+    named by read_dataset with the command that mends it; resume moves it aside and writes
+    it again, the same bytes, instead of counting it as present. The first part is also the
+    one resume reads the versions from."""
+    out = tmp_path / "ds"
+    generate_dataset(tiny, out)
+    path = out / "data" / part
+    whole = path.read_bytes()
+    path.write_bytes(whole[: len(whole) // 2])
+    with pytest.raises(DatasetError, match=rf"{part} unreadable .*--resume` generates it again"):
+        read_dataset(out)
+    with pytest.warns(UserWarning, match=rf"{part}: unreadable .*generated again"):
+        summary = generate_dataset(tiny, out, resume=True)
+    assert summary["written"] == 2 and summary["skipped_existing"] == 4
+    assert path.read_bytes() == whole
+    assert (out / "data" / f".{part}.unreadable").read_bytes() == whole[: len(whole) // 2]
+    assert sorted(read_dataset(out)["id"]) == [f"tiny-{i:06d}" for i in range(6)]
+
+
 def test_a_failing_worker_stops_the_run_and_resume_finishes_it(monkeypatch, tiny, tmp_path):
     import cmtool.datasets as cd
 
