@@ -761,6 +761,12 @@ def _read_samples(
             info = _csv_sidecar(path)
         else:
             frame = pd.read_parquet(path)
+            if "signal" in frame.columns and frame["signal"].dtype == object:
+                raise RecordingError(
+                    f"{path}: a cmtool dataset's file ({len(frame)} signals in its 'signal' "
+                    "column), not a recording: `cmtool bench DATASET` and `cmtool evaluate "
+                    "MODEL DATASET` score a dataset's signals"
+                )
             stored = pq.read_schema(path).metadata or {}
             if b"cmtool" in stored:
                 info = json.loads(stored[b"cmtool"])

@@ -196,3 +196,15 @@ def test_a_cut_or_foreign_file_is_refused_by_name(tmp_path, suffix):
         path.write_bytes(content)
         with pytest.raises(RecordingError, match=rf"{name}{suffix}: cannot be read as a"):
             read_recording(path)
+
+
+def test_a_dataset_file_is_not_read_as_a_recording():
+    """A dataset part's numeric columns are its signals' metadata (rpm, load, ...): read as a
+    recording it gave 'only 8 samples' (the rpm column)."""
+    from pathlib import Path
+
+    part = (
+        Path(__file__).resolve().parents[2] / "datasets" / "small" / "data" / "part-00000.parquet"
+    )
+    with pytest.raises(RecordingError, match=r"a cmtool dataset's file \(8 signals in its"):
+        read_recording(part)
