@@ -303,12 +303,13 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--rpm", type=float, default=None, help="shaft speed [rev/min]")
     p.add_argument(
         "--speed-source",
-        default="auto",
+        default=None,
         choices=("given", "spectrum", "auto"),
         help="the fault rates' shaft speed: the one given (--rpm, the file's or the "
         "manifest's), the spectrum's 1x line found within 5 %% of it (a nameplate speed is "
         "1-4 %% off a loaded motor's; the speed given where no line stands out), or auto "
-        "(default): the speed given unless the line lies more than 1 %% from it",
+        "(default; given with --tacho): the speed given unless the line lies more than 1 %% "
+        "from it",
     )
     which = p.add_mutually_exclusive_group()
     which.add_argument(
@@ -321,6 +322,20 @@ def build_parser() -> argparse.ArgumentParser:
     which.add_argument("--geometry", default=None, help=GEOMETRY_HELP)
     p.add_argument("--variable", default=None, help="variable of a .mat/.npz file")
     p.add_argument("--channel", default=None, help="column or channel")
+    p.add_argument(
+        "--tacho",
+        default=None,
+        metavar="CHANNEL",
+        help="the file's tachometer or key-phasor channel (column or number): the shaft speed "
+        "from its pulses, used as the speed given (--speed-source given unless another is "
+        "asked for); its spread over the record is stated",
+    )
+    p.add_argument(
+        "--pulses-per-rev",
+        type=int,
+        default=1,
+        help="tachometer pulses per shaft revolution (default 1)",
+    )
     p.add_argument("--model", default=None, help="trained model (cmtool train)")
     p.add_argument("--report", default=None, help="folder for report.md and plots")
     p.add_argument(

@@ -41,7 +41,7 @@ from .spectra import (
     power_spectral_density,
     velocity_band_rms,
 )
-from .speed import SpeedEstimate, shaft_rate_from_spectrum
+from .speed import SpeedEstimate, TachoSpeed, shaft_rate_from_spectrum, shaft_rate_from_tacho
 from .stats import TIME_STATISTICS, time_statistics
 from .table import (
     DEFAULT_FAULTS,
@@ -64,7 +64,9 @@ __all__ = [
     "fault_evidence",
     "slip_line",
     "SpeedEstimate",
+    "TachoSpeed",
     "shaft_rate_from_spectrum",
+    "shaft_rate_from_tacho",
     "BandSelection",
     "FALSE_ALARM",
     "LINE_DB",

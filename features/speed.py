@@ -15,12 +15,14 @@ import numpy as np
 import scipy.fft
 from scipy.signal import czt
 
-from ._validate import FeatureError, check_fs, check_positive, check_signal
+from ._validate import FeatureError, check_count, check_fs, check_positive, check_signal
 from .spectra import peak_offset_bins
 
 __all__ = [
     "SpeedEstimate",
+    "TachoSpeed",
     "shaft_rate_from_spectrum",
+    "shaft_rate_from_tacho",
     "SPEED_SEARCH",
     "SHAFT_LINE_DB",
     "MAINS_HZ",
@@ -179,3 +181,92 @@ def shaft_rate_from_spectrum(
     if line_db < SHAFT_LINE_DB or np.any(sides > height * 10 ** (-6.0 / 20.0)):
         return SpeedEstimate(given_hz, given_hz, round(line_db, 2), False)
     return SpeedEstimate(float(first), float(given_hz), round(line_db, 2), True)
+
+
+@dataclass(frozen=True)
+class TachoSpeed:
+    """The shaft rate a tachometer's pulse train gives.
+
+    Attributes
+    ----------
+    rate_hz : float
+        The mean shaft rate over the record [Hz]: whole revolutions between the first and
+        the last rising edge over the time between them.
+    variation : float
+        Standard deviation of the rate revolution by revolution over the mean [-] (0 for a
+        steady shaft; jitter of the edges' timing adds about its own spread over a period).
+    pulses : int
+        Rising edges found.
+    revolutions : float
+        Revolutions between the first and the last edge.
+    """
+
+    rate_hz: float
+    variation: float
+    pulses: int
+    revolutions: float
+
+
+def shaft_rate_from_tacho(
+    pulses: np.ndarray, fs: float, pulses_per_rev: int = 1
+) -> TachoSpeed:
+    """The shaft rate from a tachometer or key-phasor channel.
+
+    Rising edges are found with hysteresis (up through 60 % of the way from the channel's
+    1st to its 99th percentile, after it was below 40 %), each edge's time interpolated
+    between the two samples around the 50 % level; the rate is the revolutions between the
+    first and the last edge over the time between them.
+
+    Parameters
+    ----------
+    pulses : array_like
+        The tachometer's channel, sampled with the vibration [V or any unit].
+    fs : float
+        Sample rate [Hz].
+    pulses_per_rev : int
+        Pulses per shaft revolution (1 for a key-phasor or a reflective mark).
+
+    Returns
+    -------
+    TachoSpeed
+        Mean rate [Hz], its revolution-to-revolution variation, the edges and revolutions
+        counted.
+
+    Raises
+    ------
+    FeatureError
+        The channel has no two levels, or fewer than ``2 pulses_per_rev + 1`` rising edges
+        (two revolutions).
+    """
+    x = check_signal(pulses, name="pulses", min_length=16)
+    fs = check_fs(fs)
+    pulses_per_rev = check_count("pulses_per_rev", pulses_per_rev, high=10_000)
+    low, high = np.percentile(x, [1.0, 99.0])
+    if not high > low:
+        raise FeatureError("pulses: the tachometer channel is constant (no pulses)")
+    level = (x - low) / (high - low)
+    above = level > 0.6
+    outside = np.flatnonzero(above | (level < 0.4))  # the samples outside the hysteresis band
+    state = above[outside]
+    # a rising edge: the first sample above 60 % after one below 40 %
+    rises = outside[1:][state[1:] & ~state[:-1]]
+    under = np.flatnonzero(level < 0.5)
+    j = under[np.searchsorted(under, rises) - 1]  # the last sample under 50 % before each
+    a, b = level[j], level[j + 1]
+    edges = (j + (0.5 - a) / (b - a)) / fs
+    needed = 2 * pulses_per_rev + 1
+    if len(edges) < needed:
+        raise FeatureError(
+            f"pulses: {len(edges)} rising edge(s) found, at least {needed} needed (two "
+            f"revolutions at {pulses_per_rev} pulse(s) per revolution)"
+        )
+    times = edges
+    revolutions = (times.size - 1) / pulses_per_rev
+    rate = revolutions / float(times[-1] - times[0])
+    per_rev = times[::pulses_per_rev]
+    rates = 1.0 / np.diff(per_rev)
+    variation = float(np.std(rates) / rate) if rates.size > 1 else 0.0
+    return TachoSpeed(
+        rate_hz=float(rate), variation=variation, pulses=int(times.size), revolutions=revolutions
+    )
+

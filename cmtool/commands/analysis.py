@@ -38,6 +38,11 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     if args.load is not None:
         check_load_n(args.load, "--load")  # refused before any work
     if Path(args.recording).is_dir():
+        if getattr(args, "tacho", None) is not None:
+            raise CliError(
+                "--tacho reads one recording's speed; a folder's MANIFEST.csv gives each "
+                "recording's shaft_rpm"
+            )
         return _diagnose_folder(args)
     from ..io import read_recording
 
@@ -55,9 +60,14 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     if fs is None:
         raise CliError(f"{args.recording}: the file holds no sample rate; give --fs")
     rpm = check_shaft_speed_rpm("--rpm", args.rpm) if args.rpm is not None else meta.get("rpm")
-    warnings += _differs_from_file(meta, args.fs, args.rpm, "--fs", "--rpm")
+    tacho = None
+    if getattr(args, "tacho", None) is not None:
+        rpm, tacho, said = _tacho_speed(args, x, float(fs), rpm)
+        warnings += said
+    else:
+        warnings += _differs_from_file(meta, args.fs, args.rpm, "--fs", "--rpm")
     if rpm is None:
-        raise CliError(f"{args.recording}: the file holds no shaft speed; give --rpm")
+        raise CliError(f"{args.recording}: the file holds no shaft speed; give --rpm or --tacho")
     geometry = None
     if args.geometry:
         from .simulate import parse_geometry
@@ -98,6 +108,8 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
         baseline_fs=baseline_fs,
         warnings=warnings,
     )
+    if tacho is not None:
+        diagnosis.assumptions["speed_measured"] = tacho
     if args.report:
         report = _write_report(diagnosis, Path(args.report), x, float(fs))
         if not args.json:
@@ -109,6 +121,51 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     else:
         _print_diagnosis(diagnosis)
     return 0
+
+
+#: A tachometer's speed varying more than this over a record (revolution-to-revolution
+#: standard deviation over the mean) is warned of: a fault's lines smear over the range and
+#: no order tracking is done.
+TACHO_VARIATION_WARNING = 0.01
+
+
+def _tacho_speed(
+    args: argparse.Namespace, x, fs: float, rpm_given: float | None
+) -> tuple[float, str, list[str]]:
+    """The shaft speed [rpm] from the ``--tacho`` channel, its description and warnings."""
+    import numpy as np
+
+    from features import shaft_rate_from_tacho
+
+    from ..diagnose import SPEED_WARNING
+    from ..io import read_recording
+
+    pulses, _ = read_recording(args.recording, variable=args.variable, channel=args.tacho)
+    if pulses.shape == x.shape and np.array_equal(pulses, x):
+        raise CliError(
+            f"--tacho {args.tacho} is the channel diagnosed; give the vibration's with --channel"
+        )
+    speed = shaft_rate_from_tacho(pulses, fs, args.pulses_per_rev)
+    rpm = check_shaft_speed_rpm("the tacho's speed", 60.0 * speed.rate_hz)
+    said = []
+    if rpm_given is not None and abs(rpm_given / rpm - 1.0) > SPEED_WARNING:
+        said.append(
+            f"{'--rpm' if args.rpm is not None else 'the file'} {rpm_given:g} rpm is "
+            f"{100 * abs(rpm_given / rpm - 1.0):.1f} % from the tacho's {rpm:.1f} rpm; using "
+            "the tacho's"
+        )
+    if speed.variation > TACHO_VARIATION_WARNING:
+        said.append(
+            f"the tacho's speed varies by {100 * speed.variation:.1f} % (revolution to "
+            "revolution) over the record: the fault lines smear over that range (no order "
+            "tracking is done)"
+        )
+    text = (
+        f"tacho channel {args.tacho}: {speed.pulses} pulses at {args.pulses_per_rev} per "
+        f"revolution, {rpm:.2f} rpm mean, {100 * speed.variation:.2f} % revolution-to-"
+        "revolution spread"
+    )
+    return rpm, text, said
 
 
 #: A rate or speed given differs from the file's where they are this far apart, relative (a
@@ -177,7 +234,8 @@ def _diagnose_one(
         baseline_fs=baseline_fs,
         load_n=args.load,
         unit=unit,
-        speed_source=args.speed_source,
+        speed_source=args.speed_source
+        or ("given" if getattr(args, "tacho", None) is not None else "auto"),
     )
     diagnosis.warnings = list(warnings or []) + diagnosis.warnings
     diagnosis.assumptions["channel"] = channel
@@ -218,6 +276,8 @@ def _print_diagnosis(diagnosis) -> None:
         speed = f" (the spectrum's 1x line; {a['rpm_given']:g} rpm given)"
     else:
         speed = f" (the spectrum's 1x line: {seen:g} rpm)" if seen is not None else ""
+    if "speed_measured" in a:
+        speed = f" (from the {a['speed_measured']})"
     print(
         f"  assumed: bearing {a['bearing']}, {a['rpm']:g} rpm"
         + speed

@@ -1125,3 +1125,43 @@ def test_a_rate_or_speed_given_against_the_files_own_is_warned_of(tmp_path, caps
         "the manifest's sampling_rate_hz 48000 Hz differs from the file's 12000 Hz"
         in (table.loc[0, "warnings"])
     )
+
+
+def test_the_speed_from_a_tacho_channel(tmp_path, capsys):
+    """An outer-race train at 1750 rpm recorded with its key-phasor; --rpm says 1797 (a
+    nameplate's 2.7 % off). With --tacho the fault rates come from the pulses, the speed
+    is stated and --rpm's is warned of; the tacho never stands in for the vibration."""
+    from scipy import signal as sp_signal
+
+    from generators import bearing, characteristic_frequencies
+
+    fs, n, rpm = 12000.0, 24000, 1750.0
+    t = np.arange(n) / fs
+    bpfo = characteristic_frequencies(bearing("6205"), rpm / 60).bpfo
+    rng = np.random.default_rng(5)
+    times = np.arange(0.0, n / fs, 1 / bpfo)
+    times = times + rng.normal(0.0, 0.01 / bpfo, times.size)
+    impacts = np.zeros(n)
+    impacts[np.clip((times * fs).astype(int), 0, n - 1)] = 1.0
+    x = sp_signal.lfilter(*sp_signal.iirpeak(3000.0, 15.0, fs), impacts)
+    x = x + 0.05 * rng.standard_normal(n)
+    tacho = np.where((rpm / 60 * t) % 1.0 < 0.05, 5.0, 0.0)
+    path = tmp_path / "rec.csv"
+    pd.DataFrame({"acc [g]": x, "key [V]": tacho}).to_csv(path, index=False)
+    argv = ["diagnose", str(path), "--fs", "12000", "--bearing", "6205", "--rpm", "1797"]
+    assert main([*argv, "--tacho", "1", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["verdict"] == "outer race"
+    assert d["assumptions"]["rpm"] == pytest.approx(rpm, rel=1e-4)
+    assert d["assumptions"]["speed_source"] == "given"
+    assert d["assumptions"]["speed_measured"].startswith("tacho channel 1: 58 pulses at 1 per")
+    assert (
+        "--rpm 1797 rpm is 2.7 % from the tacho's 1750.0 rpm; using the tacho's" in (d["warnings"])
+    )
+    assert main([*argv, "--tacho", "1"]) == 0
+    assert "1750.03 rpm (from the tacho channel 1: 58 pulses" in capsys.readouterr().out
+    # the channel diagnosed is no tacho; a folder's speeds are its manifest's
+    assert main([*argv, "--tacho", "0"]) == 2
+    assert "--tacho 0 is the channel diagnosed" in capsys.readouterr().err
+    assert main(["diagnose", str(tmp_path), "--tacho", "1"]) == 2
+    assert "--tacho reads one recording's speed" in capsys.readouterr().err

@@ -73,3 +73,47 @@ def test_a_record_of_awkward_length_gets_the_padded_transforms_bins():
     np.testing.assert_array_equal(
         _padded_spectrum(x[:12000], fast, first, last), np.abs(np.fft.rfft(x[:12000], fast))
     )
+
+
+def _pulse_train(rate_of_t, fs, seconds, *, duty=0.1, high=5.0, noise=0.0, seed=0):
+    """A tachometer's pulses for a shaft rate rate_of_t(t) [Hz]: the phase integrated."""
+    t = np.arange(int(seconds * fs)) / fs
+    phase = np.cumsum(rate_of_t(t)) / fs
+    x = np.where(phase % 1.0 < duty, high, 0.0)
+    return x + noise * np.random.default_rng(seed).standard_normal(t.size)
+
+
+@pytest.mark.parametrize(("fs", "noise"), [(48000.0, 0.05), (12000.0, 0.0), (12000.0, 0.5)])
+def test_the_tachos_rate_is_the_shafts(fs, noise):
+    """Edges interpolated at the 50 % level: the mean rate over ~290 revolutions within
+    1e-5 (the edges' timing error, under a sample, over 10 s); a steady shaft's spread is
+    the edges' jitter only (a sample in a 1/29 s revolution: < 0.5 %)."""
+    x = _pulse_train(lambda t: np.full(t.size, 29.17), fs, 10.0, noise=noise)
+    got = F.shaft_rate_from_tacho(x, fs)
+    assert got.rate_hz == pytest.approx(29.17, rel=1e-5)
+    assert got.variation < 0.005 and got.pulses in (291, 292)
+    # two pulses a revolution, the pulse low instead of high: the same rate
+    two = 5.0 - _pulse_train(lambda t: np.full(t.size, 2 * 29.17), fs, 10.0, duty=0.3)
+    assert F.shaft_rate_from_tacho(two, fs, pulses_per_rev=2).rate_hz == pytest.approx(
+        29.17, rel=1e-5
+    )
+
+
+def test_a_ramping_shafts_spread_is_its_rates():
+    """28 -> 30 Hz over 10 s: the mean 29 Hz, and the spread that of a uniform range of 2 Hz,
+    2 / sqrt(12) / 29 = 1.99 %."""
+    x = _pulse_train(lambda t: 28.0 + 0.2 * t, 48000.0, 10.0)
+    got = F.shaft_rate_from_tacho(x, 48000.0)
+    assert got.rate_hz == pytest.approx(29.0, rel=2e-3)
+    assert got.variation == pytest.approx(2.0 / np.sqrt(12.0) / 29.0, rel=0.05)
+
+
+def test_a_tacho_without_pulses_is_refused_by_name():
+    with pytest.raises(F.FeatureError, match="channel is constant"):
+        F.shaft_rate_from_tacho(np.ones(1000), FS)
+    # 1.5 s at 1 Hz: pulses at 0 and 1 s, and the one the record starts in is no edge
+    one_rev = _pulse_train(lambda t: np.full(t.size, 1.0), FS, 1.5)
+    with pytest.raises(F.FeatureError, match=r"1 rising edge\(s\) found, at least 3 needed"):
+        F.shaft_rate_from_tacho(one_rev, FS)
+    with pytest.raises(F.FeatureError, match="pulses_per_rev = 0"):
+        F.shaft_rate_from_tacho(one_rev, FS, pulses_per_rev=0)
