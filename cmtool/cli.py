@@ -336,6 +336,13 @@ def build_parser() -> argparse.ArgumentParser:
         default=1,
         help="tachometer pulses per shaft revolution (default 1)",
     )
+    p.add_argument(
+        "--order-track",
+        action="store_true",
+        help="with --tacho: resample the record to constant shaft speed (its mean) before "
+        "diagnosing, so that a fault's lines stay lines while the speed drifts (computed "
+        "order tracking)",
+    )
     p.add_argument("--model", default=None, help="trained model (cmtool train)")
     p.add_argument("--report", default=None, help="folder for report.md and plots")
     p.add_argument(

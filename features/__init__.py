@@ -41,7 +41,13 @@ from .spectra import (
     power_spectral_density,
     velocity_band_rms,
 )
-from .speed import SpeedEstimate, TachoSpeed, shaft_rate_from_spectrum, shaft_rate_from_tacho
+from .speed import (
+    SpeedEstimate,
+    TachoSpeed,
+    order_track,
+    shaft_rate_from_spectrum,
+    shaft_rate_from_tacho,
+)
 from .stats import TIME_STATISTICS, time_statistics
 from .table import (
     DEFAULT_FAULTS,
@@ -67,6 +73,7 @@ __all__ = [
     "TachoSpeed",
     "shaft_rate_from_spectrum",
     "shaft_rate_from_tacho",
+    "order_track",
     "BandSelection",
     "FALSE_ALARM",
     "LINE_DB",

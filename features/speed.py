@@ -9,7 +9,7 @@ searched in the wrong place (docs/diagnosis.md, "The speed the rates come from")
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.fft
@@ -23,6 +23,8 @@ __all__ = [
     "TachoSpeed",
     "shaft_rate_from_spectrum",
     "shaft_rate_from_tacho",
+    "order_track",
+    "ORDER_TRACK_UPSAMPLING",
     "SPEED_SEARCH",
     "SHAFT_LINE_DB",
     "MAINS_HZ",
@@ -199,17 +201,19 @@ class TachoSpeed:
         Rising edges found.
     revolutions : float
         Revolutions between the first and the last edge.
+    edge_times : ndarray
+        The rising edges' times [s] from the record's first sample
+        (:func:`order_track` resamples with them).
     """
 
     rate_hz: float
     variation: float
     pulses: int
     revolutions: float
+    edge_times: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False, compare=False)
 
 
-def shaft_rate_from_tacho(
-    pulses: np.ndarray, fs: float, pulses_per_rev: int = 1
-) -> TachoSpeed:
+def shaft_rate_from_tacho(pulses: np.ndarray, fs: float, pulses_per_rev: int = 1) -> TachoSpeed:
     """The shaft rate from a tachometer or key-phasor channel.
 
     Rising edges are found with hysteresis (up through 60 % of the way from the channel's
@@ -267,6 +271,69 @@ def shaft_rate_from_tacho(
     rates = 1.0 / np.diff(per_rev)
     variation = float(np.std(rates) / rate) if rates.size > 1 else 0.0
     return TachoSpeed(
-        rate_hz=float(rate), variation=variation, pulses=int(times.size), revolutions=revolutions
+        rate_hz=float(rate),
+        variation=variation,
+        pulses=int(times.size),
+        revolutions=revolutions,
+        edge_times=times,
     )
 
+
+#: Upsampling before :func:`order_track` interpolates between samples (linear interpolation
+#: of a record upsampled 8 times keeps content up to 0.4 fs within about 0.3 %).
+ORDER_TRACK_UPSAMPLING = 8
+
+
+def order_track(x: np.ndarray, fs: float, tacho: TachoSpeed, pulses_per_rev: int = 1) -> np.ndarray:
+    """Resample a record to constant shaft speed (computed order tracking).
+
+    The shaft's angle between the tachometer's edges is interpolated monotonically (PCHIP
+    of the edges' times against their revolutions), and the record is read at equal steps
+    of angle, ``tacho.rate_hz / fs`` revolutions apart, between the first and the last
+    edge: the result is what the same machine would record at ``fs`` running steadily at
+    the mean speed ``tacho.rate_hz``, so that lines at a fixed order of the shaft (a fault's
+    rates) stay lines while the speed drifts (Fyfe and Munck 1997). Between samples the
+    record is read by linear interpolation of its ``ORDER_TRACK_UPSAMPLING`` times upsampled
+    copy.
+
+    Parameters
+    ----------
+    x : array_like
+        The record [U], sampled with the tachometer.
+    fs : float
+        Sample rate [Hz]; the result's too.
+    tacho : TachoSpeed
+        :func:`shaft_rate_from_tacho` of the record's tachometer channel.
+    pulses_per_rev : int
+        The tachometer's pulses per revolution (as given to :func:`shaft_rate_from_tacho`).
+
+    Returns
+    -------
+    ndarray
+        The record at constant shaft speed [U], about ``tacho.revolutions / tacho.rate_hz *
+        fs`` samples (the part before the first edge and after the last is not kept).
+
+    Raises
+    ------
+    FeatureError
+        ``tacho`` has fewer than three edges, or edges beyond the record.
+    """
+    from scipy.interpolate import PchipInterpolator
+    from scipy.signal import resample_poly
+
+    x = check_signal(x, min_length=16)
+    fs = check_fs(fs)
+    pulses_per_rev = check_count("pulses_per_rev", pulses_per_rev, high=10_000)
+    times = np.asarray(tacho.edge_times, dtype=float)
+    if times.size < 3 or times[0] < 0.0 or times[-1] > (x.size - 1) / fs:
+        raise FeatureError(
+            f"tacho: {times.size} edges within 0-{(x.size - 1) / fs:g} s; order tracking needs "
+            "three or more within the record"
+        )
+    revolutions = np.arange(times.size) / pulses_per_rev
+    time_at = PchipInterpolator(revolutions, times)  # the time each angle is reached
+    step = tacho.rate_hz / fs  # revolutions per output sample: fs at the mean speed
+    wanted = time_at(np.arange(0.0, revolutions[-1], step))
+    up = ORDER_TRACK_UPSAMPLING
+    fine = resample_poly(x, up, 1)
+    return np.interp(wanted * fs * up, np.arange(fine.size), fine)

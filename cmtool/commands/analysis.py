@@ -61,9 +61,19 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
         raise CliError(f"{args.recording}: the file holds no sample rate; give --fs")
     rpm = check_shaft_speed_rpm("--rpm", args.rpm) if args.rpm is not None else meta.get("rpm")
     tacho = None
+    if getattr(args, "order_track", False) and getattr(args, "tacho", None) is None:
+        raise CliError("--order-track needs --tacho (the shaft's angle comes from its pulses)")
     if getattr(args, "tacho", None) is not None:
-        rpm, tacho, said = _tacho_speed(args, x, float(fs), rpm)
+        rpm, tacho, said, speed = _tacho_speed(args, x, float(fs), rpm)
         warnings += said
+        if args.order_track:
+            from features import order_track
+
+            x = order_track(x, float(fs), speed, args.pulses_per_rev)
+            tacho += (
+                f"; order-tracked: resampled to a constant {rpm:.2f} rpm between the first "
+                f"and the last pulse ({x.size} samples)"
+            )
     else:
         warnings += _differs_from_file(meta, args.fs, args.rpm, "--fs", "--rpm")
     if rpm is None:
@@ -131,8 +141,8 @@ TACHO_VARIATION_WARNING = 0.01
 
 def _tacho_speed(
     args: argparse.Namespace, x, fs: float, rpm_given: float | None
-) -> tuple[float, str, list[str]]:
-    """The shaft speed [rpm] from the ``--tacho`` channel, its description and warnings."""
+) -> tuple[float, str, list[str], object]:
+    """The ``--tacho`` channel's shaft speed [rpm], description, warnings and TachoSpeed."""
     import numpy as np
 
     from features import shaft_rate_from_tacho
@@ -154,18 +164,18 @@ def _tacho_speed(
             f"{100 * abs(rpm_given / rpm - 1.0):.1f} % from the tacho's {rpm:.1f} rpm; using "
             "the tacho's"
         )
-    if speed.variation > TACHO_VARIATION_WARNING:
+    if speed.variation > TACHO_VARIATION_WARNING and not args.order_track:
         said.append(
             f"the tacho's speed varies by {100 * speed.variation:.1f} % (revolution to "
-            "revolution) over the record: the fault lines smear over that range (no order "
-            "tracking is done)"
+            "revolution) over the record: the fault lines smear over that range; "
+            "--order-track resamples the record to constant speed"
         )
     text = (
         f"tacho channel {args.tacho}: {speed.pulses} pulses at {args.pulses_per_rev} per "
         f"revolution, {rpm:.2f} rpm mean, {100 * speed.variation:.2f} % revolution-to-"
         "revolution spread"
     )
-    return rpm, text, said
+    return rpm, text, said, speed
 
 
 #: A rate or speed given differs from the file's where they are this far apart, relative (a

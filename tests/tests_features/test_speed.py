@@ -117,3 +117,32 @@ def test_a_tacho_without_pulses_is_refused_by_name():
         F.shaft_rate_from_tacho(one_rev, FS)
     with pytest.raises(F.FeatureError, match="pulses_per_rev = 0"):
         F.shaft_rate_from_tacho(one_rev, FS, pulses_per_rev=0)
+
+
+@pytest.mark.parametrize("fs", [12000.0, 48000.0])
+@pytest.mark.parametrize("order", [3.585, 20.0])
+def test_order_tracking_reads_the_record_at_equal_angles(fs, order):
+    """A component at a fixed order of a shaft ramping 28 -> 31.2 Hz, resampled to constant
+    speed: sample j is the component at the first edge's angle plus j rate / fs revolutions.
+    The error bound is the edges' timing: a square pulse sampled without an anti-alias
+    filter times each edge within half a sample, 0.5 / fs s or 0.5 rate / fs revolutions,
+    which moves an order-k component by up to 2 pi k 0.5 rate / fs (x 1.25 for the
+    interpolation between edges and samples)."""
+    t = np.arange(int(4 * fs)) / fs
+    phase = np.cumsum(28.0 + 0.8 * t) / fs
+    tacho = np.where(phase % 1.0 < 0.05, 5.0, 0.0)
+    speed = F.shaft_rate_from_tacho(tacho, fs)
+    assert speed.variation > 0.02  # a ramp the untracked lines smear over
+    y = F.order_track(np.sin(2 * np.pi * order * phase), fs, speed)
+    first = np.round(np.interp(speed.edge_times[0], t, phase))  # an edge: a whole turn
+    expected = np.sin(2 * np.pi * order * (first + np.arange(y.size) * speed.rate_hz / fs))
+    bound = 1.25 * 2 * np.pi * order * 0.5 * 31.2 / fs
+    assert np.abs(y - expected).max() < bound
+    assert y.size == pytest.approx(speed.revolutions / speed.rate_hz * fs, abs=2)
+
+
+def test_order_tracking_needs_edges_within_the_record():
+    x = np.zeros(12000)
+    speed = F.shaft_rate_from_tacho(_pulse_train(lambda t: np.full(t.size, 30.0), FS, 1.0), FS)
+    with pytest.raises(F.FeatureError, match="order tracking needs three or more"):
+        F.order_track(x[:100], FS, speed)  # the edges lie beyond a shorter record
