@@ -13,6 +13,7 @@ from generators import (
 )
 from generators.params import check_shaft_speed_rpm
 
+from ._speeds import differs_from_file, tacho_speed
 from .common import CliError, StageBars, check_output_folder, progress_bar
 from .data import check_training_overlap
 
@@ -64,7 +65,7 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     if getattr(args, "order_track", False) and getattr(args, "tacho", None) is None:
         raise CliError("--order-track needs --tacho (the shaft's angle comes from its pulses)")
     if getattr(args, "tacho", None) is not None:
-        rpm, tacho, said, speed = _tacho_speed(args, x, float(fs), rpm)
+        rpm, tacho, said, speed = tacho_speed(args, x, float(fs), rpm)
         warnings += said
         if args.order_track:
             from features import order_track
@@ -75,7 +76,7 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
                 f"and the last pulse ({x.size} samples)"
             )
     else:
-        warnings += _differs_from_file(meta, args.fs, args.rpm, "--fs", "--rpm")
+        warnings += differs_from_file(meta, args.fs, args.rpm, "--fs", "--rpm")
     if rpm is None:
         raise CliError(f"{args.recording}: the file holds no shaft speed; give --rpm or --tacho")
     geometry = None
@@ -131,74 +132,6 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     else:
         _print_diagnosis(diagnosis)
     return 0
-
-
-#: A tachometer's speed varying more than this over a record (revolution-to-revolution
-#: standard deviation over the mean) is warned of: a fault's lines smear over the range and
-#: no order tracking is done.
-TACHO_VARIATION_WARNING = 0.01
-
-
-def _tacho_speed(
-    args: argparse.Namespace, x, fs: float, rpm_given: float | None
-) -> tuple[float, str, list[str], object]:
-    """The ``--tacho`` channel's shaft speed [rpm], description, warnings and TachoSpeed."""
-    import numpy as np
-
-    from features import shaft_rate_from_tacho
-
-    from ..diagnose import SPEED_WARNING
-    from ..io import read_recording
-
-    pulses, _ = read_recording(args.recording, variable=args.variable, channel=args.tacho)
-    if pulses.shape == x.shape and np.array_equal(pulses, x):
-        raise CliError(
-            f"--tacho {args.tacho} is the channel diagnosed; give the vibration's with --channel"
-        )
-    speed = shaft_rate_from_tacho(pulses, fs, args.pulses_per_rev)
-    rpm = check_shaft_speed_rpm("the tacho's speed", 60.0 * speed.rate_hz)
-    said = []
-    if rpm_given is not None and abs(rpm_given / rpm - 1.0) > SPEED_WARNING:
-        said.append(
-            f"{'--rpm' if args.rpm is not None else 'the file'} {rpm_given:g} rpm is "
-            f"{100 * abs(rpm_given / rpm - 1.0):.1f} % from the tacho's {rpm:.1f} rpm; using "
-            "the tacho's"
-        )
-    if speed.variation > TACHO_VARIATION_WARNING and not args.order_track:
-        said.append(
-            f"the tacho's speed varies by {100 * speed.variation:.1f} % (revolution to "
-            "revolution) over the record: the fault lines smear over that range; "
-            "--order-track resamples the record to constant speed"
-        )
-    text = (
-        f"tacho channel {args.tacho}: {speed.pulses} pulses at {args.pulses_per_rev} per "
-        f"revolution, {rpm:.2f} rpm mean, {100 * speed.variation:.2f} % revolution-to-"
-        "revolution spread"
-    )
-    return rpm, text, said, speed
-
-
-#: A rate or speed given differs from the file's where they are this far apart, relative (a
-#: CSV's time column written to microseconds gives a 1 s record's rate to about 1e-6).
-GIVEN_AGAINST_FILE = 1e-4
-
-
-def _differs_from_file(
-    meta: dict, fs: float | None, rpm: float | None, fs_name: str, rpm_name: str
-) -> list[str]:
-    """Warnings where a rate or speed given is not the one the file holds (the given is used)."""
-    said = []
-    for key, given, name, unit in (("fs_hz", fs, fs_name, "Hz"), ("rpm", rpm, rpm_name, "rpm")):
-        held = meta.get(key)
-        if (
-            given is not None
-            and held is not None
-            and abs(held - given) > GIVEN_AGAINST_FILE * given
-        ):
-            said.append(
-                f"{name} {given:g} {unit} differs from the file's {held:g} {unit}; using {name}"
-            )
-    return said
 
 
 def _model(args: argparse.Namespace):
@@ -536,7 +469,7 @@ def _folder_row(task) -> tuple[dict, dict]:
             unit=entry.unit or args.unit or meta.get("unit"),  # the manifest's, --unit, the file's
             baseline=baseline,
             baseline_fs=baseline_fs,
-            warnings=_differs_from_file(
+            warnings=differs_from_file(
                 meta, entry.fs_hz, entry.rpm, "the manifest's sampling_rate_hz", "shaft_rpm"
             ),
         )
