@@ -717,10 +717,11 @@ def recipe_rating_warnings(recipe: dict) -> list[str]:
 def recipe_content_warnings(recipe: dict) -> list[str]:
     """Where a validated recipe's signals cannot show what their labels name.
 
-    :func:`generators.content.record_content_warnings` for each bearing at the recipe's
-    fastest speed and lowest sample rate (fault rates above fs / 2) and for each ball
-    waviness condition's orders (odd orders make a healthy bearing's signal); one message per
-    bearing or condition, prefixed by it.
+    :func:`generators.content.fault_rates_outside_record` for each bearing at the recipe's
+    fastest speed and lowest sample rate (fault rates at or above fs / 2), and
+    :func:`generators.content.odd_ball_waviness` for each ball waviness condition's orders
+    in the recipe's scene (odd orders without ball masses make a healthy bearing's signal);
+    one message per bearing or condition, prefixed by it.
 
     Parameters
     ----------
