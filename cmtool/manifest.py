@@ -9,7 +9,10 @@ also name their bearing), ``channel_variable`` (the variable of a ``.mat``/``.np
 and for a trend ``time`` (when the recording was taken: ISO 8601), ``machine`` (which
 machine or measurement point), ``baseline`` (a healthy recording of the same machine,
 relative to the folder, that ``cmtool diagnose FOLDER`` compares the recording with) and
-``unit`` (the acceleration's unit, ``g`` or ``m/s^2``, for velocities in mm/s). A row
+``unit`` (the acceleration's unit, ``g`` or ``m/s^2``, for velocities in mm/s), and for a
+recording with a tachometer channel ``tacho_channel`` (its column or number: the speed from
+its pulses), ``pulses_per_rev`` (default 1) and ``order_track`` (true: resample to constant
+speed first; default false). A row
 that cannot be used is an error naming the manifest, its line, the column, the value and
 what is allowed, before any recording is read. Columns are separated by commas, or by
 semicolons or tabs as a spreadsheet saves CSV where the decimal mark is a comma (its rates and
@@ -75,6 +78,14 @@ class ManifestEntry:
         A healthy recording of the same machine (``baseline``).
     unit : str or None
         The recording's acceleration unit (``unit``: ``g`` or ``m/s^2``).
+    tacho : str or None
+        The recording's tachometer channel (``tacho_channel``): the speed from its pulses
+        is used, ``shaft_rpm`` compared with it.
+    pulses_per_rev : int
+        Tachometer pulses per revolution (``pulses_per_rev``, default 1).
+    order_track : bool
+        Resample the record to constant shaft speed first (``order_track``: true or false,
+        default false; needs ``tacho_channel``).
     """
 
     file: str
@@ -90,11 +101,18 @@ class ManifestEntry:
     geometry: BearingGeometry | None = None
     baseline: Path | None = None
     unit: str | None = None
+    tacho: str | None = None
+    pulses_per_rev: int = 1
+    order_track: bool = False
 
     @property
     def bearing_or_geometry(self) -> str | BearingGeometry:
         """What ``diagnose_signal`` takes: the geometry if given, else the catalog name."""
         return self.geometry if self.geometry is not None else self.bearing
+
+
+#: How the ``order_track`` column says yes or no.
+_FLAGS = {"true": True, "false": False, "yes": True, "no": False, "1": True, "0": False}
 
 
 def _text(value: object) -> str | None:
@@ -249,6 +267,20 @@ def read_manifest(
             raise RecordingError(
                 f"{where}: unit = {unit!r} is not one of {', '.join(ACCELERATION_UNITS)}, or empty"
             )
+        tacho = _text(row.get("tacho_channel"))
+        pulses = _text(row.get("pulses_per_rev"))
+        if pulses is not None and not (pulses.isdigit() and 1 <= int(pulses) <= 10_000):
+            raise RecordingError(
+                f"{where}: pulses_per_rev = {pulses!r} is not an integer in [1, 10000], or empty"
+            )
+        track = (_text(row.get("order_track")) or "false").lower()
+        if track not in _FLAGS:
+            raise RecordingError(
+                f"{where}: order_track = {row.get('order_track')!r} is not one of "
+                f"{', '.join(_FLAGS)}, or empty"
+            )
+        if _FLAGS[track] and tacho is None:
+            raise RecordingError(f"{where}: order_track needs tacho_channel")
         baseline = _text(row.get("baseline"))
         if baseline is not None:
             baseline = folder / baseline
@@ -269,6 +301,9 @@ def read_manifest(
                 geometry=geometry,
                 baseline=baseline,
                 unit=unit,
+                tacho=tacho,
+                pulses_per_rev=int(pulses) if pulses is not None else 1,
+                order_track=_FLAGS[track],
             )
         )
     return entries

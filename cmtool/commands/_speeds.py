@@ -6,11 +6,15 @@ one is used, the difference said), and the speed from a tachometer channel (``--
 
 from __future__ import annotations
 
-import argparse
+from pathlib import Path
+from typing import TYPE_CHECKING
 
 from generators.params import check_shaft_speed_rpm
 
 from .common import CliError
+
+if TYPE_CHECKING:
+    import numpy as np
 
 __all__ = ["GIVEN_AGAINST_FILE", "TACHO_VARIATION_WARNING", "differs_from_file", "tacho_speed"]
 
@@ -22,42 +26,89 @@ TACHO_VARIATION_WARNING = 0.01
 
 
 def tacho_speed(
-    args: argparse.Namespace, x, fs: float, rpm_given: float | None
-) -> tuple[float, str, list[str], object]:
-    """The ``--tacho`` channel's shaft speed [rpm], description, warnings and TachoSpeed."""
+    path: str | Path,
+    variable: str | None,
+    channel: str,
+    pulses_per_rev: int,
+    order_track: bool,
+    x: np.ndarray,
+    fs: float,
+    rpm_given: float | None,
+    given_name: str,
+) -> tuple[float, str, list[str], np.ndarray]:
+    """The speed from a recording's tachometer channel, and the record order-tracked if asked.
+
+    Parameters
+    ----------
+    path : str or Path
+        The recording.
+    variable : str or None
+        Its variable (``.mat``/``.npz``).
+    channel : str
+        The tachometer's channel (column or number).
+    pulses_per_rev : int
+        Tachometer pulses per revolution.
+    order_track : bool
+        Resample ``x`` to constant shaft speed (:func:`features.order_track`).
+    x : ndarray
+        The vibration record [U].
+    fs : float
+        Sample rate [Hz].
+    rpm_given : float or None
+        The speed given otherwise [rpm] (compared with the tacho's).
+    given_name : str
+        What gave it, in the warning (``--rpm``, ``the file``, ``shaft_rpm``).
+
+    Returns
+    -------
+    rpm : float
+        The tacho's mean speed [rpm].
+    text : str
+        What was measured and done, for ``assumptions.speed_measured``.
+    warnings : list of str
+        A speed given ``SPEED_WARNING`` or more from the tacho's; a spread over
+        ``TACHO_VARIATION_WARNING`` where the record is not order-tracked.
+    x : ndarray
+        The record, order-tracked if asked, else as given.
+    """
     import numpy as np
 
-    from features import shaft_rate_from_tacho
+    import features
 
     from ..diagnose import SPEED_WARNING
     from ..io import read_recording
 
-    pulses, _ = read_recording(args.recording, variable=args.variable, channel=args.tacho)
+    pulses, _ = read_recording(path, variable=variable, channel=channel)
     if pulses.shape == x.shape and np.array_equal(pulses, x):
         raise CliError(
-            f"--tacho {args.tacho} is the channel diagnosed; give the vibration's with --channel"
+            f"tacho channel {channel} is the channel diagnosed; give the vibration's channel"
         )
-    speed = shaft_rate_from_tacho(pulses, fs, args.pulses_per_rev)
+    speed = features.shaft_rate_from_tacho(pulses, fs, pulses_per_rev)
     rpm = check_shaft_speed_rpm("the tacho's speed", 60.0 * speed.rate_hz)
     said = []
     if rpm_given is not None and abs(rpm_given / rpm - 1.0) > SPEED_WARNING:
         said.append(
-            f"{'--rpm' if args.rpm is not None else 'the file'} {rpm_given:g} rpm is "
-            f"{100 * abs(rpm_given / rpm - 1.0):.1f} % from the tacho's {rpm:.1f} rpm; using "
-            "the tacho's"
+            f"{given_name} {rpm_given:g} rpm is {100 * abs(rpm_given / rpm - 1.0):.1f} % from "
+            f"the tacho's {rpm:.1f} rpm; using the tacho's"
         )
-    if speed.variation > TACHO_VARIATION_WARNING and not args.order_track:
+    if speed.variation > TACHO_VARIATION_WARNING and not order_track:
         said.append(
             f"the tacho's speed varies by {100 * speed.variation:.1f} % (revolution to "
-            "revolution) over the record: the fault lines smear over that range; "
-            "--order-track resamples the record to constant speed"
+            "revolution) over the record: the fault lines smear over that range; order "
+            "tracking (--order-track, or order_track in a manifest) resamples the record to "
+            "constant speed"
         )
     text = (
-        f"tacho channel {args.tacho}: {speed.pulses} pulses at {args.pulses_per_rev} per "
-        f"revolution, {rpm:.2f} rpm mean, {100 * speed.variation:.2f} % revolution-to-"
-        "revolution spread"
+        f"tacho channel {channel}: {speed.pulses} pulses at {pulses_per_rev} per revolution, "
+        f"{rpm:.2f} rpm mean, {100 * speed.variation:.2f} % revolution-to-revolution spread"
     )
-    return rpm, text, said, speed
+    if order_track:
+        x = features.order_track(x, fs, speed, pulses_per_rev)
+        text += (
+            f"; order-tracked: resampled to a constant {rpm:.2f} rpm between the first and "
+            f"the last pulse ({x.size} samples)"
+        )
+    return rpm, text, said, x
 
 
 #: A rate or speed given differs from the file's where they are this far apart, relative (a

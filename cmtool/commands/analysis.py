@@ -41,8 +41,8 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     if Path(args.recording).is_dir():
         if getattr(args, "tacho", None) is not None:
             raise CliError(
-                "--tacho reads one recording's speed; a folder's MANIFEST.csv gives each "
-                "recording's shaft_rpm"
+                "--tacho reads one recording's speed; a folder's MANIFEST.csv names each "
+                "recording's tacho_channel (and pulses_per_rev, order_track)"
             )
         return _diagnose_folder(args)
     from ..io import read_recording
@@ -65,16 +65,18 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     if getattr(args, "order_track", False) and getattr(args, "tacho", None) is None:
         raise CliError("--order-track needs --tacho (the shaft's angle comes from its pulses)")
     if getattr(args, "tacho", None) is not None:
-        rpm, tacho, said, speed = tacho_speed(args, x, float(fs), rpm)
+        rpm, tacho, said, x = tacho_speed(
+            args.recording,
+            args.variable,
+            args.tacho,
+            args.pulses_per_rev,
+            args.order_track,
+            x,
+            float(fs),
+            rpm,
+            "--rpm" if args.rpm is not None else "the file's",
+        )
         warnings += said
-        if args.order_track:
-            from features import order_track
-
-            x = order_track(x, float(fs), speed, args.pulses_per_rev)
-            tacho += (
-                f"; order-tracked: resampled to a constant {rpm:.2f} rpm between the first "
-                f"and the last pulse ({x.size} samples)"
-            )
     else:
         warnings += differs_from_file(meta, args.fs, args.rpm, "--fs", "--rpm")
     if rpm is None:
@@ -118,6 +120,7 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
         baseline=baseline,
         baseline_fs=baseline_fs,
         warnings=warnings,
+        tacho=tacho is not None,
     )
     if tacho is not None:
         diagnosis.assumptions["speed_measured"] = tacho
@@ -158,10 +161,12 @@ def _diagnose_one(
     baseline=None,
     baseline_fs: float | None = None,
     warnings: list[str] | None = None,
+    tacho: bool = False,
 ):
     """One recording's diagnosis, its assumptions completed (clipping refused first).
 
-    ``file``: the name the output shows; ``source``: the path clipping errors name.
+    ``file``: the name the output shows; ``source``: the path clipping errors name;
+    ``tacho``: the speed is a tachometer's (``--speed-source`` then defaults to given).
     """
     from ..diagnose import check_clipping, diagnose_signal
 
@@ -177,8 +182,7 @@ def _diagnose_one(
         baseline_fs=baseline_fs,
         load_n=args.load,
         unit=unit,
-        speed_source=args.speed_source
-        or ("given" if getattr(args, "tacho", None) is not None else "auto"),
+        speed_source=args.speed_source or ("given" if tacho else "auto"),
     )
     diagnosis.warnings = list(warnings or []) + diagnosis.warnings
     diagnosis.assumptions["channel"] = channel
@@ -450,6 +454,24 @@ def _folder_row(task) -> tuple[dict, dict]:
     try:
         variable = entry.variable or args.variable  # the manifest's, else --variable
         x, meta = read_recording(entry.path, variable=variable, channel=args.channel)
+        rpm, measured = entry.rpm, None
+        if entry.tacho is not None:
+            rpm, measured, said, x = tacho_speed(
+                entry.path,
+                variable,
+                entry.tacho,
+                entry.pulses_per_rev,
+                entry.order_track,
+                x,
+                entry.fs_hz,
+                entry.rpm,
+                "shaft_rpm",
+            )
+            row["rpm"] = rpm
+        else:
+            said = differs_from_file(
+                meta, entry.fs_hz, entry.rpm, "the manifest's sampling_rate_hz", "shaft_rpm"
+            )
         baseline = baseline_fs = None
         if entry.baseline is not None:
             baseline, base_meta = read_recording(  # its own variable: found, or --variable
@@ -460,7 +482,7 @@ def _folder_row(task) -> tuple[dict, dict]:
             args,
             x,
             entry.fs_hz,
-            entry.rpm,
+            rpm,
             entry.bearing_or_geometry,
             _FOLDER_WORKER.get("model"),
             file=entry.file,
@@ -469,10 +491,11 @@ def _folder_row(task) -> tuple[dict, dict]:
             unit=entry.unit or args.unit or meta.get("unit"),  # the manifest's, --unit, the file's
             baseline=baseline,
             baseline_fs=baseline_fs,
-            warnings=differs_from_file(
-                meta, entry.fs_hz, entry.rpm, "the manifest's sampling_rate_hz", "shaft_rpm"
-            ),
+            warnings=said,
+            tacho=measured is not None,
         )
+        if measured is not None:
+            diagnosis.assumptions["speed_measured"] = measured
     except (ValueError, FileNotFoundError) as error:  # this recording only
         row["error"] = str(error)
         return row, {"file": entry.file, "error": str(error)}

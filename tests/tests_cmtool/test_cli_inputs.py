@@ -1162,7 +1162,7 @@ def test_the_speed_from_a_tacho_channel(tmp_path, capsys):
     assert "1750.03 rpm (from the tacho channel 1: 58 pulses" in capsys.readouterr().out
     # the channel diagnosed is no tacho; a folder's speeds are its manifest's
     assert main([*argv, "--tacho", "0"]) == 2
-    assert "--tacho 0 is the channel diagnosed" in capsys.readouterr().err
+    assert "tacho channel 0 is the channel diagnosed" in capsys.readouterr().err
     assert main(["diagnose", str(tmp_path), "--tacho", "1"]) == 2
     assert "--tacho reads one recording's speed" in capsys.readouterr().err
 
@@ -1202,7 +1202,7 @@ def test_order_tracking_keeps_a_drifting_machines_fault_lines(tmp_path, capsys):
                     "; order-tracked: resampled to a constant" in d["assumptions"]["speed_measured"]
                 )
             else:
-                assert any("--order-track resamples" in w for w in d["warnings"])
+                assert any("order tracking (--order-track" in w for w in d["warnings"])
     assert verdicts == {
         ("fault", False): "healthy",
         ("fault", True): "outer race",
@@ -1211,3 +1211,22 @@ def test_order_tracking_keeps_a_drifting_machines_fault_lines(tmp_path, capsys):
     }
     assert main(["diagnose", str(tmp_path / "noise.csv"), "--fs", "12000", "--order-track"]) == 2
     assert "--order-track needs --tacho" in capsys.readouterr().err
+    # a folder: each row's tacho_channel, pulses_per_rev and order_track
+    rows = "file,sampling_rate_hz,shaft_rpm,tacho_channel,pulses_per_rev,order_track\n"
+    rows += "fault.csv,12000,1800,tacho,1,true\nnoise.csv,12000,1800,tacho,,\n"
+    (tmp_path / "MANIFEST.csv").write_text(rows)
+    assert main(["diagnose", str(tmp_path), "--report", str(tmp_path / "out")]) == 0
+    capsys.readouterr()
+    table = pd.read_csv(tmp_path / "out" / "verdicts.csv").set_index("file")
+    assert list(table["verdict"]) == ["outer race", "healthy"]
+    assert table["rpm"].to_numpy() == pytest.approx(60 * 29.0, rel=2e-3)  # the tacho's mean
+    assert "shaft_rpm 1800 rpm is 3.4 % from the tacho's" in table.loc["fault.csv", "warnings"]
+    assert "order tracking (--order-track" in table.loc["noise.csv", "warnings"]
+    for cells, said in (
+        ("fault.csv,12000,1800,tacho,0,true", "pulses_per_rev = '0' is not an integer"),
+        ("fault.csv,12000,1800,tacho,1,maybe", "order_track = 'maybe' is not one of"),
+        ("fault.csv,12000,1800,,1,true", "order_track needs tacho_channel"),
+    ):
+        (tmp_path / "MANIFEST.csv").write_text(rows.splitlines()[0] + "\n" + cells + "\n")
+        assert main(["diagnose", str(tmp_path), "--report", str(tmp_path / "out2")]) == 2
+        assert said in capsys.readouterr().err
