@@ -1,4 +1,4 @@
-"""Record quality checks of ``cmtool diagnose``: clipping, non-finite and constant records.
+"""Record quality checks of ``cmtool diagnose``: clipping, non-finite, constant, pulse records.
 
 A clipped record's impacts are cut off at the converter's rail, and from a few per cent of
 the samples on a plateau the rule's verdict changes for more than 5 % of simulated records
@@ -69,6 +69,64 @@ def clipped_share(x: np.ndarray) -> float:
     return float(clipped) / x.size
 
 
+#: Share of a record's samples near its two extreme levels from which it is taken for a
+#: pulse train (a tachometer's or a digital channel's), not a vibration: within a tenth of
+#: its 1-99 % range of either end, each end holding 1 % or more. A Gaussian record puts
+#: about 6 % of its samples there, a sine 41 % (the arcsine law), a square wave 100 %.
+PULSE_SHARE = 0.9
+
+
+def two_level_share(x: np.ndarray) -> float:
+    """Share of the samples within a tenth of the 1-99 % range of the record's two ends.
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        The record (finite).
+
+    Returns
+    -------
+    float
+        The share in [0, 1]; 0 when either end holds under 1 % of the samples or the
+        range is zero.
+    """
+    x = np.asarray(x, dtype=float)
+    low, high = np.percentile(x, [1.0, 99.0])
+    width = 0.1 * float(high - low)
+    if not width > 0:
+        return 0.0
+    at_low = np.abs(x - low) <= width
+    at_high = np.abs(x - high) <= width
+    if min(float(np.mean(at_low)), float(np.mean(at_high))) < 0.01:
+        return 0.0
+    return float(np.mean(at_low | at_high))
+
+
+def check_not_pulses(x: np.ndarray, name: str = "signal") -> None:
+    """Refuse a record that takes two levels only (a tachometer's or digital channel's).
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        The record (finite).
+    name : str
+        What to call it in the error.
+
+    Raises
+    ------
+    ValueError
+        When :func:`two_level_share` is ``PULSE_SHARE`` or more.
+    """
+    share = two_level_share(x)
+    if share >= PULSE_SHARE:
+        low, high = np.percentile(np.asarray(x, dtype=float), [1.0, 99.0])
+        raise ValueError(
+            f"{name} takes two levels only ({share:.0%} of its samples near {low:.4g} or "
+            f"{high:.4g}): a tachometer's or digital channel's pulses, not a vibration; "
+            "diagnose the vibration's channel (--channel) and give this one as --tacho"
+        )
+
+
 def check_clipping(x: np.ndarray, name: str = "signal") -> None:
     """Refuse a record too clipped for the rule's verdict to be trusted.
 
@@ -83,12 +141,14 @@ def check_clipping(x: np.ndarray, name: str = "signal") -> None:
     ------
     ValueError
         When at least ``CLIPPING_ERROR_SHARE`` of the samples sit on a plateau at the record's
-        largest or smallest value (:func:`clipped_share`), or a sample is NaN or infinite.
+        largest or smallest value (:func:`clipped_share`), a sample is NaN or infinite, or
+        the record takes two levels only (:func:`check_not_pulses`).
     """
     x = np.asarray(x, dtype=float)
     bad = x.size - int(np.count_nonzero(np.isfinite(x)))
     if bad:  # an inf would pass for the largest value of a 100 % clipped record
         raise ValueError(f"{name} contains {bad} non-finite values (NaN or inf)")
+    check_not_pulses(x, name)  # a clean pulse train is all plateaus: say what it is
     share = clipped_share(x)  # 0 for a constant record: diagnose_signal says what that is
     if share < CLIPPING_ERROR_SHARE:
         return
@@ -119,7 +179,8 @@ def check_signal_quality(x: np.ndarray, name: str = "signal") -> list[str]:
     Raises
     ------
     ValueError
-        When the record holds NaN or inf, or is constant.
+        When the record holds NaN or inf, is constant, or takes two levels only
+        (:func:`check_not_pulses`).
     """
     bad = x.size - int(np.count_nonzero(np.isfinite(x)))
     if bad:
@@ -128,6 +189,7 @@ def check_signal_quality(x: np.ndarray, name: str = "signal") -> list[str]:
     peak = float(np.max(np.abs(x)))
     if peak == 0 or float(np.ptp(x)) == 0:
         raise ValueError(f"{name} is constant: nothing to diagnose")
+    check_not_pulses(x, name)
     count = round(clipped_share(x) * x.size)
     if count > max(3, 1e-4 * x.size):
         warnings.append(

@@ -208,3 +208,32 @@ def test_a_dataset_file_is_not_read_as_a_recording():
     )
     with pytest.raises(RecordingError, match=r"a cmtool dataset's file \(8 signals in its"):
         read_recording(part)
+
+
+def test_a_tachometers_pulses_are_not_diagnosed_as_a_vibration(tmp_path, capsys):
+    """A two-level record is a tachometer's or a digital channel's: refused by name. The
+    share of samples near the two ends is what a distribution puts there: about 6 % for a
+    Gaussian (within 0.47 sigma of the 1st and 99th percentiles), 41 % for a sine (the
+    arcsine law: arccos(0.8) / pi at each end), all of a square wave's."""
+    from cmtool.cli import main
+    from cmtool.diagnose import diagnose_signal
+    from cmtool.quality import PULSE_SHARE, two_level_share
+
+    rng = np.random.default_rng(0)
+    t = np.arange(120000) / FS
+    assert two_level_share(rng.standard_normal(t.size)) == pytest.approx(0.057, abs=0.005)
+    assert two_level_share(np.sin(2 * np.pi * 107.3 * t)) == pytest.approx(0.41, abs=0.01)
+    tacho = np.where((29.9 * t) % 1.0 < 0.05, 5.0, 0.0) + 0.05 * rng.standard_normal(t.size)
+    assert two_level_share(tacho) >= PULSE_SHARE
+    with pytest.raises(ValueError, match=r"signal takes two levels only \(100% of its samples"):
+        diagnose_signal(tacho, FS, 1797.0, "6205")
+    path = tmp_path / "rec.csv"
+    path.write_text(
+        "key,acc\n"
+        + "\n".join(f"{a:.4f},{b:.6f}" for a, b in zip(tacho, X.repeat(10), strict=True))
+    )
+    argv = ["diagnose", str(path), "--fs", "12000", "--rpm", "1797", "--bearing", "6205"]
+    assert main(argv) == 2
+    assert "takes two levels only" in capsys.readouterr().err
+    assert main([*argv, "--channel", "1", "--tacho", "0"]) == 0
+    assert "from the tacho channel 0" in capsys.readouterr().out
