@@ -652,7 +652,8 @@ def read_recording(
         cmtool CSV files with their ``.csv.json`` sidecar; the CWRU and MFPT layouts name
         their bearing), ``variable``, ``unit`` when known (g in the CWRU and MFPT layouts;
         a CSV's units row, or a CSV or parquet column's name ending in ``[g]`` or
-        ``(m/s^2)``: :func:`cmtool.csv_layout.unit_in_name`).
+        ``(m/s^2)``: :func:`cmtool.csv_layout.unit_in_name`), ``warnings`` the reader's own
+        (a WAV file cut short: "Reached EOF prematurely ...").
     """
     path = Path(path)
     if not path.is_file():
@@ -728,9 +729,16 @@ def _read_samples(
                 meta["bearing"] = "6203"
         meta["variable"] = variable
     elif suffix == ".wav":
+        import warnings
+
         from scipy.io import wavfile
 
-        rate, data = wavfile.read(path)
+        with warnings.catch_warnings(record=True) as caught:  # a cut file: said in the output
+            warnings.simplefilter("always", wavfile.WavFileWarning)
+            rate, data = wavfile.read(path)
+        said = [str(w.message) for w in caught if issubclass(w.category, wavfile.WavFileWarning)]
+        if said:
+            meta["warnings"] = [f"{path.name}: {message}" for message in said]
         data = np.asarray(data)
         if data.ndim == 2:
             meta["channels"] = int(data.shape[1])

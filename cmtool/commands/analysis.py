@@ -48,7 +48,7 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     from ..io import read_recording
 
     x, meta = read_recording(args.recording, variable=args.variable, channel=args.channel)
-    warnings = []
+    warnings = list(meta.get("warnings", []))  # the reader's (a cut WAV file)
     channels = meta.get("channels", 1)
     channel = str(meta.get("variable") or args.channel or "first")
     if channels > 1 and args.channel is None:  # the first picked for the user: say so
@@ -472,6 +472,7 @@ def _folder_row(task) -> tuple[dict, dict]:
             said = differs_from_file(
                 meta, entry.fs_hz, entry.rpm, "the manifest's sampling_rate_hz", "shaft_rpm"
             )
+        said = list(meta.get("warnings", [])) + said  # the reader's first (a cut WAV file)
         baseline = baseline_fs = None
         if entry.baseline is not None:
             baseline, base_meta = read_recording(  # its own variable: found, or --variable

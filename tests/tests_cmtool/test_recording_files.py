@@ -237,3 +237,24 @@ def test_a_tachometers_pulses_are_not_diagnosed_as_a_vibration(tmp_path, capsys)
     assert "takes two levels only" in capsys.readouterr().err
     assert main([*argv, "--channel", "1", "--tacho", "0"]) == 0
     assert "from the tacho channel 0" in capsys.readouterr().out
+
+
+def test_a_cut_wav_file_is_said_to_be_cut_in_the_diagnosis(tmp_path, capsys):
+    """scipy reads a WAV file cut short as far as it goes, with a warning of its own; the
+    warning goes into the diagnosis's warnings (JSON, report) with the file's name."""
+    import json
+
+    from scipy.io import wavfile
+
+    from cmtool.cli import main
+
+    wavfile.write(tmp_path / "whole.wav", 12000, np.tile(X, 2).astype(np.float32))
+    data = (tmp_path / "whole.wav").read_bytes()
+    (tmp_path / "cut.wav").write_bytes(data[: len(data) // 2])
+    x, meta = read_recording(tmp_path / "cut.wav")
+    assert 0.9 * N < x.size < 1.1 * N  # half of 2 N samples, less the header
+    assert meta["warnings"][0].startswith("cut.wav: Reached EOF prematurely")
+    assert "warnings" not in read_recording(tmp_path / "whole.wav")[1]
+    argv = ["diagnose", str(tmp_path / "cut.wav"), "--rpm", "1797", "--bearing", "6205"]
+    assert main([*argv, "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["warnings"][0].startswith("cut.wav: Reached EOF")
