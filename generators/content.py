@@ -9,9 +9,10 @@ than by the model's accuracy:
   two contacts, diametrically opposite, is w(phi) + w(phi + pi) = 0 for odd orders, so the
   ball's diameter between the races does not change (docs/model.md 2.1) and the signal is
   exactly the healthy bearing's. With ball masses (``full``) an odd order moves the ball's
-  centre and vibrates through its inertia (1 um on a 6205 at 1800 rpm, 500 N: orders 1, 3,
-  5, 7, 9 change the housing acceleration's RMS by 0.03 %, 1 %, 11 %, 72 % and 425 % of the
-  healthy one's, order 2 by 476 %).
+  centre and vibrates through its inertia (1 um on a 6205 at 1800 rpm, 500 N, one draw of
+  the balls' phases: orders 1, 3, 5, 7, 9 change the housing acceleration's RMS by 0.03,
+  0.7, 14, 34 and 670 % of the healthy one's, orders 2-8 by 780-92,000 %;
+  ``benchmarks/odd_ball_orders.py``).
 
 :func:`record_content_warnings` gives a message for each; ``cmtool simulate`` prints them and
 :func:`generators.recipe.recipe_content_warnings` checks a recipe's conditions with it.
