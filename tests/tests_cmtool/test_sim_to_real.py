@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 
 REPO = Path(__file__).resolve().parents[2]
-COUNT = 40
+COUNT = 30
 
 pytestmark = [pytest.mark.validation, pytest.mark.realdata]
 
