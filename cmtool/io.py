@@ -479,14 +479,20 @@ def _csv_sidecar(path: Path) -> dict[str, Any] | None:
 
 
 def _mat_variables(path: Path) -> dict[str, Any]:
+    """A MAT-file's variables: versions 4-7 by scipy, 7.3 (HDF5) by :mod:`.matlab_hdf5`."""
     from scipy import io as sio
 
     try:
         data = sio.loadmat(path, squeeze_me=True, struct_as_record=False)
-    except NotImplementedError:  # MATLAB v7.3 (HDF5) files
-        raise RecordingError(
-            f"{path}: MATLAB v7.3 files are not supported; save with -v7"
-        ) from None
+    except NotImplementedError:  # scipy's answer to a MATLAB v7.3 (HDF5) file
+        from .matlab_hdf5 import read_mat_v73
+
+        try:
+            data = read_mat_v73(path)
+        except Exception as err:  # noqa: BLE001 - h5py's errors for a cut or foreign file
+            raise RecordingError(
+                f"{path}: not a readable MATLAB v7.3 (HDF5) file ({err})"
+            ) from None
     except Exception as err:  # noqa: BLE001 - a truncated or foreign file fails in many ways
         raise RecordingError(f"{path}: not a readable MATLAB file ({err})") from None
     return {k: v for k, v in data.items() if not k.startswith("__")}

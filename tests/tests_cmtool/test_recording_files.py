@@ -258,3 +258,136 @@ def test_a_cut_wav_file_is_said_to_be_cut_in_the_diagnosis(tmp_path, capsys):
     argv = ["diagnose", str(tmp_path / "cut.wav"), "--rpm", "1797", "--bearing", "6205"]
     assert main([*argv, "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["warnings"][0].startswith("cut.wav: Reached EOF")
+
+
+def _save_mat_v73(path, variables: dict) -> None:
+    """Write ``variables`` as MATLAB's ``save -v7.3`` does: an HDF5 file behind a 512-byte
+    header (text, then version 0x0200 and the "IM" byte-order mark at bytes 124-127), each
+    array stored in MATLAB's column-major order (an N x 1 column as 1 x N) with its
+    ``MATLAB_class``, each struct a group of its fields, a cell a dataset of references."""
+    import h5py
+
+    def put(group, name, value):
+        if isinstance(value, dict):
+            sub = group.create_group(name)
+            sub.attrs["MATLAB_class"] = np.bytes_("struct")
+            for key, field in value.items():
+                put(sub, key, field)
+        elif isinstance(value, str):
+            data = np.array([[ord(c)] for c in value], dtype=np.uint16)  # 1 x n char
+            group.create_dataset(name, data=data).attrs["MATLAB_class"] = np.bytes_("char")
+        elif isinstance(value, list):  # a 1 x n cell
+            refs = group.file.require_group("#refs#")
+            handles = []
+            for i, item in enumerate(value):
+                put(refs, f"{name}_{i}", item)
+                handles.append(refs[f"{name}_{i}"].ref)
+            data = np.array([[h] for h in handles], dtype=h5py.ref_dtype)
+            group.create_dataset(name, data=data).attrs["MATLAB_class"] = np.bytes_("cell")
+        else:
+            array = np.atleast_2d(np.asarray(value, dtype=float))
+            group.create_dataset(name, data=array.T).attrs["MATLAB_class"] = np.bytes_("double")
+
+    with h5py.File(path, "w", userblock_size=512) as file:
+        for name, value in variables.items():
+            put(file, name, value)
+    text = b"MATLAB 7.3 MAT-file, Platform: GLNXA64, Created on: Mon Nov 30 03:00:00 2026 HDF5 "
+    header = text.ljust(116) + b"\x00" * 8 + b"\x00\x02" + b"IM"
+    with open(path, "r+b") as file:
+        file.write(header)
+
+
+def _column(values: np.ndarray) -> np.ndarray:
+    return np.asarray(values, dtype=float).reshape(-1, 1)
+
+
+CWRU_LAYOUT = {
+    "X105_DE_time": _column(X),
+    "X105_FE_time": _column(0.5 * X),
+    "X105RPM": np.array([[1797.0]]),
+}
+MFPT_LAYOUT = {
+    "bearing": {"gs": _column(X), "sr": [[48828.0]], "rate": [[25.0]], "load": [[270.0]]}
+}
+
+
+@pytest.mark.parametrize("layout", [CWRU_LAYOUT, MFPT_LAYOUT], ids=["cwru", "mfpt"])
+def test_a_matlab_v73_file_reads_as_its_v7_copy_does(tmp_path, layout):
+    """MATLAB's HDF5 files (save -v7.3, the default for large files) were refused with
+    "save with -v7"; now each CWRU and MFPT layout gives the samples and what the file says
+    (rate, speed, bearing, unit, variable) exactly as the same variables saved as v7 do."""
+    from scipy import io as sio
+
+    v7, v73 = tmp_path / "v7.mat", tmp_path / "v73.mat"
+    sio.savemat(v7, layout)
+    _save_mat_v73(v73, layout)
+    with pytest.raises(NotImplementedError):  # scipy's own reader refuses it
+        sio.loadmat(v73)
+    x7, meta7 = read_recording(v7)
+    x73, meta73 = read_recording(v73)
+    np.testing.assert_array_equal(x73, x7)
+    np.testing.assert_array_equal(x73, X)
+    assert {**meta73, "file": v7.name} == {**meta7, "file": v7.name} and meta73["unit"] == "g"
+    assert meta73["bearing"] == ("6205" if "X105RPM" in layout else "mfpt")
+    if "bearing" in layout:
+        assert meta73["fs_hz"] == 48828.0 and meta73["rpm"] == 1500.0
+    else:
+        assert meta73["rpm"] == 1797.0 and meta73["variable"] == "X105_DE_time"
+        fan, _ = read_recording(v73, variable="X105_FE_time")
+        np.testing.assert_array_equal(fan, 0.5 * X)
+
+
+def test_a_matlab_v73_files_channels_text_and_cells(tmp_path):
+    """A samples x channels matrix keeps its channels as a v7 file's do; text reads as text
+    and a cell as its elements (scipy's loadmat of a v7 file gives the same)."""
+    from cmtool.matlab_hdf5 import MatStruct, read_mat_v73
+
+    both = np.column_stack([X, 2 * X])
+    path = tmp_path / "logger.mat"
+    _save_mat_v73(path, {"data": both, "note": "pump 3, DE", "runs": [[1.0, 2.0, 3.0], both]})
+    second, meta = read_recording(path, variable="data", channel=1)
+    np.testing.assert_array_equal(second, 2 * X)
+    assert meta["channels"] == 2
+    variables = read_mat_v73(path)
+    assert set(variables) == {"data", "note", "runs"}  # MATLAB's #refs# group left out
+    assert variables["note"] == "pump 3, DE"
+    np.testing.assert_array_equal(variables["runs"][0], [1.0, 2.0, 3.0])
+    np.testing.assert_array_equal(variables["runs"][1], both)
+    _save_mat_v73(path, {"s": {"a": [[1.0]], "b": "x"}})
+    struct = read_mat_v73(path)["s"]
+    assert isinstance(struct, MatStruct) and struct._fieldnames == ["a", "b"]
+    assert struct.a == 1.0 and struct.b == "x"
+
+
+def test_a_matlab_v73_file_cut_short_is_refused_by_name(tmp_path, capsys):
+    path = tmp_path / "cut.mat"
+    _save_mat_v73(path, CWRU_LAYOUT)
+    path.write_bytes(path.read_bytes()[: path.stat().st_size // 2])
+    with pytest.raises(RecordingError, match=r"cut\.mat: not a readable MATLAB v7\.3 \(HDF5\)"):
+        read_recording(path)
+    assert main(["diagnose", str(path), "--fs", "12000"]) == 2
+    assert "not a readable MATLAB v7.3" in capsys.readouterr().err
+
+
+def test_the_measured_recordings_read_the_same_from_their_v73_copies(shared_data, tmp_path):
+    """Each ../shared/data MAT-file (CWRU and MFPT layouts, as their owners publish them)
+    written again as MATLAB v7.3 gives the same samples and the same rate, speed, bearing
+    and unit."""
+    from scipy import io as sio
+
+    files = sorted(shared_data.rglob("*.mat"))
+    assert files
+    for path in files:
+        variables = {}
+        for name, value in sio.loadmat(path).items():
+            if name.startswith("__"):
+                continue
+            if value.dtype.names:  # a 1 x 1 struct (MFPT's bearing)
+                value = {field: value[field][0, 0] for field in value.dtype.names}
+            variables[name] = value
+        copy = tmp_path / path.name
+        _save_mat_v73(copy, variables)
+        x, meta = read_recording(path)
+        x73, meta73 = read_recording(copy)
+        np.testing.assert_array_equal(x73, x)
+        assert {**meta73, "file": path.name} == {**meta, "file": path.name}, path.name
