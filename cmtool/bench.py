@@ -3,7 +3,8 @@
 Datasets: a ``cmtool generate`` folder (``data/*.parquet``), or a folder of recordings with a
 ``MANIFEST.csv`` (columns ``file``, ``sampling_rate_hz``, ``shaft_rpm``, ``fault_location``, and
 ``bearing`` or ``dataset``; ``channel_variable`` is used when present: the layout of
-``../shared/data``).
+``../shared/data``; a ``tacho_channel`` gives the speed, ``order_track`` resamples, as in
+``cmtool diagnose``).
 
 Detectors (:data:`BUILTIN_DETECTORS`), each giving a label and a continuous score per fault
 (``outer race``, ``inner race``, ``ball``; larger means more evidence):
@@ -75,8 +76,8 @@ from .bench_scores import (  # noqa: F401 (moved in stop 56, still exported here
 )
 from .diagnose import CANONICAL, FAULTS, diagnose_signal
 from .inputs import checked_workers
-from .io import read_recording
 from .manifest import read_manifest
+from .speeds import manifest_record
 
 __all__ = [
     "BUILTIN_DETECTORS",
@@ -308,13 +309,13 @@ def _records(path: Path, bearing_default: str, allow_incomplete: bool = False):
     """Yield (id, x, fs, rpm, bearing, label, metadata) for every signal of a dataset."""
     if (path / "MANIFEST.csv").is_file():
         for entry in read_manifest(path, labelled=True, bearing_default=bearing_default):
-            x, _ = read_recording(entry.path, variable=entry.variable)
+            x, rpm = manifest_record(entry)  # the tacho's speed where the entry names one
             meta = {"bearing": entry.bearing, "fs_hz": entry.fs_hz, "rig": entry.rig}
             yield (
                 entry.file,
                 x,
                 entry.fs_hz,
-                entry.rpm,
+                rpm,
                 entry.bearing_or_geometry,
                 entry.label,
                 meta,

@@ -29,8 +29,8 @@ from generators import bearing as catalog_bearing
 
 from .bench import CANONICAL
 from .inputs import checked_frame
-from .io import read_recording
 from .manifest import read_manifest
+from .speeds import manifest_record
 
 __all__ = [
     "realism",
@@ -100,10 +100,10 @@ def recording_segments(folder: str | Path, duration_s: float) -> pd.DataFrame:
     """
     rows = []
     for entry in read_manifest(folder):
-        x, _ = read_recording(entry.path, variable=entry.variable)
+        x, rpm = manifest_record(entry)  # the tacho's speed where the entry names one
         fs = entry.fs_hz
         geometry = entry.geometry or catalog_bearing(entry.bearing)
-        f = characteristic_frequencies(geometry, entry.rpm / 60)
+        f = characteristic_frequencies(geometry, rpm / 60)
         n = max(1, int(round(duration_s * fs)))
         count = max(1, x.size // n)
         for i in range(count):

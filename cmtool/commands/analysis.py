@@ -13,7 +13,7 @@ from generators import (
 )
 from generators.params import check_shaft_speed_rpm
 
-from ._speeds import differs_from_file, tacho_speed
+from ..speeds import differs_from_file, tacho_speed
 from .common import CliError, StageBars, check_output_folder, progress_bar
 from .data import check_training_overlap
 

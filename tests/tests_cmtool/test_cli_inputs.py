@@ -1220,6 +1220,29 @@ def test_order_tracking_keeps_a_drifting_machines_fault_lines(tmp_path, capsys):
     assert table["rpm"].to_numpy() == pytest.approx(60 * 29.0, rel=2e-3)  # the tacho's mean
     assert "shaft_rpm 1800 rpm is 3.4 % from the tacho's" in table.loc["fault.csv", "warnings"]
     assert "order tracking (--order-track" in table.loc["noise.csv", "warnings"]
+    # cmtool bench and the realism gauge read the folder's speeds as diagnose does: the
+    # tacho's, the fault's record order-tracked (they read shaft_rpm, 1800, and the smear)
+    from cmtool.bench import run_bench
+    from cmtool.realism import recording_segments
+
+    labelled = rows.replace("order_track\n", "order_track,fault_location\n")
+    labelled = labelled.replace(",true\n", ",true,outer\n").replace(",,\n", ",,,normal\n")
+    (tmp_path / "MANIFEST.csv").write_text(labelled)
+    bench = run_bench(tmp_path, detectors=[]).set_index(["detector", "id"])
+    assert bench.loc[("envelope", "fault.csv"), "verdict"] == "outer race"
+    assert bench.loc[("envelope", "noise.csv"), "verdict"] == "healthy"
+    segments = recording_segments(tmp_path, 1.0)
+    assert segments["shaft_frequency_hz"].to_numpy() == pytest.approx(29.0, rel=2e-3)
+    # a row whose tacho channel is its own vibration's is that row's error, not the
+    # folder's (it stopped the whole folder, no verdicts written)
+    (tmp_path / "MANIFEST.csv").write_text(
+        rows.replace("fault.csv,12000,1800,tacho", "fault.csv,12000,1800,acc")
+    )
+    assert main(["diagnose", str(tmp_path), "--json"]) == 1
+    fault, noise = json.loads(capsys.readouterr().out)  # in the manifest's order
+    assert fault["file"] == "fault.csv"
+    assert "tacho channel acc is the channel diagnosed" in fault["error"]
+    assert noise["verdict"] == "healthy"
     for cells, said in (
         ("fault.csv,12000,1800,tacho,0,true", "pulses_per_rev = '0' is not an integer"),
         ("fault.csv,12000,1800,tacho,1,maybe", "order_track = 'maybe' is not one of"),

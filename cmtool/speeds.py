@@ -1,7 +1,8 @@
-"""The shaft speed and sample rate ``cmtool diagnose`` uses where a file holds its own.
+"""The shaft speed and sample rate a recording is read at where the file holds its own.
 
 A rate or speed given on the command line or in a manifest against the file's (the given
-one is used, the difference said), and the speed from a tachometer channel (``--tacho``).
+one is used, the difference said), and the speed from a tachometer channel (``--tacho``, a
+manifest's ``tacho_channel``), as ``cmtool diagnose``, ``bench`` and ``realism`` read them.
 """
 
 from __future__ import annotations
@@ -11,12 +12,18 @@ from typing import TYPE_CHECKING
 
 from generators.params import check_shaft_speed_rpm
 
-from .common import CliError
-
 if TYPE_CHECKING:
     import numpy as np
 
-__all__ = ["GIVEN_AGAINST_FILE", "TACHO_VARIATION_WARNING", "differs_from_file", "tacho_speed"]
+    from .manifest import ManifestEntry
+
+__all__ = [
+    "GIVEN_AGAINST_FILE",
+    "TACHO_VARIATION_WARNING",
+    "differs_from_file",
+    "manifest_record",
+    "tacho_speed",
+]
 
 
 #: A tachometer's speed varying more than this over a record (revolution-to-revolution
@@ -70,18 +77,24 @@ def tacho_speed(
         ``TACHO_VARIATION_WARNING`` where the record is not order-tracked.
     x : ndarray
         The record, order-tracked if asked, else as given.
+
+    Raises
+    ------
+    cmtool.io.RecordingError
+        The tacho channel is the vibration's own, or cannot be read.
     """
     import numpy as np
 
     import features
 
-    from ..diagnose import SPEED_WARNING
-    from ..io import read_recording
+    from .diagnose import SPEED_WARNING
+    from .io import RecordingError, read_recording
 
     pulses, _ = read_recording(path, variable=variable, channel=channel)
     if pulses.shape == x.shape and np.array_equal(pulses, x):
-        raise CliError(
-            f"tacho channel {channel} is the channel diagnosed; give the vibration's channel"
+        raise RecordingError(
+            f"{path}: tacho channel {channel} is the channel diagnosed; give the vibration's "
+            "channel"
         )
     speed = features.shaft_rate_from_tacho(pulses, fs, pulses_per_rev)
     rpm = check_shaft_speed_rpm("the tacho's speed", 60.0 * speed.rate_hz)
@@ -132,3 +145,39 @@ def differs_from_file(
                 f"{name} {given:g} {unit} differs from the file's {held:g} {unit}; using {name}"
             )
     return said
+
+
+def manifest_record(entry: ManifestEntry) -> tuple[np.ndarray, float]:
+    """A manifest entry's record and the shaft speed to read it at, as ``diagnose`` does.
+
+    Parameters
+    ----------
+    entry : cmtool.manifest.ManifestEntry
+        A line of a ``MANIFEST.csv`` (:func:`cmtool.manifest.read_manifest`).
+
+    Returns
+    -------
+    x : ndarray
+        The record (of the entry's variable, its first channel) [U], order-tracked where the
+        entry asks (``order_track``).
+    rpm : float
+        The speed from the entry's tacho channel where it names one (``tacho_channel``,
+        ``pulses_per_rev``), else its ``shaft_rpm`` [rpm].
+    """
+    from .io import read_recording
+
+    x, _ = read_recording(entry.path, variable=entry.variable)
+    if entry.tacho is None:
+        return x, float(entry.rpm)
+    rpm, _, _, x = tacho_speed(
+        entry.path,
+        entry.variable,
+        entry.tacho,
+        entry.pulses_per_rev,
+        entry.order_track,
+        x,
+        entry.fs_hz,
+        entry.rpm,
+        "shaft_rpm",
+    )
+    return x, rpm
