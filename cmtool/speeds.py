@@ -8,14 +8,12 @@ manifest's ``tacho_channel``), as ``cmtool diagnose``, ``bench`` and ``realism``
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING
+
+import numpy as np
 
 from generators.params import check_shaft_speed_rpm
 
-if TYPE_CHECKING:
-    import numpy as np
-
-    from .manifest import ManifestEntry
+from .manifest import ManifestEntry
 
 __all__ = [
     "GIVEN_AGAINST_FILE",
@@ -83,8 +81,6 @@ def tacho_speed(
     cmtool.io.RecordingError
         The tacho channel is the vibration's own, or cannot be read.
     """
-    import numpy as np
-
     import features
 
     from .diagnose import SPEED_WARNING
@@ -132,7 +128,25 @@ GIVEN_AGAINST_FILE = 1e-4
 def differs_from_file(
     meta: dict, fs: float | None, rpm: float | None, fs_name: str, rpm_name: str
 ) -> list[str]:
-    """Warnings where a rate or speed given is not the one the file holds (the given is used)."""
+    """Warnings where a rate or speed given is not the one the file holds (the given is used).
+
+    Parameters
+    ----------
+    meta : dict
+        What the file says (:func:`cmtool.io.read_recording`): ``fs_hz`` [Hz], ``rpm``.
+    fs : float or None
+        The sample rate given [Hz] (None: none given).
+    rpm : float or None
+        The shaft speed given [rpm] (None: none given).
+    fs_name, rpm_name : str
+        What gave them, in the warnings (``--fs``, ``the manifest's sampling_rate_hz``).
+
+    Returns
+    -------
+    list of str
+        A warning for each that differs from the file's by more than ``GIVEN_AGAINST_FILE``
+        relative.
+    """
     said = []
     for key, given, name, unit in (("fs_hz", fs, fs_name, "Hz"), ("rpm", rpm, rpm_name, "rpm")):
         held = meta.get(key)

@@ -13,7 +13,6 @@ from generators import (
 )
 from generators.params import check_shaft_speed_rpm
 
-from ..speeds import differs_from_file, tacho_speed
 from .common import CliError, StageBars, check_output_folder, progress_bar
 from .data import check_training_overlap
 
@@ -33,6 +32,7 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     int
         The exit code, 0 on success.
     """
+    from ..speeds import differs_from_file, tacho_speed
     from ..waviness import check_load_n
 
     check_output_folder("--report", args.report, "a folder for report.md")
@@ -443,6 +443,7 @@ def _folder_row_kept(task) -> tuple[tuple[dict, dict], list]:
 def _folder_row(task) -> tuple[dict, dict]:
     """One manifest entry's row of ``verdicts.csv`` and its JSON object (report written)."""
     from ..io import read_recording
+    from ..speeds import differs_from_file, tacho_speed
 
     args, entry, out = task
     row = dict.fromkeys(VERDICT_COLUMNS)
@@ -530,7 +531,7 @@ def _folder_row(task) -> tuple[dict, dict]:
         row[f"{fault.replace(' ', '_')}_baseline_margin_db"] = margin
     if out is not None:
         _write_report(diagnosis, out / _report_folder(entry.file), x, entry.fs_hz)
-    return row, diagnosis.to_dict()
+    return row, {"file": entry.file, **diagnosis.to_dict()}  # as an error's object names it
 
 
 def _index_text(table, trends: list[Path], out: Path) -> str:

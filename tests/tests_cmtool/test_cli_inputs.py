@@ -660,6 +660,12 @@ def test_a_folder_with_a_manifest_is_diagnosed_recording_by_recording(
     assert [d["verdict"] for d in batch][:2] == ["outer race", "healthy"]
     assert batch[0]["candidates"] == alone["candidates"]
     assert batch[0]["assumptions"]["file"] == "pump/de.npy"
+    # each object names its recording first, as one not diagnosed does ({"file", "error"})
+    assert [list(d)[0] for d in batch] == ["file"] * len(batch)
+    assert batch[0]["file"] == "pump/de.npy"
+    assert {k: v for k, v in batch[0].items() if k != "file"} == alone | {
+        "assumptions": batch[0]["assumptions"]
+    }
     # two processes give the same answers, in the manifest's order
     assert main(["diagnose", str(folder), "--json", "--allow-clipping", "--workers", "2"]) == 0
     assert json.loads(capsys.readouterr().out) == batch
