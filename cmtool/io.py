@@ -588,8 +588,9 @@ def _read_csv_table(path: Path) -> tuple[pd.DataFrame, CsvLayout]:
 def _time_axis(values: np.ndarray) -> float | None:
     """The sample rate [Hz] if ``values`` is a time axis, else None.
 
-    A time axis rises at every sample in steps whose median is within 1 % of their mean
-    (equal steps, written to however few digits: 1 / 12000 s as 0.000083 and 0.000084); the
+    A time axis rises at every sample, never by ``GAP_STEP`` times the median step or more,
+    in steps whose median is within 1 % of their mean (equal steps, written to however few
+    digits: 1 / 12000 s as 0.000083 and 0.000084); the
     rate is the mean's, the span over the steps, which the rounding of each value moves by
     at most a quantum over the whole span.
     """
@@ -597,9 +598,45 @@ def _time_axis(values: np.ndarray) -> float | None:
         return None
     steps = np.diff(values)
     mean = float(values[-1] - values[0]) / (values.size - 1)
-    if np.all(steps > 0) and abs(float(np.median(steps)) - mean) <= 0.01 * mean:
+    median = float(np.median(steps))
+    if (
+        np.all((steps > 0) & (steps < GAP_STEP * median))  # no jump back, no gap
+        and abs(median - mean) <= 0.01 * mean
+    ):
         return 1.0 / mean
     return None
+
+
+#: A time column's step this many times its median is a gap (a sample or more missing); one
+#: of 0 s or less a jump back (files joined end to end). Rounding (12 kHz written to
+#: microseconds: 0.6 %) or a clock's jitter stay far inside.
+GAP_STEP = 1.9
+
+
+def _spliced_time_axis(times: np.ndarray, step: float, name: str) -> tuple[float, list[str]]:
+    """The rate of a time column with gaps or jumps back, and a warning naming them.
+
+    The rate is that of the other steps: their span over their count. A logger that dropped
+    samples, or files joined end to end, give a record spliced at those steps, where a
+    fault's lines lose their phase.
+    """
+    steps = np.diff(times)
+    gaps, back = steps >= GAP_STEP * step, steps <= 0
+    regular = ~(gaps | back)
+    rate = float(regular.sum()) / float(steps[regular].sum())
+    said = []
+    for kind, where in (("jumps by", gaps), ("goes back by", back)):
+        at = np.flatnonzero(where)
+        if at.size:
+            k = int(at[0])
+            lost = f" (about {round(steps[k] * rate) - 1} samples missing)" if steps[k] > 0 else ""
+            more = f" and at {at.size - 1} more place(s)" if at.size > 1 else ""
+            said.append(
+                f"{name} {kind} {abs(steps[k]):.6g} s after t = {times[k]:.6g} s{lost}{more}: "
+                "the record is spliced there, and a fault's lines lose their phase across a "
+                f"splice; the rate is its other steps' ({rate:.6g} Hz)"
+            )
+    return rate, said
 
 
 def _drive_end_variable(names: list[str], path: Path) -> str | None:
@@ -828,14 +865,15 @@ def _read_samples(
         if time_cols and len(frame) > 2 and "fs_hz" not in meta:
             times = frame[time_cols[0]].to_numpy(dtype=float)
             rate = _time_axis(times)
-            if rate is None:  # gaps in the record: the median step is the rate's
+            if rate is None:  # gaps or jumps back in the record: said, the rate between
                 step = float(np.median(np.diff(times)))
                 if not (math.isfinite(step) and step > 0):
                     raise RecordingError(
                         f"{path}: column {time_cols[0]!r} is no time axis (its median step "
                         f"is {step:g} s; a time axis rises)"
                     )
-                rate = 1.0 / step
+                rate, said = _spliced_time_axis(times, step, f"{path.name}: {time_cols[0]!r}")
+                meta.setdefault("warnings", []).extend(said)
             meta["fs_hz"] = rate
     else:
         raise RecordingError(

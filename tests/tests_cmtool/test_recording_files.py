@@ -9,6 +9,8 @@ that stops it. Before cmtool.csv_layout, a decimal-comma column and a separator 
 line's end were read as other numbers without a word (a rate of -248 Hz from the second).
 """
 
+import json
+
 import numpy as np
 import pytest
 
@@ -63,6 +65,33 @@ def test_each_dialect_reads_the_samples_and_the_rate(tmp_path, dialect):
         # from the span (within 1e-6 s over 1 s), not the median step (12048 Hz)
         assert meta["fs_hz"] == pytest.approx(FS, rel=1e-5)
     assert meta.get("unit") == ("g" if "units row" in dialect else None)
+    assert "warnings" not in meta  # rounded steps are no gap
+
+
+def test_a_time_column_with_gaps_or_a_jump_back_is_read_at_its_rate_and_said(tmp_path, capsys):
+    """A logger that dropped samples, or two files joined end to end: the rate of the regular
+    steps (100 samples lost of 12000 gave 11900 Hz from the span, unsaid) and a warning
+    naming the splice, in the diagnosis too. A clock's jitter (a tenth of a step) is none."""
+    keep = np.r_[0:5000, 5100:N]
+    cases = {
+        "gap": (T[keep], X[keep], "jumps by 0.00841667 s after t = 0.416583 s (about 100 "),
+        "joined": (np.r_[T[:6000], T[:6000]], X, "goes back by 0.499917 s after t = 0.499917"),
+        "jitter": (T + np.random.default_rng(1).normal(0.0, 0.1 / FS, N), X, None),
+    }
+    for name, (times, x, said) in cases.items():
+        path = tmp_path / f"{name}.csv"
+        path.write_text("time,acc\n" + "\n".join(f"{t:.9f},{v:.6f}" for t, v in zip(times, x)))
+        y, meta = read_recording(path)
+        np.testing.assert_allclose(y, x, atol=5e-7)
+        assert meta["fs_hz"] == pytest.approx(FS, rel=1e-4 if name == "jitter" else 1e-6)
+        if said is None:
+            assert "warnings" not in meta
+            continue
+        (warning,) = meta["warnings"]
+        assert warning.startswith(f"{name}.csv: 'time' {said}"), warning
+        argv = ["diagnose", str(path), "--rpm", "1797", "--bearing", "6205", "--json"]
+        assert main(argv) == 0
+        assert warning in json.loads(capsys.readouterr().out)["warnings"]
 
 
 def test_a_decimal_comma_recording_gets_the_verdict_of_its_numbers(tmp_path, capsys):
