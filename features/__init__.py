@@ -33,6 +33,7 @@ from .separation import (
 )
 from .spectra import (
     ISO_15242_BANDS,
+    acceleration_from_velocity,
     amplitude_spectrum,
     band_rms,
     integrate_signal,
@@ -111,5 +112,6 @@ __all__ = [
     "prewhiten",
     "time_statistics",
     "velocity_band_rms",
+    "acceleration_from_velocity",
     "ISO_15242_BANDS",
 ]
