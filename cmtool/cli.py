@@ -367,9 +367,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--unit",
         default=None,
-        choices=("g", "m/s^2"),
-        help="the recording's acceleration unit, for velocity bands in mm/s (default: the "
-        "file's where it says: g in CWRU and MFPT files, m/s^2 in cmtool's)",
+        choices=("g", "m/s^2", "mm/s", "m/s", "in/s"),
+        help="the recording's unit, for velocity bands in mm/s: an acceleration's, or a "
+        "velocity's (a velocity transducer's record, diagnosed by its derivative) (default: "
+        "the file's where it says: g in CWRU and MFPT files, m/s^2 in cmtool's, a CSV's "
+        "units row or bracketed unit)",
     )
     p.add_argument(
         "--workers",

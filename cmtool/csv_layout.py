@@ -56,8 +56,10 @@ UNITS = {
     "hz": None,
     "v": None,
     "mv": None,
-    "mm/s": None,
-    "m/s": None,
+    "mm/s": "mm/s",
+    "m/s": "m/s",
+    "in/s": "in/s",
+    "ips": "in/s",
     "um": None,
     "-": None,
     "": None,
@@ -104,8 +106,8 @@ class CsvLayout:
         """The separator as ``pandas.read_csv``'s ``sep`` takes it."""
         return r"\s+" if self.separator is None else self.separator
 
-    def acceleration_unit(self, column: str) -> str | None:
-        """The acceleration unit (``g`` or ``m/s^2``) the units row gives a column, if any.
+    def vibration_unit(self, column: str) -> str | None:
+        """The vibration unit the units row gives a column, if any.
 
         Parameters
         ----------
@@ -115,7 +117,8 @@ class CsvLayout:
         Returns
         -------
         str or None
-            ``g``, ``m/s^2``, or None (no units row, or another quantity's unit).
+            An acceleration's (``g``, ``m/s^2``) or a velocity's (``mm/s``, ``m/s``,
+            ``in/s``), or None (no units row, or another quantity's unit).
         """
         if self.units is None or column not in self.columns:
             return None
@@ -126,23 +129,26 @@ _BRACKETED = re.compile(r".*?[\[(]\s*([^\[\]()]+?)\s*[\])]\s*$")
 
 
 def unit_in_name(name: str) -> str | None:
-    """The acceleration unit a column's name gives in brackets at its end, if any.
+    """The vibration unit a column's name gives in brackets at its end, if any.
 
     Parameters
     ----------
     name : str
-        A column's name, e.g. ``acc [g]``, ``Beschleunigung (m/s^2)``, ``AI0 [m/s\u00b2]``.
+        A column's name, e.g. ``acc [g]``, ``Beschleunigung (m/s^2)``, ``AI0 [m/s\u00b2]``,
+        ``velocity [mm/s]``.
 
     Returns
     -------
     str or None
-        ``g`` or ``m/s^2``; None when the name ends in no bracketed unit or in another
-        quantity's (``[mm/s]``, ``(V)``).
+        An acceleration's (``g``, ``m/s^2``) or a velocity's (``mm/s``, ``m/s``, ``in/s``);
+        None when the name ends in no bracketed unit or in another quantity's (``(V)``).
 
     Examples
     --------
     >>> unit_in_name("acc [g]"), unit_in_name("DE (m/s2)"), unit_in_name("velocity [mm/s]")
-    ('g', 'm/s^2', None)
+    ('g', 'm/s^2', 'mm/s')
+    >>> unit_in_name("AI0 (V)") is None
+    True
     """
     match = _BRACKETED.fullmatch(str(name))
     return None if match is None else UNITS.get(_unit_key(match.group(1)))

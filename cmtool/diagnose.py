@@ -438,9 +438,11 @@ def diagnose_signal(
     waviness : bool
         Judge race waviness on a healthy verdict (five healthy simulations of the bearing
         when no baseline is given, about 0.1 s); ``cmtool bench`` leaves it out.
-    unit : {"g", "m/s^2"}, optional
-        The signal's unit, if it is an acceleration whose unit is known: the ISO 15242
-        velocity bands are then also given in mm/s (``velocity_bands_mm_s``).
+    unit : {"g", "m/s^2", "mm/s", "m/s", "in/s"}, optional
+        The signal's unit where it is known (``VIBRATION_UNITS``): the ISO 15242 velocity
+        bands are then also given in mm/s (``velocity_bands_mm_s``). A velocity record is
+        diagnosed by its derivative (``features.acceleration_from_velocity``), the baseline
+        too (in the same unit).
     speed_source : {"given", "spectrum", "auto"}
         Where the fault rates' shaft speed comes from: ``rpm`` as given; the spectrum's 1x
         line found within 5 % of it (``features.shaft_rate_from_spectrum``; the speed given,
@@ -458,15 +460,17 @@ def diagnose_signal(
     """
     x, fs, geometry = checked_record(x), checked_rate(fs), checked_geometry(geometry)
     model = checked_model(model)
-    scale = None if unit is None else ACCELERATION_UNITS.get(unit)
+    scale = None if unit is None else VIBRATION_UNITS.get(unit)
     if unit is not None and scale is None:
-        raise ValueError(f"unit = {unit!r} is not one of {', '.join(ACCELERATION_UNITS)}")
+        raise ValueError(f"unit = {unit!r} is not one of {', '.join(VIBRATION_UNITS)}")
     if load_n is not None:
         from .waviness import check_load_n
 
         load_n = check_load_n(load_n)
     whole = x.size
     x = x[:MAX_RECORD_SAMPLES]
+    if unit in VELOCITY_UNITS:  # its derivative, [unit/s]: what the rule was built on
+        x = features.acceleration_from_velocity(x, fs)
     if speed_source not in SPEED_SOURCES:
         raise ValueError(
             f"speed_source = {speed_source!r} is not one of {', '.join(SPEED_SOURCES)}"
@@ -535,6 +539,8 @@ def diagnose_signal(
                 f"{BASELINE_MIN_SAMPLES}"
             )
         check_signal_quality(baseline, "baseline")
+        if unit in VELOCITY_UNITS:  # in the record's unit
+            baseline = features.acceleration_from_velocity(baseline, baseline_fs)
     fastest = max(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])
     evidence = features.fault_evidence(x, fs, {**ctx, "ftf": freqs.ftf})
     selection, threshold = evidence.selection, evidence.threshold_db
@@ -634,6 +640,11 @@ def diagnose_signal(
         diagnosis.assumptions["velocity_bands"] = f"above fs/2, left out: {', '.join(missing)}"
     if scale is not None:
         diagnosis.assumptions["unit"] = unit
+        if unit in VELOCITY_UNITS:
+            diagnosis.assumptions["quantity"] = (
+                f"velocity [{unit}]: its derivative [{unit}/s] is diagnosed (the envelope "
+                "analysis was built on accelerations); the velocity bands are the record's own"
+            )
         diagnosis.velocity_bands_mm_s = {
             k: 1e3 * scale * v for k, v in diagnosis.velocity_bands.items()
         }
@@ -806,6 +817,11 @@ def overall_velocity(
 BASELINE_MIN_SAMPLES = 16
 #: Acceleration units a signal may be given in, and their size [m/s^2].
 ACCELERATION_UNITS = {"g": 9.80665, "m/s^2": 1.0, "m/s2": 1.0}
+#: Velocity units a signal may be given in, and their size [m/s]: a velocity record (a
+#: velocity transducer's, an analyser's export) is diagnosed by its derivative.
+VELOCITY_UNITS = {"mm/s": 1e-3, "m/s": 1.0, "in/s": 0.0254}
+#: Every unit a vibration record may be given in.
+VIBRATION_UNITS = {**ACCELERATION_UNITS, **VELOCITY_UNITS}
 #: The longest record diagnosed whole (87 s at 48 kHz, 350 s at 12 kHz); a longer one is
 #: diagnosed on its first part, and a warning says so (this many samples: 1.1 GB, 23 s).
 MAX_RECORD_SAMPLES = 2**22

@@ -858,8 +858,8 @@ def _read_samples(
         meta["variable"] = str(col)
         if simulated and "_acceleration_" in str(col):
             meta["unit"] = "m/s^2"  # a cmtool simulate file: channels in SI units
-        elif layout is not None and layout.acceleration_unit(str(col)):
-            meta["unit"] = layout.acceleration_unit(str(col))  # the file's units row
+        elif layout is not None and layout.vibration_unit(str(col)):
+            meta["unit"] = layout.vibration_unit(str(col))  # the file's units row
         elif not simulated and unit_in_name(str(col)):
             meta["unit"] = unit_in_name(str(col))  # the column's name: "acc [g]"
         if time_cols and len(frame) > 2 and "fs_hz" not in meta:

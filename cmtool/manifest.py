@@ -9,7 +9,8 @@ also name their bearing), ``channel_variable`` (the variable of a ``.mat``/``.np
 and for a trend ``time`` (when the recording was taken: ISO 8601), ``machine`` (which
 machine or measurement point), ``baseline`` (a healthy recording of the same machine,
 relative to the folder, that ``cmtool diagnose FOLDER`` compares the recording with) and
-``unit`` (the acceleration's unit, ``g`` or ``m/s^2``, for velocities in mm/s), and for a
+``unit`` (the record's unit: an acceleration's, ``g`` or ``m/s^2``, or a velocity's,
+``mm/s``, ``m/s`` or ``in/s``; for velocities in mm/s), and for a
 recording with a tachometer channel ``tacho_channel`` (its column or number: the speed from
 its pulses), ``pulses_per_rev`` (default 1) and ``order_track`` (true: resample to constant
 speed first; default false). A row
@@ -32,7 +33,7 @@ import pandas as pd
 from generators import BEARINGS, BearingGeometry
 
 from .csv_layout import text_encoding
-from .diagnose import ACCELERATION_UNITS, CANONICAL
+from .diagnose import CANONICAL, VIBRATION_UNITS
 from .io import RecordingError, geometry_from_spec
 
 __all__ = ["MANIFEST_BEARINGS", "ManifestEntry", "read_manifest"]
@@ -77,7 +78,7 @@ class ManifestEntry:
     baseline : Path or None
         A healthy recording of the same machine (``baseline``).
     unit : str or None
-        The recording's acceleration unit (``unit``: ``g`` or ``m/s^2``).
+        The recording's unit (``unit``: ``cmtool.diagnose.VIBRATION_UNITS``).
     tacho : str or None
         The recording's tachometer channel (``tacho_channel``): the speed from its pulses
         is used, ``shaft_rpm`` compared with it.
@@ -263,9 +264,9 @@ def read_manifest(
         if not path.is_file():
             raise FileNotFoundError(f"{where}: {path}: no such file")
         unit = _text(row.get("unit"))
-        if unit is not None and unit not in ACCELERATION_UNITS:
+        if unit is not None and unit not in VIBRATION_UNITS:
             raise RecordingError(
-                f"{where}: unit = {unit!r} is not one of {', '.join(ACCELERATION_UNITS)}, or empty"
+                f"{where}: unit = {unit!r} is not one of {', '.join(VIBRATION_UNITS)}, or empty"
             )
         tacho = _text(row.get("tacho_channel"))
         pulses = _text(row.get("pulses_per_rev"))

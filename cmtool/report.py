@@ -66,6 +66,8 @@ def model_verdict_text(model_verdict: dict, *, bold: bool = False) -> str:
 def _quantity(diagnosis: Diagnosis) -> str:
     """The waveform's axis label: acceleration in its unit where the diagnosis knows it."""
     unit = diagnosis.assumptions.get("unit")
+    if unit and "quantity" in diagnosis.assumptions:  # a velocity record, shown as given
+        return f"velocity [{unit}]"
     return f"acceleration [{unit}]" if unit else "signal"
 
 

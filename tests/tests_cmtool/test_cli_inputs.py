@@ -729,6 +729,68 @@ def test_velocity_bands_in_mm_s_when_the_recordings_unit_is_known(tmp_path, caps
     assert "--unit for mm/s" in capsys.readouterr().out
 
 
+def test_a_velocity_record_is_diagnosed_as_its_acceleration_is(tmp_path, capsys):
+    """A velocity transducer's record (mm/s, in/s; --unit, a CSV's bracketed unit, a
+    manifest's unit): its derivative is diagnosed, so an outer-race pit's record gives the
+    verdict, confidence and ISO bands its acceleration gives. Before, mm/s was no unit: the
+    record's integral was reported as its velocity bands, in "signal unit x s"."""
+    from scipy import signal as sp_signal
+
+    from cmtool.diagnose import diagnose_signal
+    from generators import bearing, characteristic_frequencies
+
+    fs, n = 12000.0, 24000
+    bpfo = characteristic_frequencies(bearing("6205"), 1797 / 60).bpfo
+    rng = np.random.default_rng(8)
+    times = np.arange(0.0, n / fs, 1 / bpfo)
+    impacts = np.zeros(n)
+    impacts[
+        np.clip(((times + rng.normal(0.0, 0.01 / bpfo, times.size)) * fs).astype(int), 0, n - 1)
+    ] = 50.0
+    acceleration = sp_signal.lfilter(*sp_signal.iirpeak(3000.0, 15.0, fs), impacts)
+    acceleration += rng.standard_normal(n) + 3.0 * np.sin(2 * np.pi * 29.95 * np.arange(n) / fs)
+    acceleration -= acceleration.mean()
+    # the velocity [mm/s] whose derivative it is (m/s^2 -> mm/s)
+    f = np.fft.rfftfreq(n, 1 / fs)
+    spec = np.fft.rfft(acceleration)
+    spec[1:] /= 2j * np.pi * f[1:]
+    spec[0] = 0.0
+    velocity = 1e3 * np.fft.irfft(spec, n)
+    ours = diagnose_signal(acceleration, fs, 1797.0, "6205", unit="m/s^2", waviness=False)
+    given = diagnose_signal(velocity, fs, 1797.0, "6205", unit="mm/s", waviness=False)
+    assert ours.verdict == "outer race" and given.verdict == ours.verdict
+    assert given.confidence == pytest.approx(ours.confidence, abs=0.01)
+    for band, value in ours.velocity_bands_mm_s.items():
+        assert given.velocity_bands_mm_s[band] == pytest.approx(value, rel=1e-3), band
+    assert given.overall_velocity["rms_mm_s"] == pytest.approx(
+        ours.overall_velocity["rms_mm_s"], rel=1e-3
+    )
+    assert "its derivative [mm/s/s] is diagnosed" in given.assumptions["quantity"]
+    inches = diagnose_signal(velocity / 25.4, fs, 1797.0, "6205", unit="in/s", waviness=False)
+    assert inches.velocity_bands_mm_s["low"] == pytest.approx(given.velocity_bands_mm_s["low"])
+    # the command line: a CSV's "[mm/s]" column, --unit, a manifest's unit column
+    path = tmp_path / "v.csv"
+    path.write_text(
+        "t [s],v [mm/s]\n" + "\n".join(f"{k / fs:.8f},{v:.6f}" for k, v in enumerate(velocity))
+    )
+    np.save(tmp_path / "v.npy", velocity)
+    argv = ["--rpm", "1797", "--bearing", "6205", "--json"]
+    for file, extra in (("v.csv", []), ("v.npy", ["--fs", "12000", "--unit", "mm/s"])):
+        assert main(["diagnose", str(tmp_path / file), *argv, *extra]) == 0
+        d = json.loads(capsys.readouterr().out)
+        assert d["verdict"] == "outer race" and d["assumptions"]["unit"] == "mm/s", file
+        low = d["velocity_bands_iso15242_mm_s"]["low"]
+        assert low == pytest.approx(ours.velocity_bands_mm_s["low"], rel=1e-3), file
+    (tmp_path / "MANIFEST.csv").write_text(
+        "file,sampling_rate_hz,shaft_rpm,bearing,unit\nv.npy,12000,1797,6205,mm/s\n"
+    )
+    assert main(["diagnose", str(tmp_path), "--json"]) == 0
+    (d,) = json.loads(capsys.readouterr().out)
+    assert d["verdict"] == "outer race" and d["assumptions"]["unit"] == "mm/s"
+    with pytest.raises(ValueError, match="unit = 'ips' is not one of g, m/s\\^2, m/s2, mm/s"):
+        diagnose_signal(velocity, fs, 1797.0, "6205", unit="ips")
+
+
 def test_dated_recordings_of_a_machine_give_its_trend(tmp_path, capsys):
     """The manifest's time and machine: per-fault margins in verdicts.csv and a trend per
     machine, the margin of a growing outer-race fault rising through the threshold."""

@@ -80,7 +80,9 @@ def test_a_time_column_with_gaps_or_a_jump_back_is_read_at_its_rate_and_said(tmp
     }
     for name, (times, x, said) in cases.items():
         path = tmp_path / f"{name}.csv"
-        path.write_text("time,acc\n" + "\n".join(f"{t:.9f},{v:.6f}" for t, v in zip(times, x)))
+        path.write_text(
+            "time,acc\n" + "\n".join(f"{t:.9f},{v:.6f}" for t, v in zip(times, x, strict=True))
+        )
         y, meta = read_recording(path)
         np.testing.assert_allclose(y, x, atol=5e-7)
         assert meta["fs_hz"] == pytest.approx(FS, rel=1e-4 if name == "jitter" else 1e-6)
@@ -133,7 +135,9 @@ def test_a_decimal_comma_recording_gets_the_verdict_of_its_numbers(tmp_path, cap
         ("acc [g]", "g"),
         ("AI0 (m/s^2)", "m/s^2"),
         ("a [m/s\u00b2]", "m/s^2"),
-        ("v [mm/s]", None),
+        ("v [mm/s]", "mm/s"),
+        ("speed (in/s)", "in/s"),
+        ("AI1 (V)", None),
         ("acc", None),
         ("g", None),
     ],
