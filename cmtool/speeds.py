@@ -173,25 +173,32 @@ def manifest_record(entry: ManifestEntry) -> tuple[np.ndarray, float]:
     -------
     x : ndarray
         The record (of the entry's variable, its first channel) [U], order-tracked where the
-        entry asks (``order_track``).
+        entry asks (``order_track``); a velocity's (``unit`` mm/s, m/s, in/s) differentiated
+        (``features.acceleration_from_velocity``) [U/s], as ``diagnose`` reads it: detectors
+        and the realism gauge's simulations are accelerations.
     rpm : float
         The speed from the entry's tacho channel where it names one (``tacho_channel``,
         ``pulses_per_rev``), else its ``shaft_rpm`` [rpm].
     """
+    import features
+
+    from .diagnose import VELOCITY_UNITS
     from .io import read_recording
 
     x, _ = read_recording(entry.path, variable=entry.variable)
-    if entry.tacho is None:
-        return x, float(entry.rpm)
-    rpm, _, _, x = tacho_speed(
-        entry.path,
-        entry.variable,
-        entry.tacho,
-        entry.pulses_per_rev,
-        entry.order_track,
-        x,
-        entry.fs_hz,
-        entry.rpm,
-        "shaft_rpm",
-    )
+    rpm = float(entry.rpm)
+    if entry.tacho is not None:
+        rpm, _, _, x = tacho_speed(
+            entry.path,
+            entry.variable,
+            entry.tacho,
+            entry.pulses_per_rev,
+            entry.order_track,
+            x,
+            entry.fs_hz,
+            entry.rpm,
+            "shaft_rpm",
+        )
+    if entry.unit in VELOCITY_UNITS:
+        x = features.acceleration_from_velocity(x, entry.fs_hz)
     return x, rpm

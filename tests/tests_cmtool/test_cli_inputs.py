@@ -787,6 +787,13 @@ def test_a_velocity_record_is_diagnosed_as_its_acceleration_is(tmp_path, capsys)
     assert main(["diagnose", str(tmp_path), "--json"]) == 0
     (d,) = json.loads(capsys.readouterr().out)
     assert d["verdict"] == "outer race" and d["assumptions"]["unit"] == "mm/s"
+    # the realism gauge and cmtool bench read it as its acceleration too (what they compare
+    # it with, simulations and detectors, are accelerations)
+    import features
+    from cmtool.realism import recording_segments
+
+    (segment,) = recording_segments(tmp_path, 2.0)["signal"]
+    np.testing.assert_allclose(segment, features.acceleration_from_velocity(velocity, fs))
     with pytest.raises(ValueError, match="unit = 'ips' is not one of g, m/s\\^2, m/s2, mm/s"):
         diagnose_signal(velocity, fs, 1797.0, "6205", unit="ips")
 
