@@ -54,6 +54,7 @@ from .pooling import (  # the pooled verdict, kept importable from here
 from .quality import (  # the record's checks, kept importable from here
     CLIPPING_ERROR_SHARE,
     check_clipping,
+    check_drift,
     check_signal_quality,
     clipped_share,
 )
@@ -632,6 +633,7 @@ def diagnose_signal(
             diagnosis.assumptions["whole_record_threshold_db"] = round(threshold, 2)
     # the ISO 15242 bands and the overall band from one spectrum of the record
     broad = overall_band(rpm)
+    diagnosis.warnings += check_drift(x, fs, min(broad[0], 0.5 * rpm / 60.0))
     bands = features.velocity_band_rms(x, fs, {**features.ISO_15242_BANDS, "overall": broad})
     diagnosis.overall_velocity = overall_velocity(bands.pop("overall"), broad, fs, scale)
     diagnosis.velocity_bands = {k: float(v) for k, v in bands.items() if math.isfinite(v)}

@@ -197,3 +197,67 @@ def check_signal_quality(x: np.ndarray, name: str = "signal") -> list[str]:
             f"smallest value ({float(np.max(x)):.4g}, {float(np.min(x)):.4g})"
         )
     return warnings
+
+
+#: Share of a record's variance below the start of the overall vibration's band (ISO
+#: 10816-3: 10 Hz, or 2 Hz for shafts at 600 rpm or less; at most half the shaft rate) from
+#: which the record is said to drift. A machine's acceleration holds little there (a
+#: Gaussian record's share is twice the frequency over the rate: 0.17 % below 10 Hz at 12
+#: kHz; a shaft's 1x line lies above it), while an accelerometer settling after power-on
+#: (an exponential of a few tenths of a second), a drift or a step puts most of its
+#: variance there and, integrated, swamps the velocity figures (0.3 mm/s of noise read 14
+#: mm/s overall with a 3 g settling of 0.1 s: docs/diagnosis.md, "A record that drifts").
+DRIFT_SHARE = 0.5
+
+
+def low_frequency_share(x: np.ndarray, fs: float, below_hz: float) -> float:
+    """The share of a record's variance (its mean out) in the DFT bins below ``below_hz``.
+
+    Parameters
+    ----------
+    x : ndarray
+        The record [its unit].
+    fs : float
+        Sample rate [Hz].
+    below_hz : float
+        The frequency below which the variance is counted [Hz] (bins from the first up).
+
+    Returns
+    -------
+    float
+        The share, 0 to 1 (0 for a record too short to hold a bin below ``below_hz``).
+    """
+    x = np.asarray(x, dtype=float)
+    power = np.abs(np.fft.rfft(x - x.mean())[1:]) ** 2
+    total = float(power.sum())
+    count = math.ceil(below_hz * x.size / fs) - 1  # bins 1 .. count lie below below_hz
+    return float(power[: max(count, 0)].sum()) / total if total > 0 else 0.0
+
+
+def check_drift(x: np.ndarray, fs: float, below_hz: float) -> list[str]:
+    """A warning where ``DRIFT_SHARE`` or more of the record's variance lies below ``below_hz``.
+
+    Parameters
+    ----------
+    x : ndarray
+        The record, an acceleration [its unit].
+    fs : float
+        Sample rate [Hz].
+    below_hz : float
+        The start of the overall vibration's band [Hz] (:func:`cmtool.diagnose.overall_band`,
+        at most half the shaft rate).
+
+    Returns
+    -------
+    list of str
+        The warning, or none.
+    """
+    share = low_frequency_share(x, fs, below_hz)
+    if share < DRIFT_SHARE:
+        return []
+    return [
+        f"{100 * share:.0f} % of the record's variance lies below {below_hz:g} Hz, where a "
+        "machine's acceleration holds little: a sensor settling after power-on, a drift or a "
+        "step; the velocity bands and the overall velocity hold it (leave the record's start "
+        "out, or check the sensor and its cable)"
+    ]
