@@ -838,8 +838,10 @@ def _read_samples(
             if pd.api.types.is_numeric_dtype(frame[c]) and c not in time_cols
         ]
         if not time_cols and len(numeric) >= 2:
-            rate = _time_axis(frame[numeric[0]].to_numpy(dtype=float))
-            if rate is not None:  # an unnamed first column rising in equal steps: time
+            first = frame[numeric[0]].to_numpy(dtype=float)
+            if first[0] in (0.0, 1.0) and np.array_equal(np.diff(first), np.ones(first.size - 1)):
+                numeric = numeric[1:]  # a row index or sample number (pandas' to_csv): no time
+            elif _time_axis(first) is not None:  # a first column rising in equal steps: time
                 time_cols, numeric = [numeric[0]], numeric[1:]
         if "housing_acceleration_y" in numeric and channel is None:
             channel = "housing_acceleration_y"  # what an accelerometer on the housing sees

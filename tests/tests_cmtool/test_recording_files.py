@@ -469,3 +469,29 @@ def test_no_measured_recording_is_said_to_drift(shared_data):
     for file, fs in pd.read_csv(shared_data / "MANIFEST.csv")[["file", "sampling_rate_hz"]].values:
         x, _ = read_recording(shared_data / file)
         assert low_frequency_share(x, fs, 10.0) < DRIFT_SHARE / 10, file
+
+
+def test_a_row_index_column_is_neither_a_channel_nor_a_time_axis(tmp_path, capsys):
+    """pandas' to_csv writes the row index first (an unnamed column 0, 1, 2, ...), a logger
+    a sample number: it was read as a time axis of 1 Hz ("--fs 12000 Hz differs from the
+    file's 1 Hz", and without --fs a rate of 1 Hz). It is no channel and gives no rate."""
+    import pandas as pd
+
+    frames = {
+        "index.csv": pd.DataFrame({"acc": X}),
+        "sample.csv": pd.DataFrame({"sample": np.arange(1, N + 1), "acc": X}),
+    }
+    for name, frame in frames.items():
+        path = tmp_path / name
+        frame.to_csv(path, index=name == "index.csv")
+        x, meta = read_recording(path)
+        np.testing.assert_array_equal(x, X)
+        assert "fs_hz" not in meta and meta["channels"] == 1 and meta["variable"] == "acc"
+        argv = ["diagnose", str(path), "--rpm", "1797", "--bearing", "6205", "--json"]
+        assert main(argv) == 2
+        assert "holds no sample rate; give --fs" in capsys.readouterr().err
+        assert main([*argv, "--fs", "12000"]) == 0
+        assert json.loads(capsys.readouterr().out)["warnings"] == []
+    # a first column rising in steps of a sample period stays the time axis
+    pd.DataFrame({"": T, "acc": X}).to_csv(tmp_path / "time.csv", index=False)
+    assert read_recording(tmp_path / "time.csv")[1]["fs_hz"] == pytest.approx(FS, rel=1e-9)
