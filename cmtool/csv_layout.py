@@ -39,7 +39,9 @@ __all__ = [
     "unit_in_name",
     "SAMPLE_LINES",
     "SEPARATORS",
+    "TIME_UNITS",
     "UNITS",
+    "time_unit_size",
 ]
 
 #: Lines at the start of a file read to find its layout (pandas reads the rest with it).
@@ -52,6 +54,9 @@ SEPARATORS = (";", "\t", ",", None)
 UNITS = {
     "s": None,
     "ms": None,
+    "us": None,
+    "\u00b5s": None,
+    "\u03bcs": None,
     "sec": None,
     "hz": None,
     "v": None,
@@ -69,6 +74,9 @@ UNITS = {
     "m/s\u00b2": "m/s^2",
     "m s^-2": "m/s^2",
 }
+#: Units a time column may be written in, and their size [s].
+TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "\u00b5s": 1e-6, "\u03bcs": 1e-6}
+_TIME_SUFFIX = re.compile(r".*[_ ](s|sec|ms|us)$", re.IGNORECASE)
 _NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?|[+-]?(nan|inf|infinity)", re.I)
 
 
@@ -152,6 +160,36 @@ def unit_in_name(name: str) -> str | None:
     """
     match = _BRACKETED.fullmatch(str(name))
     return None if match is None else UNITS.get(_unit_key(match.group(1)))
+
+
+def time_unit_size(name: str, unit: str | None = None) -> float:
+    """The size [s] of a time column's unit: its units row's, else its name's.
+
+    Parameters
+    ----------
+    name : str
+        The column's name: a bracketed unit at its end (``time [ms]``, ``t (us)``) or a
+        suffix (``time_ms``) says it.
+    unit : str, optional
+        Its entry in the file's units row (``ms``), which comes first.
+
+    Returns
+    -------
+    float
+        The unit's size [s]: 1e-3 for ms, 1e-6 for us; 1 where nothing says (seconds).
+
+    Examples
+    --------
+    >>> time_unit_size("time [ms]"), time_unit_size("t_us"), time_unit_size("t", "ms")
+    (0.001, 1e-06, 0.001)
+    >>> time_unit_size("Time (s)"), time_unit_size("time")
+    (1.0, 1.0)
+    """
+    for text in (unit, *(m.group(1) for m in [_BRACKETED.fullmatch(str(name))] if m)):
+        if text is not None and _unit_key(text) in TIME_UNITS:
+            return TIME_UNITS[_unit_key(text)]
+    suffix = _TIME_SUFFIX.fullmatch(str(name).strip())
+    return TIME_UNITS[suffix.group(1).lower()] if suffix else 1.0
 
 
 def _unit_key(text: str) -> str:

@@ -26,7 +26,7 @@ from generators import BearingGeometry, SimulationResult
 from generators.stream import SignalStream
 
 from . import __version__
-from .csv_layout import CsvLayout, csv_layout, unit_in_name
+from .csv_layout import CsvLayout, csv_layout, time_unit_size, unit_in_name
 
 __all__ = [
     "write_signal",
@@ -865,7 +865,10 @@ def _read_samples(
         elif not simulated and unit_in_name(str(col)):
             meta["unit"] = unit_in_name(str(col))  # the column's name: "acc [g]"
         if time_cols and len(frame) > 2 and "fs_hz" not in meta:
-            times = frame[time_cols[0]].to_numpy(dtype=float)
+            name, unit = str(time_cols[0]), None
+            if layout is not None and layout.units is not None:  # the units row's, first
+                unit = layout.units[layout.columns.index(name)]
+            times = frame[time_cols[0]].to_numpy(dtype=float) * time_unit_size(name, unit)
             rate = _time_axis(times)
             if rate is None:  # gaps or jumps back in the record: said, the rate between
                 step = float(np.median(np.diff(times)))

@@ -495,3 +495,25 @@ def test_a_row_index_column_is_neither_a_channel_nor_a_time_axis(tmp_path, capsy
     # a first column rising in steps of a sample period stays the time axis
     pd.DataFrame({"": T, "acc": X}).to_csv(tmp_path / "time.csv", index=False)
     assert read_recording(tmp_path / "time.csv")[1]["fs_hz"] == pytest.approx(FS, rel=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("header", "units", "size"),
+    [
+        ("time [ms],acc", None, 1e-3),
+        ("t (ms),acc", None, 1e-3),
+        ("time_ms,acc", None, 1e-3),
+        ("Time [us],acc", None, 1e-6),
+        ("time,acc", "ms,g", 1e-3),
+        ("Time (s),acc", None, 1.0),
+    ],
+)
+def test_a_time_column_in_milliseconds_gives_the_rate_in_hertz(tmp_path, header, units, size):
+    """A time column written in ms or us (its bracketed unit, a suffix, the units row) was
+    read as seconds: a rate of 12 Hz for 12 kHz. Its unit is now taken into account."""
+    path = tmp_path / "rec.csv"
+    rows = "\n".join(f"{t / size:.9g},{v:.6f}" for t, v in zip(T, X, strict=True))
+    path.write_text(header + "\n" + (units + "\n" if units else "") + rows)
+    x, meta = read_recording(path)
+    np.testing.assert_allclose(x, X, atol=5e-7)
+    assert meta["fs_hz"] == pytest.approx(FS, rel=1e-6)
