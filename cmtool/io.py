@@ -27,6 +27,7 @@ from generators.stream import SignalStream
 
 from . import __version__
 from .csv_layout import CsvLayout, csv_layout, time_unit_size, unit_in_name
+from .file_variables import rate_and_speed
 
 __all__ = [
     "write_signal",
@@ -726,6 +727,7 @@ def _read_samples(
     """
     if suffix == ".mat":
         data = _mat_variables(path)
+        meta.update(rate_and_speed(data))  # scalars fs, dt, rpm, ...; a layout's own below
         if variable is None and "bearing" in data:
             variable = "bearing"
         if variable is None:
@@ -798,7 +800,10 @@ def _read_samples(
             keys = list(loaded.keys())
             if variable is not None and variable not in keys:
                 raise RecordingError(f"{path}: variable {variable!r} not found; it holds {keys}")
-            key = variable or (keys[0] if len(keys) == 1 else None)
+            scalars = {k: loaded[k] for k in keys if loaded[k].size == 1}
+            meta.update(rate_and_speed(scalars))  # np.savez(..., x=x, fs=fs)
+            records = [k for k in keys if k not in scalars]
+            key = variable or (records[0] if len(records) == 1 else None)
             if key is None:
                 raise RecordingError(f"{path}: choose a variable with --variable; it holds {keys}")
             loaded = loaded[key]

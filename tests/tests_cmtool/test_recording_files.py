@@ -517,3 +517,38 @@ def test_a_time_column_in_milliseconds_gives_the_rate_in_hertz(tmp_path, header,
     x, meta = read_recording(path)
     np.testing.assert_allclose(x, X, atol=5e-7)
     assert meta["fs_hz"] == pytest.approx(FS, rel=1e-6)
+
+
+def test_a_files_scalar_rate_and_speed_are_its_own(tmp_path, capsys):
+    """MATLAB's `save rec.mat x fs` and numpy's `np.savez(..., x=x, fs=fs)`: the rate (or
+    the interval dt) and the speed stored beside the record are the file's, as a CWRU file's
+    X097RPM is; a .npz of one record and scalars needs no --variable. Before, --fs was asked
+    for and such a .npz was refused with "choose a variable"."""
+    from scipy.io import savemat
+
+    cases = {
+        "fs.mat": {"x": X, "fs": 12000.0, "rpm": 1797.0},
+        "Fs.mat": {"acc": X, "Fs": np.int32(12000)},
+        "dt.mat": {"x": X, "dt": 1 / 12000},
+        "rate.npz": {"x": X, "sample_rate": 12000.0, "shaft_rpm": 1797.0},
+    }
+    for name, variables in cases.items():
+        path = tmp_path / name
+        if name.endswith(".mat"):
+            savemat(path, variables)
+        else:
+            np.savez(path, **variables)
+        x, meta = read_recording(path)
+        np.testing.assert_array_equal(x, X)
+        assert meta["fs_hz"] == pytest.approx(FS, rel=1e-12), name
+        assert meta.get("rpm") == (1797.0 if "rpm" in str(variables.keys()) else None), name
+    argv = ["diagnose", str(tmp_path / "fs.mat"), "--bearing", "6205", "--json"]
+    assert main(argv) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["assumptions"]["fs_hz"] == FS and d["assumptions"]["rpm_given"] == 1797.0
+    assert main([*argv, "--fs", "25600"]) == 0
+    said = json.loads(capsys.readouterr().out)["warnings"]
+    assert "--fs 25600 Hz differs from the file's 12000 Hz; using --fs" in said
+    # two rates that disagree give none (asked for), as a file without one
+    savemat(tmp_path / "two.mat", {"x": X, "fs": 12000.0, "sr": 25600.0})
+    assert "fs_hz" not in read_recording(tmp_path / "two.mat")[1]
