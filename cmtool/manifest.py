@@ -26,7 +26,7 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass
-from pathlib import Path
+from pathlib import Path, PureWindowsPath
 
 import pandas as pd
 
@@ -167,6 +167,19 @@ def _number(
     return number
 
 
+def _in_folder(folder: Path, name: str) -> tuple[str, Path]:
+    """A manifest's file name and its path, written on Windows or not.
+
+    A name with backslashes (``pump3`` backslash ``a.mat``, as a Windows spreadsheet
+    writes it) is read with ``/`` where no file has the name as written.
+    """
+    path = folder / name
+    if "\\" in name and not path.exists():
+        name = PureWindowsPath(name).as_posix().removeprefix("./")
+        path = folder / name
+    return name, path
+
+
 def read_manifest(
     folder: str | Path, *, labelled: bool = False, bearing_default: str = "6205"
 ) -> list[ManifestEntry]:
@@ -260,7 +273,7 @@ def read_manifest(
                     f"{where}: time = {time!r} is not a date and time (ISO 8601, e.g. "
                     "2026-11-28T14:00)"
                 ) from None
-        path = folder / file
+        file, path = _in_folder(folder, file)
         if not path.is_file():
             raise FileNotFoundError(f"{where}: {path}: no such file")
         unit = _text(row.get("unit"))
@@ -284,7 +297,7 @@ def read_manifest(
             raise RecordingError(f"{where}: order_track needs tacho_channel")
         baseline = _text(row.get("baseline"))
         if baseline is not None:
-            baseline = folder / baseline
+            baseline = _in_folder(folder, baseline)[1]
             if not baseline.is_file():
                 raise FileNotFoundError(f"{where}: baseline {baseline}: no such file")
         entries.append(

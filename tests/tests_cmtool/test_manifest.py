@@ -74,6 +74,28 @@ def test_a_windows_spreadsheets_manifest_names_its_files_in_its_own_encoding(tmp
     assert entry.path == tmp_path / name and entry.rpm == 1797.5
 
 
+def test_a_manifest_written_on_windows_finds_its_files_in_subfolders(tmp_path):
+    """File and baseline names with backslashes, as a Windows spreadsheet writes them
+    (pump3\\2026-01.npy): each was "no such file" on Linux and macOS."""
+    (tmp_path / "pump3").mkdir()
+    rng = np.random.default_rng(6)
+    for name in ("2026-01.npy", "2026-02.npy"):
+        np.save(tmp_path / "pump3" / name, rng.standard_normal(12000))
+    rows = [
+        {**GOOD, "file": "pump3\\2026-01.npy"},
+        {**GOOD, "file": ".\\pump3\\2026-02.npy", "baseline": "pump3\\2026-01.npy"},
+    ]
+    pd.DataFrame(rows).to_csv(tmp_path / "MANIFEST.csv", index=False)
+    first, second = read_manifest(tmp_path)
+    assert (first.file, second.file) == ("pump3/2026-01.npy", "pump3/2026-02.npy")
+    assert second.path == tmp_path / "pump3" / "2026-02.npy" and second.path.is_file()
+    assert second.baseline == first.path
+    rows[0]["file"] = "pump3\\2026-03.npy"  # missing either way: named, with its line
+    pd.DataFrame(rows).to_csv(tmp_path / "MANIFEST.csv", index=False)
+    with pytest.raises(FileNotFoundError, match=r"line 2 .*pump3/2026-03.npy: no such file"):
+        read_manifest(tmp_path)
+
+
 @pytest.mark.parametrize(
     ("change", "message"),
     [
