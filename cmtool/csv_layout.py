@@ -29,13 +29,17 @@ from __future__ import annotations
 
 import codecs
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+
+import numpy as np
 
 __all__ = [
     "CsvLayout",
     "csv_layout",
     "text_encoding",
+    "timestamp_seconds",
     "unit_in_name",
     "SAMPLE_LINES",
     "SEPARATORS",
@@ -77,6 +81,11 @@ UNITS = {
 #: Units a time column may be written in, and their size [s].
 TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "\u00b5s": 1e-6, "\u03bcs": 1e-6}
 _TIME_SUFFIX = re.compile(r".*[_ ](s|sec|ms|us)$", re.IGNORECASE)
+#: A time stamp a logger writes in its first column: a clock time, after an ISO date or not
+#: (``2026-11-30 03:45:00.016500``, ``2026-11-30T03:45:00.0165Z``, ``03:45:00,0165``).
+_TIMESTAMP = re.compile(
+    r"(\d{4}-\d{2}-\d{2}[T ])?\d{1,2}:\d{2}:\d{2}([.,]\d+)?(Z|[+-]\d{2}:?\d{2})?"
+)
 _NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?|[+-]?(nan|inf|infinity)", re.I)
 
 
@@ -216,7 +225,49 @@ def _is_number(field: str, decimal: str) -> bool:
 
 
 def _is_row(fields: list[str], width: int, decimal: str) -> bool:
-    return len(fields) == width and all(_is_number(f, decimal) for f in fields)
+    """A row of numbers, the first of which may be a time stamp (``_TIMESTAMP``)."""
+    return len(fields) == width and all(
+        _is_number(f, decimal) or (i == 0 and _TIMESTAMP.fullmatch(f) is not None)
+        for i, f in enumerate(fields)
+    )
+
+
+def timestamp_seconds(values: Sequence[object]) -> np.ndarray | None:
+    """A column of time stamps as seconds from its first, or None if it holds other text.
+
+    Parameters
+    ----------
+    values : sequence
+        The column's fields as read (text).
+
+    Returns
+    -------
+    numpy.ndarray or None
+        Seconds from the first time stamp [s] (a clock time alone is read as a time of
+        day); None where a field is no time stamp.
+
+    Examples
+    --------
+    >>> timestamp_seconds(["2026-11-30 03:45:00.000", "2026-11-30 03:45:00.0005"]).tolist()
+    [0.0, 0.0005]
+    >>> timestamp_seconds(["03:45:00,25", "03:45:00,5"]).tolist()
+    [0.0, 0.25]
+    """
+    import pandas as pd
+
+    text = [str(v).strip() for v in values]
+    if not text or not all(_TIMESTAMP.fullmatch(t) for t in text):
+        return None
+    text = [t.replace(",", ".") for t in text]
+    if _CLOCK.fullmatch(text[0]):
+        stamps = pd.to_timedelta(text).to_numpy(dtype="timedelta64[ns]").astype(np.int64)
+    else:
+        stamps = pd.to_datetime(text, format="ISO8601").to_numpy(dtype="datetime64[ns]")
+        stamps = stamps.astype(np.int64)
+    return (stamps - stamps[0]) / 1e9
+
+
+_CLOCK = re.compile(r"\d{1,2}:\d{2}:\d{2}(\.\d+)?")
 
 
 def _is_units(fields: list[str]) -> bool:

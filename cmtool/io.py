@@ -26,7 +26,7 @@ from generators import BearingGeometry, SimulationResult
 from generators.stream import SignalStream
 
 from . import __version__
-from .csv_layout import CsvLayout, csv_layout, time_unit_size, unit_in_name
+from .csv_layout import CsvLayout, csv_layout, time_unit_size, timestamp_seconds, unit_in_name
 from .file_variables import rate_and_speed
 
 __all__ = [
@@ -575,6 +575,10 @@ def _read_csv_table(path: Path) -> tuple[pd.DataFrame, CsvLayout]:
             f"where the table has {width} ({layout.columns})"
         )
     frame.columns = layout.columns
+    first = frame.columns[0]
+    if not pd.api.types.is_numeric_dtype(frame[first]):  # a logger's time stamps: seconds
+        seconds = timestamp_seconds(frame[first].tolist())
+        frame[first] = frame[first] if seconds is None else seconds
     for name in frame.columns:
         if not pd.api.types.is_numeric_dtype(frame[name]):
             text = frame[name][pd.to_numeric(frame[name], errors="coerce").isna()]

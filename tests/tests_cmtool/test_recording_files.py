@@ -552,3 +552,36 @@ def test_a_files_scalar_rate_and_speed_are_its_own(tmp_path, capsys):
     # two rates that disagree give none (asked for), as a file without one
     savemat(tmp_path / "two.mat", {"x": X, "fs": 12000.0, "sr": 25600.0})
     assert "fs_hz" not in read_recording(tmp_path / "two.mat")[1]
+
+
+@pytest.mark.parametrize(
+    ("stamp", "separator"),
+    [
+        ("%Y-%m-%d %H:%M:%S.%f", ","),
+        ("%Y-%m-%dT%H:%M:%S.%fZ", ","),
+        ("%H:%M:%S.%f", ";"),
+    ],
+)
+def test_a_loggers_time_stamps_give_the_rate(tmp_path, capsys, stamp, separator):
+    """A logger's first column of date-times or clock times (to the microsecond): the rate
+    from their span, as a time column in seconds gives it. Such a file was refused as "no
+    row of numbers"."""
+    import pandas as pd
+
+    start = pd.Timestamp("2026-11-30 03:45:00")
+    times = start + pd.to_timedelta(T, unit="s")
+    path = tmp_path / "logger.csv"
+    rows = "\n".join(
+        f"{t.strftime(stamp)}{separator}{v:.6f}" for t, v in zip(times, X, strict=True)
+    )
+    path.write_text(f"timestamp{separator}acc\n" + rows)
+    x, meta = read_recording(path)
+    np.testing.assert_allclose(x, X, atol=5e-7)
+    # stamps to the microsecond: the last one within 0.5 us of 11999 / 12000 s
+    assert meta["fs_hz"] == pytest.approx(FS, rel=1e-6) and meta["variable"] == "acc"
+    assert main(["diagnose", str(path), "--rpm", "1797", "--bearing", "6205", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["warnings"] == []
+    # a column of other text is still refused by its line
+    path.write_text("timestamp,acc\n" + "\n".join(f"t{k},{v:.6f}" for k, v in enumerate(X)))
+    with pytest.raises(RecordingError, match="is no row of numbers"):
+        read_recording(path)
