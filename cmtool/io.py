@@ -28,6 +28,7 @@ from generators.stream import SignalStream
 from . import __version__
 from .csv_layout import CsvLayout, csv_layout, time_unit_size, timestamp_seconds, unit_in_name
 from .file_variables import rate_and_speed
+from .tdms_files import read_tdms
 
 __all__ = [
     "write_signal",
@@ -677,8 +678,8 @@ def read_recording(
     MFPT files: struct ``bearing`` with ``gs``, ``sr`` and ``rate``), ``.csv`` (a column by name
     or index; the dialect, preamble and units row found by :func:`cmtool.csv_layout.csv_layout`;
     a time column, named ``time``, ``t`` or ``time_s`` or the first column rising in equal
-    steps, gives the rate), ``.wav``, ``.npy``/``.npz`` and ``.parquet``. Complex samples are
-    refused.
+    steps, gives the rate), ``.wav``, ``.npy``/``.npz``, ``.parquet`` and LabVIEW's ``.tdms``
+    (:func:`cmtool.tdms_files.read_tdms`). Complex samples are refused.
 
     Parameters
     ----------
@@ -798,6 +799,8 @@ def _read_samples(
             data = data / float(np.iinfo(data.dtype).max)
         x = data.astype(float)
         meta["fs_hz"] = float(rate)
+    elif suffix == ".tdms":  # LabVIEW's: cmtool.tdms_files
+        x = read_tdms(path, variable, channel, meta)
     elif suffix in (".npy", ".npz"):
         loaded = np.load(path, allow_pickle=False)
         if suffix == ".npz":
@@ -891,6 +894,6 @@ def _read_samples(
             meta["fs_hz"] = rate
     else:
         raise RecordingError(
-            f"{path}: unknown format {suffix!r} (mat, csv, wav, npy, npz, parquet)"
+            f"{path}: unknown format {suffix!r} (mat, csv, wav, npy, npz, parquet, tdms)"
         )
     return x

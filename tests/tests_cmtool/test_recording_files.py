@@ -585,3 +585,51 @@ def test_a_loggers_time_stamps_give_the_rate(tmp_path, capsys, stamp, separator)
     path.write_text("timestamp,acc\n" + "\n".join(f"t{k},{v:.6f}" for k, v in enumerate(X)))
     with pytest.raises(RecordingError, match="is no row of numbers"):
         read_recording(path)
+
+
+def test_a_labview_tdms_recording_is_read_with_its_rate_unit_and_channels(tmp_path, capsys):
+    """National Instruments' TDMS: a group of channels written as waveforms, each with its
+    sampling interval and unit. The channel by --variable group/channel, --channel name or
+    number; the rate and unit the file's; a tacho channel for --tacho. A cut file is refused
+    by name. Before, ".tdms" was an unknown format."""
+    from nptdms import ChannelObject, TdmsWriter
+
+    rpm = 1750.0
+    t = np.arange(2 * N) / FS
+    x = np.random.default_rng(10).standard_normal(2 * N)
+    tacho = np.where((rpm / 60 * t) % 1.0 < 0.05, 5.0, 0.0)
+    path = tmp_path / "run.tdms"
+    waveform = {"wf_increment": 1 / FS, "wf_start_offset": 0.0}
+    with TdmsWriter(path) as writer:
+        writer.write_segment(
+            [
+                ChannelObject("Vibration", "DE accel", x, {**waveform, "unit_string": "g"}),
+                ChannelObject("Vibration", "Key", tacho, {**waveform, "unit_string": "V"}),
+            ]
+        )
+    y, meta = read_recording(path)
+    np.testing.assert_array_equal(y, x)
+    assert meta["fs_hz"] == pytest.approx(FS, rel=1e-12) and meta["unit"] == "g"
+    assert meta["variable"] == "Vibration/DE accel" and meta["channels"] == 2
+    for asked in ({"channel": 1}, {"channel": "Key"}, {"variable": "Vibration/Key"}):
+        k, meta = read_recording(path, **asked)
+        np.testing.assert_array_equal(k, tacho)
+        assert "unit" not in meta, asked  # volts: no vibration unit
+    with pytest.raises(RecordingError, match=r"channel 'Other' not found; it holds \['Vib"):
+        read_recording(path, channel="Other")
+    argv = ["diagnose", str(path), "--bearing", "6205", "--tacho", "Key", "--json"]
+    assert main(argv) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["assumptions"]["rpm"] == pytest.approx(rpm, rel=2e-3)
+    assert d["assumptions"]["unit"] == "g" and d["assumptions"]["fs_hz"] == FS
+    # a file cut short: read as far as it goes, said (npTDMS's log, not printed as well)
+    path.write_bytes(path.read_bytes()[: path.stat().st_size // 2])
+    y, meta = read_recording(path)
+    assert 0 < y.size < x.size
+    np.testing.assert_array_equal(y, x[: y.size])
+    assert any("less data than expected" in w for w in meta["warnings"]), meta
+    assert meta["warnings"][0].startswith("run.tdms: ")
+    assert "less data" not in capsys.readouterr().err
+    path.write_bytes(b"not a TDMS file" * 20)
+    with pytest.raises(RecordingError, match=r"run\.tdms: not a readable TDMS file"):
+        read_recording(path)
