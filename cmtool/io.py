@@ -29,6 +29,7 @@ from . import __version__
 from .csv_layout import CsvLayout, csv_layout, time_unit_size, timestamp_seconds, unit_in_name
 from .file_variables import rate_and_speed
 from .tdms_files import read_tdms
+from .time_axis import spliced_time_axis, time_axis_rate
 
 __all__ = [
     "write_signal",
@@ -591,60 +592,6 @@ def _read_csv_table(path: Path) -> tuple[pd.DataFrame, CsvLayout]:
     return frame, layout
 
 
-def _time_axis(values: np.ndarray) -> float | None:
-    """The sample rate [Hz] if ``values`` is a time axis, else None.
-
-    A time axis rises at every sample, never by ``GAP_STEP`` times the median step or more,
-    in steps whose median is within 1 % of their mean (equal steps, written to however few
-    digits: 1 / 12000 s as 0.000083 and 0.000084); the
-    rate is the mean's, the span over the steps, which the rounding of each value moves by
-    at most a quantum over the whole span.
-    """
-    if values.size < 3 or not np.all(np.isfinite(values)):
-        return None
-    steps = np.diff(values)
-    mean = float(values[-1] - values[0]) / (values.size - 1)
-    median = float(np.median(steps))
-    if (
-        np.all((steps > 0) & (steps < GAP_STEP * median))  # no jump back, no gap
-        and abs(median - mean) <= 0.01 * mean
-    ):
-        return 1.0 / mean
-    return None
-
-
-#: A time column's step this many times its median is a gap (a sample or more missing); one
-#: of 0 s or less a jump back (files joined end to end). Rounding (12 kHz written to
-#: microseconds: 0.6 %) or a clock's jitter stay far inside.
-GAP_STEP = 1.9
-
-
-def _spliced_time_axis(times: np.ndarray, step: float, name: str) -> tuple[float, list[str]]:
-    """The rate of a time column with gaps or jumps back, and a warning naming them.
-
-    The rate is that of the other steps: their span over their count. A logger that dropped
-    samples, or files joined end to end, give a record spliced at those steps, where a
-    fault's lines lose their phase.
-    """
-    steps = np.diff(times)
-    gaps, back = steps >= GAP_STEP * step, steps <= 0
-    regular = ~(gaps | back)
-    rate = float(regular.sum()) / float(steps[regular].sum())
-    said = []
-    for kind, where in (("jumps by", gaps), ("goes back by", back)):
-        at = np.flatnonzero(where)
-        if at.size:
-            k = int(at[0])
-            lost = f" (about {round(steps[k] * rate) - 1} samples missing)" if steps[k] > 0 else ""
-            more = f" and at {at.size - 1} more place(s)" if at.size > 1 else ""
-            said.append(
-                f"{name} {kind} {abs(steps[k]):.6g} s after t = {times[k]:.6g} s{lost}{more}: "
-                "the record is spliced there, and a fault's lines lose their phase across a "
-                f"splice; the rate is its other steps' ({rate:.6g} Hz)"
-            )
-    return rate, said
-
-
 def _drive_end_variable(names: list[str], path: Path) -> str | None:
     """The CWRU drive-end variable ``X###_DE_time`` a file holds for its own record.
 
@@ -853,7 +800,7 @@ def _read_samples(
             first = frame[numeric[0]].to_numpy(dtype=float)
             if first[0] in (0.0, 1.0) and np.array_equal(np.diff(first), np.ones(first.size - 1)):
                 numeric = numeric[1:]  # a row index or sample number (pandas' to_csv): no time
-            elif _time_axis(first) is not None:  # a first column rising in equal steps: time
+            elif time_axis_rate(first) is not None:  # a first column rising in equal steps: time
                 time_cols, numeric = [numeric[0]], numeric[1:]
         if "housing_acceleration_y" in numeric and channel is None:
             channel = "housing_acceleration_y"  # what an accelerometer on the housing sees
@@ -881,7 +828,7 @@ def _read_samples(
             if layout is not None and layout.units is not None:  # the units row's, first
                 unit = layout.units[layout.columns.index(name)]
             times = frame[time_cols[0]].to_numpy(dtype=float) * time_unit_size(name, unit)
-            rate = _time_axis(times)
+            rate = time_axis_rate(times)
             if rate is None:  # gaps or jumps back in the record: said, the rate between
                 step = float(np.median(np.diff(times)))
                 if not (math.isfinite(step) and step > 0):
@@ -889,7 +836,7 @@ def _read_samples(
                         f"{path}: column {time_cols[0]!r} is no time axis (its median step "
                         f"is {step:g} s; a time axis rises)"
                     )
-                rate, said = _spliced_time_axis(times, step, f"{path.name}: {time_cols[0]!r}")
+                rate, said = spliced_time_axis(times, step, f"{path.name}: {time_cols[0]!r}")
                 meta.setdefault("warnings", []).extend(said)
             meta["fs_hz"] = rate
     else:
