@@ -295,9 +295,9 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("diagnose", help="diagnose a measured recording")
     p.add_argument(
         "recording",
-        help="CSV, WAV, MATLAB .mat (v4-v7.3), .npy/.npz, parquet or LabVIEW .tdms file, or a "
-        "folder whose MANIFEST.csv lists recordings with their rate, speed and bearing (a "
-        "line each; --report: a report each and verdicts.csv)",
+        help="CSV, Excel .xlsx, WAV, MATLAB .mat (v4-v7.3), .npy/.npz, parquet or LabVIEW .tdms "
+        "file, or a folder whose MANIFEST.csv lists recordings with their rate, speed and "
+        "bearing (a line each; --report: a report each and verdicts.csv)",
     )
     p.add_argument("--fs", type=float, default=None, help="sample rate [Hz] (if not in file)")
     p.add_argument("--rpm", type=float, default=None, help="shaft speed [rev/min]")

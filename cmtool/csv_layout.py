@@ -38,6 +38,7 @@ import numpy as np
 __all__ = [
     "CsvLayout",
     "csv_layout",
+    "is_unit",
     "text_encoding",
     "timestamp_seconds",
     "unit_in_name",
@@ -271,7 +272,23 @@ _CLOCK = re.compile(r"\d{1,2}:\d{2}:\d{2}(\.\d+)?")
 
 
 def _is_units(fields: list[str]) -> bool:
-    return all(_unit_key(f) in UNITS for f in fields) and any(f.strip() for f in fields)
+    return all(is_unit(f) for f in fields) and any(f.strip() for f in fields)
+
+
+def is_unit(text: str) -> bool:
+    """Whether a field is a unit a units row holds (``UNITS``: ``s``, ``g``, ``[mm/s]``, ``V``).
+
+    Parameters
+    ----------
+    text : str
+        The field.
+
+    Returns
+    -------
+    bool
+        True for a known unit, bracketed or not, or an empty field.
+    """
+    return _unit_key(text) in UNITS
 
 
 def _table_start(rows: list[list[str]], decimal: str) -> tuple[int, int] | None:

@@ -27,6 +27,7 @@ from generators.stream import SignalStream
 
 from . import __version__
 from .csv_layout import CsvLayout, csv_layout, time_unit_size, timestamp_seconds, unit_in_name
+from .excel_files import read_excel_table
 from .file_variables import rate_and_speed
 from .tdms_files import read_tdms
 from .time_axis import spliced_time_axis, time_axis_rate
@@ -763,12 +764,14 @@ def _read_samples(
             loaded = loaded[key]
             meta["variable"] = key
         x = _one_channel(_real_samples(loaded, path), channel, path, meta)
-    elif suffix in (".csv", ".parquet"):
+    elif suffix in (".csv", ".parquet", ".xlsx"):
         info = None  # a cmtool simulate file's metadata: rate, speed, bearing, SI units
         layout = None
         if suffix == ".csv":
             frame, layout = _read_csv_table(path)
             info = _csv_sidecar(path)
+        elif suffix == ".xlsx":  # a workbook's first sheet, read as a CSV table is
+            frame, layout = read_excel_table(path)
         else:
             frame = pd.read_parquet(path)
             if "signal" in frame.columns and frame["signal"].dtype == object:
@@ -841,6 +844,6 @@ def _read_samples(
             meta["fs_hz"] = rate
     else:
         raise RecordingError(
-            f"{path}: unknown format {suffix!r} (mat, csv, wav, npy, npz, parquet, tdms)"
+            f"{path}: unknown format {suffix!r} (mat, csv, wav, npy, npz, parquet, tdms, xlsx)"
         )
     return x

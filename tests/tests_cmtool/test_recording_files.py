@@ -633,3 +633,41 @@ def test_a_labview_tdms_recording_is_read_with_its_rate_unit_and_channels(tmp_pa
     path.write_bytes(b"not a TDMS file" * 20)
     with pytest.raises(RecordingError, match=r"run\.tdms: not a readable TDMS file"):
         read_recording(path)
+
+
+def test_an_excel_workbooks_table_is_read_as_a_csv_files_is(tmp_path, capsys):
+    """A recording saved from Excel (.xlsx): lines of notes, a header, a units row, time in
+    seconds or as Excel's date-times, a column of the channel. The samples, the rate and the
+    unit are those of the same table as CSV. Before, ".xlsx" was an unknown format."""
+    import datetime as dt
+
+    from openpyxl import Workbook
+
+    n = 2400  # 0.2 s: a workbook of a few thousand rows
+    start = dt.datetime(2026, 11, 30, 3, 45)
+    # Excel keeps a date-time to the millisecond: stamps of a 1 kHz logger resolve
+    stamps = [start + dt.timedelta(milliseconds=k) for k in range(n)]
+    for name, times, units, rate in (
+        ("seconds.xlsx", list(T[:n]), ["s", "g"], FS),
+        ("stamps.xlsx", stamps, None, 1000.0),
+    ):
+        book = Workbook()
+        sheet = book.active
+        sheet.append(["Pump 3 DE, run 7"])  # notes before the table
+        sheet.append([])
+        sheet.append(["time", "acc [g]"])
+        if units:
+            sheet.append(units)
+        for t, v in zip(times, X[:n], strict=True):
+            sheet.append([t, float(v)])
+        book.save(tmp_path / name)
+        x, meta = read_recording(tmp_path / name)
+        np.testing.assert_allclose(x, X[:n], rtol=1e-15)  # as openpyxl writes a double
+        assert meta["fs_hz"] == pytest.approx(rate, rel=1e-9), name
+        assert meta["unit"] == "g" and meta["variable"] == "acc [g]", name
+    argv = ["diagnose", str(tmp_path / "seconds.xlsx"), "--rpm", "1797", "--bearing", "6205"]
+    assert main([*argv, "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["assumptions"]["fs_hz"] == pytest.approx(FS)
+    (tmp_path / "cut.xlsx").write_bytes((tmp_path / "seconds.xlsx").read_bytes()[:500])
+    with pytest.raises(RecordingError, match=r"cut\.xlsx: not a readable Excel workbook"):
+        read_recording(tmp_path / "cut.xlsx")
