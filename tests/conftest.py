@@ -135,6 +135,8 @@ def small_bundle(small_dataset, tmp_path_factory):
     with FileLock(f"{shared}.lock"):
         if shared.is_file():
             return pickle.loads(shared.read_bytes())
-        bundle = train(small_dataset, recipe=recipe.read_text())
+        # two processes: the other test worker waits for this bundle meanwhile, and the
+        # bundle is the same for any count (test_diagnosis.py, train on two workers)
+        bundle = train(small_dataset, recipe=recipe.read_text(), workers=2)
         shared.write_bytes(pickle.dumps(bundle))
         return bundle
