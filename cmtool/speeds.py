@@ -20,6 +20,7 @@ __all__ = [
     "TACHO_VARIATION_WARNING",
     "differs_from_file",
     "manifest_record",
+    "manifest_tacho_speed",
     "tacho_speed",
 ]
 
@@ -188,17 +189,39 @@ def manifest_record(entry: ManifestEntry) -> tuple[np.ndarray, float]:
     x, _ = read_recording(entry.path, variable=entry.variable)
     rpm = float(entry.rpm)
     if entry.tacho is not None:
-        rpm, _, _, x = tacho_speed(
-            entry.path,
-            entry.variable,
-            entry.tacho,
-            entry.pulses_per_rev,
-            entry.order_track,
-            x,
-            entry.fs_hz,
-            entry.rpm,
-            "shaft_rpm",
-        )
+        rpm, _, _, x = manifest_tacho_speed(entry, entry.variable, x)
     if entry.unit in VELOCITY_UNITS:
         x = features.acceleration_from_velocity(x, entry.fs_hz)
     return x, rpm
+
+
+def manifest_tacho_speed(
+    entry: ManifestEntry, variable: str | None, x: np.ndarray
+) -> tuple[float, str, list[str], np.ndarray]:
+    """:func:`tacho_speed` from a manifest entry's ``tacho_channel``, ``shaft_rpm`` given.
+
+    Parameters
+    ----------
+    entry : cmtool.manifest.ManifestEntry
+        The entry (its tacho channel, pulses per revolution, order tracking, rate, speed).
+    variable : str or None
+        The recording's variable (``.mat``/``.npz``).
+    x : ndarray
+        The vibration record [U].
+
+    Returns
+    -------
+    tuple
+        :func:`tacho_speed`'s ``(rpm, text, warnings, x)``.
+    """
+    return tacho_speed(
+        entry.path,
+        variable,
+        str(entry.tacho),
+        entry.pulses_per_rev,
+        entry.order_track,
+        x,
+        entry.fs_hz,
+        entry.rpm,
+        "shaft_rpm",
+    )

@@ -443,7 +443,7 @@ def _folder_row_kept(task) -> tuple[tuple[dict, dict], list]:
 def _folder_row(task) -> tuple[dict, dict]:
     """One manifest entry's row of ``verdicts.csv`` and its JSON object (report written)."""
     from ..io import read_recording
-    from ..speeds import differs_from_file, tacho_speed
+    from ..speeds import differs_from_file, manifest_tacho_speed
 
     args, entry, out = task
     row = dict.fromkeys(VERDICT_COLUMNS)
@@ -457,17 +457,7 @@ def _folder_row(task) -> tuple[dict, dict]:
         x, meta = read_recording(entry.path, variable=variable, channel=args.channel)
         rpm, measured = entry.rpm, None
         if entry.tacho is not None:
-            rpm, measured, said, x = tacho_speed(
-                entry.path,
-                variable,
-                entry.tacho,
-                entry.pulses_per_rev,
-                entry.order_track,
-                x,
-                entry.fs_hz,
-                entry.rpm,
-                "shaft_rpm",
-            )
+            rpm, measured, said, x = manifest_tacho_speed(entry, variable, x)
             row["rpm"] = rpm
         else:
             said = differs_from_file(
