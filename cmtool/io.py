@@ -831,17 +831,20 @@ def _read_samples(
             if layout is not None and layout.units is not None:  # the units row's, first
                 unit = layout.units[layout.columns.index(name)]
             times = frame[time_cols[0]].to_numpy(dtype=float) * time_unit_size(name, unit)
-            rate = time_axis_rate(times)
-            if rate is None:  # gaps or jumps back in the record: said, the rate between
-                step = float(np.median(np.diff(times)))
-                if not (math.isfinite(step) and step > 0):
-                    raise RecordingError(
-                        f"{path}: column {time_cols[0]!r} is no time axis (its median step "
-                        f"is {step:g} s; a time axis rises)"
-                    )
-                rate, said = spliced_time_axis(times, step, f"{path.name}: {time_cols[0]!r}")
+            rate, said = time_axis_rate(times), []
+            step = float(np.median(np.diff(times)))
+            if rate is None and not (math.isfinite(step) and step > 0):  # --fs gives it
+                said = [
+                    f"{path.name}: column {name!r} is no time axis (its median step is "
+                    f"{step:g} s; a time axis rises, and Excel keeps time stamps to the "
+                    "millisecond): the rate is not read from it"
+                ]
+            elif rate is None:  # gaps or jumps back in the record: said, the rate between
+                rate, said = spliced_time_axis(times, step, f"{path.name}: {name!r}")
+            if said:
                 meta.setdefault("warnings", []).extend(said)
-            meta["fs_hz"] = rate
+            if rate is not None:
+                meta["fs_hz"] = rate
     else:
         raise RecordingError(
             f"{path}: unknown format {suffix!r} (mat, csv, wav, npy, npz, parquet, tdms, xlsx)"

@@ -58,8 +58,9 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
             "diagnosed (--channel N for another)"
         )
     fs = args.fs if args.fs is not None else meta.get("fs_hz")
-    if fs is None:
-        raise CliError(f"{args.recording}: the file holds no sample rate; give --fs")
+    if fs is None:  # why a time column gave none, if one did not
+        why = "".join(f" ({w})" for w in warnings if "is no time axis" in w)
+        raise CliError(f"{args.recording}: the file holds no sample rate; give --fs{why}")
     rpm = check_shaft_speed_rpm("--rpm", args.rpm) if args.rpm is not None else meta.get("rpm")
     tacho = None
     if getattr(args, "order_track", False) and getattr(args, "tacho", None) is None:
