@@ -17,8 +17,10 @@ speed first; default false). A row
 that cannot be used is an error naming the manifest, its line, the column, the value and
 what is allowed, before any recording is read. Columns are separated by commas, or by
 semicolons or tabs as a spreadsheet saves CSV where the decimal mark is a comma (its rates and
-speeds may then be written with one: ``1797,5``); a byte-order mark is ignored, and a file that
-is no UTF-8 is read as Windows-1252.
+speeds may then be written with one: ``1797,5``); rates and speeds may carry a unit
+(``12 kHz``, ``1797 rpm``, a shaft's ``29.95 Hz``: :data:`MANIFEST_UNITS`); a byte-order mark
+is ignored, a file that is no UTF-8 is read as Windows-1252, and a file name is matched
+regardless of case where only one file matches (a manifest written on Windows).
 """
 
 from __future__ import annotations
@@ -138,6 +140,23 @@ def _manifest_separator(manifest: Path, encoding: str) -> str:
     return MANIFEST_SEPARATORS[counts.index(max(counts))] if max(counts) else ","
 
 
+#: Units a manifest's numbers may carry after the number (``12 kHz``, ``1797 rpm``), per
+#: column: each unit's factor to the column's own (Hz, rpm); a shaft speed in Hz is its
+#: rotation frequency (``29.95 Hz``: 1797 rpm). Case is ignored.
+MANIFEST_UNITS = {
+    "sampling_rate_hz": {"hz": 1.0, "khz": 1e3, "s/s": 1.0, "sps": 1.0, "ks/s": 1e3, "ksps": 1e3},
+    "shaft_rpm": {
+        "rpm": 1.0,
+        "r/min": 1.0,
+        "rev/min": 1.0,
+        "1/min": 1.0,
+        "hz": 60.0,
+        "rev/s": 60.0,
+    },
+}
+_NUMBER_AND_UNIT = re.compile(r"(?P<number>.*?\d\.?)\s*(?P<unit>[a-z][a-z/]*|1/min)", re.IGNORECASE)
+
+
 def _number(
     where: str,
     column: str,
@@ -150,13 +169,25 @@ def _number(
     """A cell as a number in (low, high], or an error naming the row, column and range.
 
     With ``decimal_comma`` (a manifest whose columns a semicolon or tab separates) a number
-    written with a decimal comma (``1797,5``) is read as one.
+    written with a decimal comma (``1797,5``) is read as one. A number may carry one of the
+    column's :data:`MANIFEST_UNITS` (``12 kHz``): it is converted to the column's unit.
     """
     text = str(value).strip()
+    factor = 1.0
+    units = MANIFEST_UNITS.get(column, {})
+    written = _NUMBER_AND_UNIT.fullmatch(text)
+    if written and units:
+        if written["unit"].lower() not in units:
+            raise RecordingError(
+                f"{where}: {column} = {value!r}: the unit {written['unit']!r} is not one of "
+                f"{', '.join(units)} (or none: {unit})"
+            )
+        factor = units[written["unit"].lower()]
+        text = written["number"].strip()
     if decimal_comma and _DECIMAL_COMMA.fullmatch(text):
         text = text.replace(",", ".")
     try:
-        number = float(text)
+        number = float(text) * factor
     except ValueError:
         raise RecordingError(f"{where}: {column} = {value!r} is not a number [{unit}]") from None
     if not (math.isfinite(number) and low < number <= high):
@@ -171,13 +202,35 @@ def _in_folder(folder: Path, name: str) -> tuple[str, Path]:
     """A manifest's file name and its path, written on Windows or not.
 
     A name with backslashes (``pump3`` backslash ``a.mat``, as a Windows spreadsheet
-    writes it) is read with ``/`` where no file has the name as written.
+    writes it) is read with ``/`` where no file has the name as written; a name no file has
+    is matched regardless of case where exactly one file does (Windows ignores case:
+    ``PUMP3/A.MAT`` for ``pump3/a.mat``).
     """
     path = folder / name
     if "\\" in name and not path.exists():
         name = PureWindowsPath(name).as_posix().removeprefix("./")
         path = folder / name
+    if not path.exists():
+        found = _ignoring_case(folder, name)
+        if found is not None:
+            return found.relative_to(folder).as_posix(), found
     return name, path
+
+
+def _ignoring_case(folder: Path, name: str) -> Path | None:
+    """The one path under ``folder`` that is ``name`` regardless of case, else None."""
+    here = folder
+    for part in Path(name).parts:
+        if (here / part).exists():
+            here = here / part
+            continue
+        if not here.is_dir():
+            return None
+        same = [child for child in here.iterdir() if child.name.casefold() == part.casefold()]
+        if len(same) != 1:
+            return None
+        here = same[0]
+    return here
 
 
 def read_manifest(

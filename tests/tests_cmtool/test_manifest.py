@@ -96,10 +96,48 @@ def test_a_manifest_written_on_windows_finds_its_files_in_subfolders(tmp_path):
         read_manifest(tmp_path)
 
 
+def test_a_manifests_rates_and_speeds_may_carry_their_units(tmp_path):
+    """``12 kHz``, ``25,6 kS/s``, ``1797 rpm`` or a shaft's ``29.95 Hz`` are what people write
+    in a spreadsheet; each was refused as "not a number"."""
+    rows = [
+        {**GOOD, "sampling_rate_hz": "12 kHz", "shaft_rpm": "1797 rpm"},
+        {**GOOD, "file": "b.npy", "sampling_rate_hz": "25.6 kS/s", "shaft_rpm": "29.95 Hz"},
+        {**GOOD, "file": "c.npy", "sampling_rate_hz": "48828.125 Hz", "shaft_rpm": "1500 r/min"},
+    ]
+    entries = read_manifest(_folder(tmp_path, rows))
+    assert [e.fs_hz for e in entries] == pytest.approx([12000.0, 25600.0, 48828.125])
+    assert [e.rpm for e in entries] == pytest.approx([1797.0, 1797.0, 1500.0])
+    text = "file;sampling_rate_hz;shaft_rpm\na.npy;48,8 kHz;1797,5 RPM\n"
+    (tmp_path / "MANIFEST.csv").write_text(text)
+    (entry,) = read_manifest(tmp_path)
+    assert (entry.fs_hz, entry.rpm) == pytest.approx((48800.0, 1797.5))
+
+
+def test_a_manifest_finds_its_files_regardless_of_case_where_only_one_matches(tmp_path):
+    """Windows ignores case, so a manifest written there may name ``PUMP3\\A.NPY`` for
+    pump3/a.npy; where two files differ only by case the name is not guessed."""
+    (tmp_path / "pump3").mkdir()
+    rng = np.random.default_rng(7)
+    for name in ("a.npy", "twin.npy", "TWIN.npy"):
+        np.save(tmp_path / "pump3" / name, rng.standard_normal(12000))
+    pd.DataFrame([{**GOOD, "file": "PUMP3\\A.NPY"}]).to_csv(tmp_path / "MANIFEST.csv", index=False)
+    (entry,) = read_manifest(tmp_path)
+    assert entry.file == "pump3/a.npy" and entry.path == tmp_path / "pump3" / "a.npy"
+    pd.DataFrame([{**GOOD, "file": "pump3/Twin.npy"}]).to_csv(
+        tmp_path / "MANIFEST.csv", index=False
+    )
+    with pytest.raises(FileNotFoundError, match=r"line 2 .*Twin.npy: no such file"):
+        read_manifest(tmp_path)
+
+
 @pytest.mark.parametrize(
     ("change", "message"),
     [
         ({"shaft_rpm": "abc"}, r"line 2 \(a.npy\): shaft_rpm = 'abc' is not a number \[rpm\]"),
+        (
+            {"sampling_rate_hz": "12 kg"},
+            r"sampling_rate_hz = '12 kg': the unit 'kg' is not one of hz",
+        ),
         ({"shaft_rpm": -5}, r"shaft_rpm = -5 rpm is outside the allowed range \(0, 120000\]"),
         ({"sampling_rate_hz": 0}, r"sampling_rate_hz = 0 Hz is outside the allowed range"),
         ({"fault_location": "weird"}, r"fault_location = 'weird' is not one of ball, healthy"),
