@@ -441,6 +441,10 @@ def _folder_row_kept(task) -> tuple[tuple[dict, dict], list]:
     return keeping_warnings(_folder_row, task)
 
 
+#: The manifest's columns a folder's JSON object repeats under ``manifest``.
+_MANIFEST_KEYS = ("bearing", "rpm", "fs_hz", "machine", "baseline", "manifest_label")
+
+
 def _folder_row(task) -> tuple[dict, dict]:
     """One manifest entry's row of ``verdicts.csv`` and its JSON object (report written)."""
     from ..io import read_recording
@@ -453,6 +457,10 @@ def _folder_row(task) -> tuple[dict, dict]:
     if entry.baseline is not None:
         row["baseline"] = entry.baseline.relative_to(Path(args.recording)).as_posix()
     row["manifest_label"] = None if entry.label == "unknown" else entry.label
+    # what the manifest says of the recording, in its JSON object whether diagnosed or not
+    listed = {"manifest": {k: row[k] for k in _MANIFEST_KEYS if row[k] is not None}}
+    if entry.time is not None:
+        listed["manifest"]["time"] = entry.time.isoformat()
     try:
         variable = entry.variable or args.variable  # the manifest's, else --variable
         x, meta = read_recording(entry.path, variable=variable, channel=args.channel)
@@ -491,7 +499,7 @@ def _folder_row(task) -> tuple[dict, dict]:
             diagnosis.assumptions["speed_measured"] = measured
     except (ValueError, FileNotFoundError) as error:  # this recording only
         row["error"] = str(error)
-        return row, {"file": entry.file, "error": str(error)}
+        return row, {"file": entry.file, "error": str(error), "verdict": None, **listed}
     top = diagnosis.candidates[0]
     wav = diagnosis.waviness
     row.update(
@@ -522,7 +530,7 @@ def _folder_row(task) -> tuple[dict, dict]:
         row[f"{fault.replace(' ', '_')}_baseline_margin_db"] = margin
     if out is not None:
         _write_report(diagnosis, out / _report_folder(entry.file), x, entry.fs_hz)
-    return row, {"file": entry.file, **diagnosis.to_dict()}  # as an error's object names it
+    return row, {"file": entry.file, **diagnosis.to_dict(), **listed}  # as an error's object
 
 
 def _index_text(table, trends: list[Path], out: Path) -> str:

@@ -1318,6 +1318,10 @@ def test_order_tracking_keeps_a_drifting_machines_fault_lines(tmp_path, capsys):
     assert fault["file"] == "fault.csv"
     assert "tacho channel acc is the channel diagnosed" in fault["error"]
     assert noise["verdict"] == "healthy"
+    # each object says what the manifest says of its recording, diagnosed or not
+    assert fault["verdict"] is None
+    for obj in (fault, noise):
+        assert obj["manifest"] == {"bearing": "6205", "rpm": 1800.0, "fs_hz": 12000.0}
     for cells, said in (
         ("fault.csv,12000,1800,tacho,0,true", "pulses_per_rev = '0' is not an integer"),
         ("fault.csv,12000,1800,tacho,1,maybe", "order_track = 'maybe' is not one of"),

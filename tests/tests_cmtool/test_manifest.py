@@ -113,6 +113,26 @@ def test_a_manifests_rates_and_speeds_may_carry_their_units(tmp_path):
     assert (entry.fs_hz, entry.rpm) == pytest.approx((48800.0, 1797.5))
 
 
+def test_a_folders_json_says_what_the_manifest_says_of_each_recording(tmp_path, capsys):
+    """Machine, time and label were in verdicts.csv only: a JSON reader of a route had no
+    way to tell which machine an object was, nor when it was measured."""
+    rows = [
+        {**GOOD, "machine": "pump 3", "time": "2026-01-15T08:00"},
+        {**GOOD, "file": "b.npy", "shaft_rpm": "29.95 Hz", "fault_location": ""},
+    ]
+    assert main(["diagnose", str(_folder(tmp_path, rows)), "--json"]) == 0
+    first, second = json.loads(capsys.readouterr().out)
+    assert first["manifest"] == {
+        "bearing": "6205",
+        "rpm": 1797.0,
+        "fs_hz": 12000.0,
+        "machine": "pump 3",
+        "manifest_label": "inner race",
+        "time": "2026-01-15T08:00:00",
+    }
+    assert second["manifest"] == {"bearing": "6205", "rpm": pytest.approx(1797.0), "fs_hz": 12000.0}
+
+
 def test_a_manifest_finds_its_files_regardless_of_case_where_only_one_matches(tmp_path):
     """Windows ignores case, so a manifest written there may name ``PUMP3\\A.NPY`` for
     pump3/a.npy; where two files differ only by case the name is not guessed."""
