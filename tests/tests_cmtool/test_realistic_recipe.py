@@ -3,6 +3,7 @@
 import json
 import math
 import tomllib
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -119,6 +120,24 @@ def test_chain_keys_are_validated():
     del bad["sensor"]["fault_snr_db"]
     with pytest.raises(ParameterError, match="background_db"):
         validate_recipe(bad)
+
+
+def test_the_recipes_of_machines_draw_their_bearings_form_lines():
+    """Stop 67 (docs/realism.md 9, against bars written before the draws): the rig recipes and
+    the universal one draw the bearing's own form lines at the argued ranges; the small
+    reference dataset and the detector benchmark (published figures) do not."""
+    datasets = Path(__file__).resolve().parents[2] / "datasets"
+    for name in ("cwru-rig", "mfpt-rig", "universal", "small", "detector-bench"):
+        recipe = validate_recipe(tomllib.loads((datasets / f"{name}.toml").read_text()))
+        background = recipe.get("background", {})
+        drawn = {k: background.get(k) for k in ("form_inner_db", "form_ball_db")}
+        if name in ("small", "detector-bench"):
+            assert drawn == {"form_inner_db": None, "form_ball_db": None}, name
+        else:
+            assert drawn == {
+                "form_inner_db": {"range": (-20.0, 10.0)},
+                "form_ball_db": {"range": (-30.0, 0.0)},
+            }, name
 
 
 def test_the_bearings_own_form_lines_stand_at_its_rates_and_drawn_levels():
