@@ -38,7 +38,7 @@ from .csv_layout import text_encoding
 from .diagnose import CANONICAL, VIBRATION_UNITS
 from .io import RecordingError, geometry_from_spec
 
-__all__ = ["MANIFEST_BEARINGS", "ManifestEntry", "read_manifest"]
+__all__ = ["MANIFEST_BEARINGS", "MANIFEST_UNITS", "ManifestEntry", "read_manifest"]
 
 #: Bearings of the rigs a manifest's ``dataset`` column may name.
 MANIFEST_BEARINGS = {"CWRU": "6205", "MFPT": "mfpt"}
