@@ -660,11 +660,18 @@ def test_a_folder_with_a_manifest_is_diagnosed_recording_by_recording(
     assert [d["verdict"] for d in batch][:2] == ["outer race", "healthy"]
     assert batch[0]["candidates"] == alone["candidates"]
     assert batch[0]["assumptions"]["file"] == "pump/de.npy"
-    # each object names its recording first, as one not diagnosed does ({"file", "error"})
+    # each object names its recording first, as one not diagnosed does ({"file", "error"}),
+    # and what the manifest says of it last
     assert [list(d)[0] for d in batch] == ["file"] * len(batch)
     assert batch[0]["file"] == "pump/de.npy"
-    assert {k: v for k, v in batch[0].items() if k != "file"} == alone | {
+    assert {k: v for k, v in batch[0].items() if k not in ("file", "manifest")} == alone | {
         "assumptions": batch[0]["assumptions"]
+    }
+    assert batch[0]["manifest"] == {
+        "bearing": "6205",
+        "rpm": 1797.0,
+        "fs_hz": 12000.0,
+        "manifest_label": "outer race",
     }
     # two processes give the same answers, in the manifest's order
     assert main(["diagnose", str(folder), "--json", "--allow-clipping", "--workers", "2"]) == 0
