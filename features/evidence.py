@@ -31,7 +31,10 @@ probability under Gaussian noise (:func:`features.separation.line_false_alarm`; 
 fundamental's counted over every band searched) is combined by Fisher's method (-2 sum ln p
 is chi-square with 2 m degrees of freedom under noise), and the fault's probability is twice
 the smaller of the fundamental's and the family's (Bonferroni over the two tests: one clear
-fundamental keeps its weight, a family of moderate lines adds up). ``evidence_db`` is that
+fundamental keeps its weight, a family of moderate lines adds up). Where the families of K
+bands are weighed and the strongest kept (``EVIDENCE_BANDS``), the fundamental's union bound
+already covers every band but the family's test was made K times: the factor is 1 + K
+(:func:`combine_lines`), 2 for the one band. ``evidence_db`` is that
 probability on the dB scale of the detection threshold
 (:func:`features.separation.ratio_for_false_alarm`), so that a fault is detected when
 ``evidence_db`` reaches it, at the same false-alarm probability per fault. A line that lies
@@ -187,7 +190,9 @@ class Evidence:
     families: dict[str, list] = field(default_factory=dict)
 
 
-def combine_lines(probabilities: list[float], fundamental: float) -> tuple[float, float]:
+def combine_lines(
+    probabilities: list[float], fundamental: float, bands_weighed: int = 1
+) -> tuple[float, float]:
     """A fault's false-alarm probability from its lines' (module docstring).
 
     Parameters
@@ -196,23 +201,30 @@ def combine_lines(probabilities: list[float], fundamental: float) -> tuple[float
         Each line's probability under noise, the fundamental's first (over every band).
     fundamental : float
         The fundamental's probability (the first of ``probabilities``).
+    bands_weighed : int
+        Bands whose families were weighed, the strongest kept (K): the fundamental's
+        probability already counts every band, the family's test is made K times, so the
+        two tests together cost 1 + K (Bonferroni); 1 gives the factor 2.
 
     Returns
     -------
     (float, float)
-        The fault's probability, min(1, 2 min(fundamental, Fisher)), and Fisher's alone.
+        The fault's probability, min(1, (1 + K) min(fundamental, Fisher)), and Fisher's alone.
 
     Examples
     --------
     >>> p, fisher = combine_lines([1e-3, 1e-2, 1e-2], 1e-3)
     >>> bool(fisher < 1e-3 and p == 2 * fisher)  # three moderate lines outweigh one
     True
+    >>> p6, _ = combine_lines([1e-3, 1e-2, 1e-2], 1e-3, bands_weighed=6)
+    >>> bool(p6 == 7 * fisher)  # the family's test made in six bands, the fundamental's once
+    True
     """
     from scipy.stats import chi2
 
     logs = np.log(np.clip(probabilities, 1e-300, 1.0))
     fisher = float(chi2.sf(-2.0 * float(logs.sum()), 2 * len(probabilities)))
-    return min(1.0, 2.0 * min(fundamental, fisher)), fisher
+    return min(1.0, (1.0 + bands_weighed) * min(fundamental, fisher)), fisher
 
 
 def fault_evidence(x: np.ndarray, fs: float, fault_frequencies: Mapping[str, float]) -> Evidence:
@@ -318,7 +330,7 @@ def best_band_evidence(
             score_db=float(selection.scores_db[i, j]),
             rate=selection.rates[j],
         )
-        evidence = _evidence_in_band(random_part, fs, ctx, chosen)
+        evidence = _evidence_in_band(random_part, fs, ctx, chosen, len(rows))
         weighed = max(v["evidence_db"] for v in evidence.combined.values())
         if best is None or weighed - evidence.threshold_db > best_margin:
             best, best_margin = evidence, weighed - evidence.threshold_db
@@ -328,9 +340,16 @@ def best_band_evidence(
 
 
 def _evidence_in_band(
-    random_part: np.ndarray, fs: float, ctx: dict[str, float], selection: BandSelection
+    random_part: np.ndarray,
+    fs: float,
+    ctx: dict[str, float],
+    selection: BandSelection,
+    bands_weighed: int = 1,
 ) -> Evidence:
-    """:func:`fault_evidence` once the random part and the band are known."""
+    """:func:`fault_evidence` once the random part and the band are known.
+
+    The band is one of ``bands_weighed`` whose families are weighed (:func:`combine_lines`).
+    """
     rates = {k: ctx[k] for k in EVIDENCE_FAULTS}
     env = envelope(random_part, fs, band=selection.band)
     ef, ea = amplitude_spectrum(env, fs)
@@ -362,14 +381,26 @@ def _evidence_in_band(
     out["evidence_margin_db"] = best - threshold
     spacings = {fault: ctx.get(_SIDEBANDS.get(fault, ""), 0.0) for fault in EVIDENCE_FAULTS}
     combined = explain_shared_lines(
-        found_all, len(selection.bands), searched, floor, float(ef[1] - ef[0]), spacings
+        found_all,
+        len(selection.bands),
+        searched,
+        floor,
+        float(ef[1] - ef[0]),
+        spacings,
+        bands_weighed=bands_weighed,
     )
     cage = [
         (f"cage {k}x", slip_line(ef, ea, k * ctx["ftf"]))
         for k in (CAGE_HARMONICS if cage_lines_weighed(random_part.size / fs, ctx["ftf"]) else ())
     ]
     combined["two_bsf"] = _with_cage_lines(
-        combined["two_bsf"], found_all["two_bsf"], cage, len(selection.bands), searched, floor
+        combined["two_bsf"],
+        found_all["two_bsf"],
+        cage,
+        len(selection.bands),
+        searched,
+        floor,
+        bands_weighed,
     )
     return Evidence(out, selection, threshold, lines, random_part, ef, ea, combined, found_all)
 
@@ -403,6 +434,8 @@ def explain_shared_lines(
     floor: int,
     bin_width: float,
     spacings: Mapping[str, float] | None = None,
+    *,
+    bands_weighed: int = 1,
 ) -> dict[str, dict]:
     """Each fault's line family weighed, the lines another fault accounts for left out.
 
@@ -432,13 +465,16 @@ def explain_shared_lines(
         The envelope spectrum's bin width [Hz].
     spacings : mapping of str to float, optional
         Per fault, the spacing of its sidebands [Hz] (0 or absent: none).
+    bands_weighed : int
+        Bands whose families are weighed, the strongest kept (:func:`combine_lines`).
 
     Returns
     -------
     dict of str to dict
         As :attr:`Evidence.combined`, each with ``explained``: a list of (line, fault, k).
     """
-    raw = {fault: _weigh(family, n_bands, searched, floor) for fault, family in families.items()}
+    counts = (n_bands, searched, floor, bands_weighed)
+    raw = {fault: _weigh(family, *counts) for fault, family in families.items()}
     order = sorted(raw, key=lambda f: (raw[f]["evidence_db"], families[f][0][1][0]), reverse=True)
     combined: dict[str, dict] = {}
     spacings = spacings or {}
@@ -452,7 +488,7 @@ def explain_shared_lines(
             if source is not None:
                 explained.append((name, *source))
                 family[i] = (name, (0.0, *line[1:]))
-        weighed = _weigh(family, n_bands, searched, floor) if explained else raw[fault]
+        weighed = _weigh(family, *counts) if explained else raw[fault]
         combined[fault] = {**weighed, "explained": explained}
         if weighed["detected"]:
             explainers.append((fault, families[fault][0][1][1], spacings.get(fault, 0.0)))
@@ -477,7 +513,15 @@ def cage_lines_weighed(duration: float, cage_rate: float) -> bool:
     return duration * cage_rate >= MIN_CAGE_REVOLUTIONS
 
 
-def _with_cage_lines(weighed: dict, family, cage, n_bands: int, searched: int, floor: int):
+def _with_cage_lines(
+    weighed: dict,
+    family,
+    cage,
+    n_bands: int,
+    searched: int,
+    floor: int,
+    bands_weighed: int = 1,
+):
     """The ball's weighing with its cage-rate lines added to its family.
 
     A ball pit strikes only while its ball crosses the load zone, once per cage revolution,
@@ -488,7 +532,8 @@ def _with_cage_lines(weighed: dict, family, cage, n_bands: int, searched: int, f
     explained = weighed.get("explained", [])
     names = {name for name, *_ in explained}
     family = [(name, (0.0, *line[1:]) if name in names else line) for name, line in family]
-    return {**_weigh(family + list(cage), n_bands, searched, floor), "explained": explained}
+    counts = (n_bands, searched, floor, bands_weighed)
+    return {**_weigh(family + list(cage), *counts), "explained": explained}
 
 
 def _on_series(
@@ -508,8 +553,11 @@ def _on_series(
     return None
 
 
-def _weigh(family, n_bands: int, searched: int, floor: int) -> dict:
-    """One fault's line family weighed into one probability and its dB equivalent."""
+def _weigh(family, n_bands: int, searched: int, floor: int, bands_weighed: int = 1) -> dict:
+    """One fault's line family weighed into one probability and its dB equivalent.
+
+    The family is one of ``bands_weighed`` bands', the strongest kept (:func:`combine_lines`).
+    """
     named = []
     fundamental = 1.0
     for index, (name, (ratio, _, bins, floor_bins)) in enumerate(family):
@@ -518,9 +566,10 @@ def _weigh(family, n_bands: int, searched: int, floor: int) -> dict:
             fundamental = n_bands * p  # the union bound, uncapped: a score below 1 too
             p = min(1.0, fundamental)
         named.append((name, round(ratio, 2), p))
-    probability, fisher = combine_lines([p for _, _, p in named], named[0][2])
+    probability, fisher = combine_lines([p for _, _, p in named], named[0][2], bands_weighed)
     # the dB figure from the uncapped bound, so that weak evidence still ranks (ROC)
-    evidence_db = ratio_for_false_alarm(2.0 * min(fundamental, fisher), n_bands, searched, floor)
+    tests = 1.0 + bands_weighed
+    evidence_db = ratio_for_false_alarm(tests * min(fundamental, fisher), n_bands, searched, floor)
     if probability <= 1e-299:  # beyond the tabulated curve: the fundamental speaks for itself
         evidence_db = max(evidence_db, family[0][1][0])
     return {
