@@ -88,9 +88,11 @@ _SIDEBANDS = {"bpfi": "shaft", "two_bsf": "ftf"}
 SLIP_SEARCH = (0.02, 0.005)
 #: Bands weighed per record: of the candidate bands, those whose envelope shows a fault rate's
 #: line most clearly; every fault's lines are weighed in each, and the band where the weighed
-#: evidence stands furthest over its threshold is kept (the threshold already counts every
-#: candidate band). 1, as shipped: the band the line ranks highest alone. 6 was measured in
-#: stop 56 and not adopted (docs/diagnosis.md, "The band chosen by the weighed evidence").
+#: evidence stands furthest over its threshold is kept (the threshold counts every candidate
+#: band for the fundamental; the family's test, made in each band weighed, is counted K times:
+#: :func:`combine_lines`). 1, as shipped: the band the line ranks highest alone. 6 was measured
+#: in stops 56 and 68, with and without that count, and not adopted (docs/diagnosis.md, "The
+#: band chosen by the weighed evidence").
 EVIDENCE_BANDS = 1
 
 EVIDENCE_NAMES = tuple(
