@@ -213,6 +213,11 @@ def combine_lines(
     (float, float)
         The fault's probability, min(1, (1 + K) min(fundamental, Fisher)), and Fisher's alone.
 
+    Raises
+    ------
+    FeatureError
+        ``bands_weighed`` not an integer of at least 1.
+
     Examples
     --------
     >>> p, fisher = combine_lines([1e-3, 1e-2, 1e-2], 1e-3)
@@ -221,9 +226,17 @@ def combine_lines(
     >>> p6, _ = combine_lines([1e-3, 1e-2, 1e-2], 1e-3, bands_weighed=6)
     >>> bool(p6 == 7 * fisher)  # the family's test made in six bands, the fundamental's once
     True
+    >>> combine_lines([1e-3], 1e-3, bands_weighed=0)
+    Traceback (most recent call last):
+    ...
+    features._validate.FeatureError: bands_weighed = 0 is outside the allowed range [1, inf)
     """
     from scipy.stats import chi2
 
+    if not isinstance(bands_weighed, (int, np.integer)) or bands_weighed < 1:
+        raise FeatureError(
+            f"bands_weighed = {bands_weighed!r} is outside the allowed range [1, inf)"
+        )
     logs = np.log(np.clip(probabilities, 1e-300, 1.0))
     fisher = float(chi2.sf(-2.0 * float(logs.sum()), 2 * len(probabilities)))
     return min(1.0, (1.0 + bands_weighed) * min(fundamental, fisher)), fisher
