@@ -16,6 +16,7 @@ import scipy.fft
 from scipy.signal import czt
 
 from ._validate import FeatureError, check_count, check_fs, check_positive, check_signal
+from .separation import INSTRUMENT_FLOOR_DB
 from .spectra import peak_offset_bins
 
 __all__ = [
@@ -78,8 +79,10 @@ def _peak(
     """The largest bin of ``spectrum`` in [low, high] Hz away from the mains harmonics.
 
     Bins within ``mask_hz`` of a harmonic of ``MAINS_HZ`` are left out. Returns its
-    frequency [Hz] (parabolic interpolation on the log amplitude) and its amplitude (0 when
-    every bin is masked).
+    frequency [Hz] (parabolic interpolation on the log amplitude) and its amplitude, 0 when
+    every bin is masked or the bin is the search's first or last and the spectrum rises
+    beyond it (the skirt of a line outside the search, whose interpolation would put the
+    rate at that line's frequency).
     """
     lo = max(1, int(math.ceil(low / fine)))
     hi = min(spectrum.size - 2, int(math.floor(high / fine)))
@@ -88,7 +91,10 @@ def _peak(
     for m in MAINS_HZ:
         part[np.abs(f - m * np.maximum(np.round(f / m), 1.0)) <= mask_hz] = 0.0
     k = lo + int(np.argmax(part))
-    if part[k - lo] <= 0.0:
+    outward = (k == lo and spectrum[k - 1] > spectrum[k]) or (
+        k == hi and spectrum[k + 1] > spectrum[k]
+    )
+    if part[k - lo] <= 0.0 or outward:
         return float(k * fine), 0.0
     return (k + peak_offset_bins(spectrum, k)) * fine, float(spectrum[k])
 
@@ -120,10 +126,16 @@ def shaft_rate_from_spectrum(
     ``given_hz`` is the 1x line if it stands ``SHAFT_LINE_DB`` over the median of the spectrum
     within 20 % of ``given_hz`` and the spectrum two bins either side is 6 dB lower (a line,
     not the skirt of a stronger one); bins within three of a harmonic of 50 or 60 Hz (mains)
-    are not searched. Its frequency is the peak's, interpolated. Its harmonics are
-    not used: on the CWRU rig's recipe the fan-end 6203's outer-race line (3.05 x the shaft
-    rate) and the 60 Hz mains harmonics stand next to the 2x-4x lines and pulled the rate by
-    1-2 % when they were (docs/diagnosis.md, "The speed the rates come from").
+    are not searched. The median is taken no lower than that of a good measurement chain's
+    white floor, ``features.separation.INSTRUMENT_FLOOR_DB`` under the record's RMS (the
+    floor the separation adds): a noise-free simulated record has no floor of its own, and
+    content 130-160 dB under its RMS (rounding, far leakage) was taken for the shaft's line,
+    which then moved every fault rate. Its frequency is the peak's, interpolated; the
+    search's first or last bin on the skirt of a line outside the search is no line. Its
+    harmonics are not used: on the CWRU rig's recipe the fan-end 6203's outer-race line
+    (3.05 x the shaft rate) and the 60 Hz mains harmonics stand next to the 2x-4x lines and
+    pulled the rate by 1-2 % when they were (docs/diagnosis.md, "The speed the rates come
+    from").
 
     Parameters
     ----------
@@ -172,7 +184,11 @@ def shaft_rate_from_spectrum(
     last_bin = min(pad * n // 2, int(math.ceil(1.2 * given_hz / fine)) + 2 * pad + 2)
     spectrum = _padded_spectrum((x - x.mean()) * np.hanning(n), pad * n, first_bin, last_bin)
     near = spectrum[int(0.8 * given_hz / fine) : int(math.ceil(1.2 * given_hz / fine)) + 1]
-    floor = float(np.median(near))
+    # the white floor of a good measurement chain, INSTRUMENT_FLOOR_DB under the RMS: the
+    # median of its Hann-windowed spectrum (a Rayleigh median, sqrt(ln 2 E|X|^2))
+    chain_floor = float(np.std(x)) * 10.0 ** (-INSTRUMENT_FLOOR_DB / 20.0)
+    chain_floor *= math.sqrt(math.log(2.0) * 0.375 * (n - 1))  # sum(hanning(n) ** 2)
+    floor = max(float(np.median(near)), chain_floor)
     low, high = given_hz * (1 - search), given_hz * (1 + search)
     first, height = _peak(spectrum, fine, low, high, mask_hz=3.0 * df)
     line_db = 20.0 * math.log10(max(height, 1e-300) / max(floor, 1e-300))

@@ -43,6 +43,42 @@ def test_no_line_no_rate_and_a_mains_line_is_not_taken_for_the_shaft():
     assert estimate.found and estimate.rate_hz == pytest.approx(48.0, abs=0.05)
 
 
+def test_a_noise_free_records_faint_line_is_no_shaft_line():
+    """A record with no floor of its own (a noise-free simulation) is judged over a good
+    measurement chain's, INSTRUMENT_FLOOR_DB under its RMS: a line 80 dB under a strong
+    ball-pass train is not the shaft's (against its own median it stood far over 12 dB);
+    40 dB under, it is. The record's length is a fast FFT's and an awkward one (chirp-z)."""
+    from features.separation import INSTRUMENT_FLOOR_DB
+
+    for n in (12000, 12007):
+        t = np.arange(n) / FS
+        train = sum(np.sin(2 * np.pi * k * 172.07 * t + k) / k for k in range(1, 30))
+        rms = np.std(train)
+        for level_db, found in ((-80.0, False), (-40.0, True)):
+            line = np.sqrt(2) * rms * 10 ** (level_db / 20) * np.sin(2 * np.pi * 46.5 * t)
+            estimate = F.shaft_rate_from_spectrum(train + line, FS, 48.0)
+            assert estimate.found is found, (n, level_db, estimate)
+            if found:
+                assert estimate.rate_hz == pytest.approx(46.5, abs=0.1)  # a tenth of a bin
+                # its height over the chain's floor: the level over the floor's per-bin share
+                chain_db = INSTRUMENT_FLOOR_DB + level_db + 10 * np.log10(n / 2 / np.log(2))
+                assert estimate.line_db == pytest.approx(chain_db + 10 * np.log10(2 / 3), abs=1)
+
+
+def test_a_line_just_outside_the_search_is_not_found_on_its_skirt():
+    """A strong line 6.3 % under the rate given (outside the +/-5 % searched) makes the
+    search's lower edge its largest bin, on the line's skirt: no 1x line is found there (the
+    peak's interpolation put the rate at the outside line's own frequency), while the same
+    line 4 % under is."""
+    noise = 0.01 * np.random.default_rng(3).standard_normal(int(FS))
+    t = np.arange(noise.size) / FS
+    for below, found in ((0.063, False), (0.04, True)):
+        x = noise + np.sin(2 * np.pi * 48.0 * (1 - below) * t)
+        estimate = F.shaft_rate_from_spectrum(x, FS, 48.0)
+        assert estimate.found is found, (below, estimate)
+        assert 0.95 * 48.0 <= estimate.rate_hz <= 1.05 * 48.0
+
+
 def test_bad_input_is_refused_by_name():
     x = _shaft_lines(30.0)
     with pytest.raises(F.FeatureError, match="search = 0.5"):
