@@ -652,7 +652,7 @@ def diagnose_signal(
         }
     if verdict == "healthy" and waviness:
         diagnosis.waviness = _race_waviness(
-            diagnosis, geometry, freqs, rpm, fs, x.size / fs, load_n, baseline, baseline_fs
+            diagnosis, geometry, freqs, rpm, fs, x, load_n, baseline, baseline_fs
         )
     if baseline is not None:
         _against_baseline(diagnosis, baseline, baseline_fs or fs, rpm, geometry)
@@ -678,18 +678,22 @@ def _race_waviness(
     freqs: BearingFrequencies,
     rpm: float,
     fs: float,
-    record_s: float,
+    x: np.ndarray,
     load_n: float | None,
     baseline: np.ndarray | None,
     baseline_fs: float | None,
 ) -> dict | None:
-    """Race waviness against the baseline's lines, or the healthy model's (cmtool.waviness)."""
+    """Race waviness against the baseline's lines, or the healthy model's (cmtool.waviness).
+
+    Each line is read over the record's floor or a good chain's, whichever is higher.
+    """
     from generators import ParameterError, SimulationDivergedError
 
     from .waviness import (
         ASSUMED_LOAD_FACTORS,
         DEFAULT_LOAD_N,
         GIVEN_LOAD_FACTORS,
+        chain_floor,
         healthy_model_spectrum,
         race_waviness,
     )
@@ -704,7 +708,7 @@ def _race_waviness(
         factors = ASSUMED_LOAD_FACTORS if load_n is None else GIVEN_LOAD_FACTORS
         # the lines lie below 4 BPFI: a model rate of 25.6 kHz or the record's, if lower
         model_fs = min(float(fs), 25600.0)
-        duration = min(max(record_s, 0.5), 2.0)
+        duration = min(max(x.size / fs, 0.5), 2.0)
         try:
             reference = [
                 healthy_model_spectrum(geometry, rpm, k * load, model_fs, duration=duration)
@@ -721,7 +725,8 @@ def _race_waviness(
             f"load {loads} ({'given' if load_n is not None else 'assumed; --load'} "
             f"{load:g} N)"
         )
-    return race_waviness(spectra.frequencies, spectra.amplitude, freqs, geometry, reference)
+    floor = chain_floor(float(np.std(x)), x.size)
+    return race_waviness(spectra.frequencies, spectra.amplitude, freqs, geometry, reference, floor)
 
 
 def _against_baseline(

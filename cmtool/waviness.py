@@ -22,7 +22,8 @@ shaft, 118.88 Hz, is 1.1 bins from 120 Hz in a 1 s record, and the mains line wa
 inner-race waviness of order 8).
 
 Thresholds, fixed before any recording was read: a line must stand ``WAVINESS_SNR_DB`` over its
-local floor (the rule detector's one-band threshold), so high that Gaussian noise makes one of
+local floor (or a good chain's, :func:`chain_floor`, where that is higher: a noise-free
+simulation has none; stop 69) (the rule detector's one-band threshold), so high that Gaussian noise makes one of
 the candidates as high in at most ``WAVINESS_FALSE_ALARM`` of records (stop 48), and
 ``MODEL_EXCESS_DB`` over the model's
 healthy prediction (a factor of about three for what the model leaves out: the structure,
@@ -36,6 +37,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.signal
 
 import features
 from generators import BearingGeometry
@@ -49,6 +51,7 @@ __all__ = [
     "DEFAULT_LOAD_N",
     "ASSUMED_LOAD_FACTORS",
     "GIVEN_LOAD_FACTORS",
+    "chain_floor",
     "check_load_n",
     "WavinessLine",
     "candidate_lines",
@@ -175,11 +178,44 @@ def _half_width(df: float, line: float) -> float:
     return max(1.5 * df, 0.003 * line)
 
 
-def _line(f: np.ndarray, a: np.ndarray, line: float) -> tuple[float, float]:
-    """(SNR over the local floor [dB], peak [U]) of a line of a plain spectrum."""
+def _line(f: np.ndarray, a: np.ndarray, line: float, floor: float = 0.0) -> tuple[float, float]:
+    """(SNR [dB], peak [U]) of a line of a plain spectrum.
+
+    The SNR is over the local floor, or over ``floor`` where that is higher.
+    """
     df = f[1] - f[0]
-    snr, peak, _ = features.line_snr(f, a, line, half_width=_half_width(df, line), guard=_GUARD)
+    snr, peak, local = features.line_snr(
+        f, a, line, half_width=_half_width(df, line), guard=_GUARD
+    )
+    if floor > local:
+        snr = 20.0 * math.log10(max(peak, 1e-300) / floor)
     return snr, peak
+
+
+def chain_floor(rms: float, n: int) -> float:
+    """The median a good measurement chain's white floor has in a record's plain spectrum [U].
+
+    ``features.separation.INSTRUMENT_FLOOR_DB`` under the record's RMS, white, read as
+    :func:`features.amplitude_spectrum` reads it (Hann window, peak scaling): a Rayleigh
+    median, 2 sigma sqrt(ln 2 sum w^2) / sum w. A waviness line is read over this floor where
+    the record's own is lower (a noise-free simulation has none), as the separation and the
+    1x-line search read theirs.
+
+    Parameters
+    ----------
+    rms : float
+        The record's RMS [U].
+    n : int
+        Its length [samples].
+
+    Returns
+    -------
+    float
+        The floor's median amplitude [U].
+    """
+    window = scipy.signal.get_window("hann", int(n))
+    sigma = float(rms) * 10.0 ** (-features.separation.INSTRUMENT_FLOOR_DB / 20.0)
+    return 2.0 * sigma * math.sqrt(math.log(2.0) * float(np.sum(window**2))) / float(window.sum())
 
 
 def line_false_alarm(f: np.ndarray, line: float, snr_db: float) -> float:
@@ -307,6 +343,7 @@ def race_waviness(
     freqs: BearingFrequencies,
     geometry: BearingGeometry,
     model: list[tuple[np.ndarray, np.ndarray]] | None,
+    floor: float = 0.0,
 ) -> dict | None:
     """The waviness line that stands out most against the model's healthy lines, if one does.
 
@@ -323,6 +360,9 @@ def race_waviness(
         (a line is judged against the largest ratio any of them predicts), or a healthy
         recording's spectrum of the same machine; None reads lines by their height alone (a
         loaded healthy bearing's ball-pass lines then look like outer-race waviness).
+    floor : float
+        The lowest floor a line's height is read over [U] (:func:`chain_floor` of the
+        record; 0: the local floor alone).
 
     Returns
     -------
@@ -342,7 +382,7 @@ def race_waviness(
             peak = _peak_frequency(f, a, line.frequency)
             if abs(peak - mains) < abs(peak - line.frequency):
                 continue  # the peak is the mains harmonic's
-        snr, _ = _line(f, a, line.frequency)
+        snr, _ = _line(f, a, line.frequency, floor)
         if snr < WAVINESS_SNR_DB:
             continue
         if line_false_alarm(f, line.frequency, snr) * len(lines) > WAVINESS_FALSE_ALARM:

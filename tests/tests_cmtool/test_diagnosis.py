@@ -973,6 +973,50 @@ def test_white_noise_gives_no_waviness_hint():
         assert d.waviness is None, d.waviness
 
 
+def test_a_faint_line_of_a_noise_free_record_is_no_race_waviness():
+    """A noise-free record has no floor of its own: a line 100 dB under its RMS stood far over
+    its local floor, and 26 of 164 healthy verdicts of clean simulations carried a waviness
+    hint. Read over a good chain's floor (cmtool.waviness.chain_floor, the median of white
+    noise INSTRUMENT_FLOOR_DB under the RMS), that line is none; the same line 40 dB under
+    the RMS is read, with its surface and order."""
+    import features
+    from cmtool.waviness import candidate_lines, chain_floor, race_waviness
+    from generators import bearing, characteristic_frequencies
+
+    fs, n = 12000.0, 12000
+    t = np.arange(n) / fs
+    g = bearing("6205")
+    freqs = characteristic_frequencies(g, 29.95)
+    healthy = sum(np.sin(2 * np.pi * q * freqs.bpfo * t + q) for q in (1, 2, 3))
+    reference = [features.amplitude_spectrum(healthy, fs)]  # the healthy lines, as a baseline
+    # the highest inner-race candidate (3 BPFI + 3 f_s, 576 Hz): far from the lines' skirts
+    inner = max(
+        (c for c in candidate_lines(freqs, 9) if c.surface == "inner"), key=lambda c: c.frequency
+    )
+    rms = np.std(healthy)
+    white = np.random.default_rng(7).normal(0.0, rms * 10 ** (-50 / 20), n)
+    median = np.median(features.amplitude_spectrum(white, fs)[1][10:-10])
+    assert median == pytest.approx(chain_floor(rms, n), rel=0.05)
+    for level_db, read in ((-100.0, False), (-40.0, True)):
+        line = np.sqrt(2) * rms * 10 ** (level_db / 20) * np.sin(2 * np.pi * inner.frequency * t)
+        f, a = features.amplitude_spectrum(healthy + line, fs)
+        assert race_waviness(f, a, freqs, g, reference)["order"] == inner.order  # local floor
+        found = race_waviness(f, a, freqs, g, reference, chain_floor(np.std(healthy + line), n))
+        assert (found is not None) is read, (level_db, found)
+        if read:
+            assert (found["surface"], found["order"]) == ("inner", inner.order)
+    # and in diagnose_signal: a clean healthy 6203 (20 um, 2736 rpm, 829 N given, dry, scene
+    # shaft) whose line 87 dB under its RMS was read as inner-race waviness of order 27
+    from generators import OperatingCondition, Scene, SimulationSettings, simulate
+
+    g = bearing("6203", radial_internal_clearance=20e-6)
+    settings = SimulationSettings(fs=25600.0, duration=1.0, channels=("housing_acceleration_y",))
+    op = OperatingCondition.from_rpm(2736, 829.0)
+    x = simulate(g, op, scene=Scene(level="shaft", ehl=False), settings=settings)
+    d = diagnose_signal(x["housing_acceleration_y"], 25600.0, 2736, g, load_n=829.0)
+    assert d.verdict == "healthy" and d.waviness is None, d.waviness
+
+
 def test_a_mains_harmonic_is_not_read_as_race_waviness():
     """The MFPT bearing's BPFI at a 25 Hz shaft, 118.88 Hz, lies 1.1 bins from the 120 Hz mains
     harmonic in a 1 s record: a healthy bearing with a strong 120 Hz line gets no waviness
