@@ -139,7 +139,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--plot", help="spectrum plot (.png)")
     p.add_argument(
         "--envelope-plot",
-        help="envelope spectrum plot of the housing acceleration (.png; band by the kurtogram)",
+        help="envelope spectrum plot of the housing acceleration (.png; the band cmtool "
+        "diagnose chooses, named in the title)",
     )
     p.set_defaults(func=cmd_simulate)
 

@@ -21,13 +21,13 @@ line: a machine's electrical components put lines there (the MFPT bearing's BPFI
 shaft, 118.88 Hz, is 1.1 bins from 120 Hz in a 1 s record, and the mains line was read as
 inner-race waviness of order 8).
 
-Thresholds, fixed before any recording was read: a line must stand ``WAVINESS_SNR_DB`` over its
-local floor (or a good chain's, :func:`chain_floor`, where that is higher: a noise-free
-simulation has none; stop 69) (the rule detector's one-band threshold), so high that Gaussian noise makes one of
-the candidates as high in at most ``WAVINESS_FALSE_ALARM`` of records (stop 48), and
-``MODEL_EXCESS_DB`` over the model's
-healthy prediction (a factor of about three for what the model leaves out: the structure,
-the clearance, the film).
+Thresholds, fixed before any recording was read: a line must stand ``WAVINESS_SNR_DB`` (the rule
+detector's one-band threshold) over its local floor, or over a good chain's
+(:func:`chain_floor`) where that is higher (a noise-free simulation has no floor of its own;
+stop 69), so high that Gaussian noise makes one of the candidates as high in at most
+``WAVINESS_FALSE_ALARM`` of records (stop 48), and ``MODEL_EXCESS_DB`` over the model's healthy
+prediction (a factor of about three for what the model leaves out: the structure, the clearance,
+the film).
 """
 
 from __future__ import annotations
