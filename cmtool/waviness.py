@@ -212,7 +212,17 @@ def chain_floor(rms: float, n: int) -> float:
     -------
     float
         The floor's median amplitude [U].
+
+    Raises
+    ------
+    features.FeatureError
+        ``rms`` negative or not finite, or ``n`` not an integer of 4 or more, named with the
+        allowed range.
     """
+    if not (isinstance(rms, int | float | np.floating) and math.isfinite(rms) and rms >= 0.0):
+        raise features.FeatureError(f"rms = {rms!r} is outside the allowed range [0, inf) [U]")
+    if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 4:
+        raise features.FeatureError(f"n = {n!r} is outside the allowed range: integers >= 4")
     window = scipy.signal.get_window("hann", int(n))
     sigma = float(rms) * 10.0 ** (-features.separation.INSTRUMENT_FLOOR_DB / 20.0)
     return 2.0 * sigma * math.sqrt(math.log(2.0) * float(np.sum(window**2))) / float(window.sum())

@@ -997,6 +997,9 @@ def test_a_faint_line_of_a_noise_free_record_is_no_race_waviness():
     white = np.random.default_rng(7).normal(0.0, rms * 10 ** (-50 / 20), n)
     median = np.median(features.amplitude_spectrum(white, fs)[1][10:-10])
     assert median == pytest.approx(chain_floor(rms, n), rel=0.05)
+    for bad, match in (((-1.0, n), "rms = -1.0"), ((np.nan, n), "rms = nan"), ((rms, 3), "n = 3")):
+        with pytest.raises(features.FeatureError, match=match):
+            chain_floor(*bad)
     for level_db, read in ((-100.0, False), (-40.0, True)):
         line = np.sqrt(2) * rms * 10 ** (level_db / 20) * np.sin(2 * np.pi * inner.frequency * t)
         f, a = features.amplitude_spectrum(healthy + line, fs)
