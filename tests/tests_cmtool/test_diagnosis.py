@@ -716,6 +716,37 @@ def test_a_noise_free_records_faint_content_does_not_move_its_fault_rates(ehl):
     assert d.verdict == "healthy", (d.verdict, d.warnings)
 
 
+@pytest.mark.parametrize(
+    ("name", "rpm", "load", "clearance", "level", "ehl"),
+    [
+        ("6002", 879, 116.0, 40e-6, "full", False),
+        ("6002", 4638, 2800.0, 40e-6, "shaft+housing", False),
+        ("6205", 2880, 408.0, 5e-6, "shaft", False),
+        ("6305", 1042, 557.0, 10e-6, "full", False),
+        ("6308", 6586, 174.0, 20e-6, "full", False),
+        ("6203", 1468, 429.0, 20e-6, "shaft", True),
+        ("6203", 5089, 434.0, 2e-6, "shaft+housing", True),
+        ("6002", 1314, 1752.0, 40e-6, "shaft", True),
+        ("mfpt", 1701, 3599.0, 40e-6, "full", False),
+    ],
+)
+def test_clean_healthy_simulations_out_to_the_models_extremes_are_healthy(
+    name, rpm, load, clearance, level, ehl
+):
+    """Issue 18's 95 % beyond the catalog's defaults (benchmarks/sweep_healthy_extremes.py:
+    312 of 319 healthy). These nine, drawn by the sweep at 12 kHz (the 6002 at 4638 rpm drawn
+    at 4230 N, here under its C0r), were all called faulty when a peak 128-159 dB under the
+    RMS was taken for the shaft's line and moved the fault rates (checked: each fails so)."""
+    from generators import OperatingCondition, Scene, SimulationSettings, bearing, simulate
+
+    g = bearing(name, radial_internal_clearance=clearance)
+    settings = SimulationSettings(fs=12000.0, duration=1.0, channels=("housing_acceleration_y",))
+    op = OperatingCondition.from_rpm(rpm, load)
+    x = simulate(g, op, scene=Scene(level=level, ehl=ehl), settings=settings)
+    d = diagnose_signal(x["housing_acceleration_y"], 12000.0, rpm, g, waviness=False)
+    assert d.verdict == "healthy", (d.verdict, d.warnings)
+
+
 def test_rule_and_model_give_one_verdict_that_says_what_it_rests_on(bundle, small):
     from cmtool.diagnose import calibrated_confidence, rule_probabilities
 
