@@ -793,6 +793,9 @@ def _read_samples(
             name = params.get("bearing", {}).get("name")
             if name:
                 meta["bearing"] = str(name)
+            load = params.get("operating", {}).get("radial_load")
+            if load is not None:
+                meta["load_n"] = float(load)
         time_cols = [c for c in frame.columns if str(c).lower() in ("time", "t", "time_s")]
         numeric = [
             c

@@ -96,6 +96,8 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
     if (args.bearing or geometry) and meta.get("bearing") and name != meta["bearing"]:
         given = f"--bearing {args.bearing}" if args.bearing else f"--geometry {name}"
         warnings.append(f"{given} differs from the file's {meta['bearing']}")
+    load, load_said = _load_from_file(args.load, meta.get("load_n"))
+    warnings += load_said
     model = _model(args)
     baseline = baseline_fs = None
     if args.baseline:
@@ -122,7 +124,12 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
         baseline_fs=baseline_fs,
         warnings=warnings,
         tacho=tacho is not None,
+        load_n=load,
     )
+    if args.load is None and load is not None:
+        diagnosis.assumptions["load_n"] = (
+            f"{load:g} N, the file's (the radial load it was simulated at)"
+        )
     if tacho is not None:
         diagnosis.assumptions["speed_measured"] = tacho
     if args.report:
@@ -147,6 +154,29 @@ def _model(args: argparse.Namespace):
     return load_model(args.model)
 
 
+def _load_from_file(given: float | None, held: float | None) -> tuple[float | None, list[str]]:
+    """The radial load the waviness prediction takes, and a warning where two disagree.
+
+    ``--load`` (``given``), else the file's (``held``: a ``cmtool simulate`` file holds the
+    load it was simulated at).
+    """
+    from generators import ParameterError
+
+    from ..speeds import GIVEN_AGAINST_FILE
+    from ..waviness import check_load_n
+
+    if held is None:
+        return given, []
+    if given is not None:
+        if abs(held - given) > GIVEN_AGAINST_FILE * given:
+            return given, [f"--load {given:g} N differs from the file's {held:g} N; using --load"]
+        return given, []
+    try:
+        return check_load_n(held, "the file's radial load"), []
+    except ParameterError as error:
+        return None, [f"{error}: the waviness prediction assumes its default load"]
+
+
 def _diagnose_one(
     args: argparse.Namespace,
     x,
@@ -163,6 +193,7 @@ def _diagnose_one(
     baseline_fs: float | None = None,
     warnings: list[str] | None = None,
     tacho: bool = False,
+    load_n: float | None = None,
 ):
     """One recording's diagnosis, its assumptions completed (clipping refused first).
 
@@ -181,7 +212,7 @@ def _diagnose_one(
         model=model,
         baseline=baseline,
         baseline_fs=baseline_fs,
-        load_n=args.load,
+        load_n=args.load if load_n is None else load_n,
         unit=unit,
         speed_source=args.speed_source or ("given" if tacho else "auto"),
     )

@@ -1166,6 +1166,36 @@ def test_cmtool_generate_says_what_a_recipes_signals_cannot_show(tmp_path, capsy
     assert "warning: recipe conditions[3] ('ball'): ball waviness of odd order 3" in err, err
 
 
+def test_a_simulated_files_radial_load_sets_the_waviness_prediction(tmp_path, capsys):
+    """A `cmtool simulate` file holds the load it was simulated at: without --load the healthy
+    model's lines for race waviness are predicted about that load (0.7-1.4 x, as for a load
+    given) and the assumptions say it is the file's; --load wins, with a warning where it
+    differs; a file without one keeps the assumed 500 N (125-2000 N)."""
+    sim = tmp_path / "sim.parquet"
+    argv = ["simulate", "--duration", "0.5", "--rpm", "1800", "--load", "1500", "--out", str(sim)]
+    assert main(argv) == 0
+    capsys.readouterr()
+
+    def said(path, *extra):
+        assert main(["diagnose", str(path), "--json", *extra]) == 0
+        return json.loads(capsys.readouterr().out)
+
+    d = said(sim)
+    assert d["verdict"] == "healthy"
+    assert "1050-2100 N (given 1500 N)" in d["assumptions"]["waviness_reference"]
+    assert d["assumptions"]["load_n"].startswith("1500 N, the file's")
+    d = said(sim, "--load", "500")
+    assert "350-700 N (given 500 N)" in d["assumptions"]["waviness_reference"]
+    assert "--load 500 N differs from the file's 1500 N; using --load" in d["warnings"]
+    assert "load_n" not in d["assumptions"]
+    from scipy.io import wavfile
+
+    x = np.random.default_rng(3).standard_normal(12000)
+    wavfile.write(tmp_path / "rec.wav", 12000, x.astype(np.float32))
+    d = said(tmp_path / "rec.wav", "--rpm", "1800", "--bearing", "6205")
+    assert "125-2000 N (assumed; --load 500 N)" in d["assumptions"]["waviness_reference"]
+
+
 def test_a_rate_or_speed_given_against_the_files_own_is_warned_of(tmp_path, capsys):
     """--fs and --rpm win over the file's, with a warning where they differ; a rate read
     from a CSV's time column written to microseconds does not differ from the one it means."""
