@@ -357,7 +357,8 @@ def build_parser() -> argparse.ArgumentParser:
         type=float,
         default=None,
         help="radial load [N] of the healthy model that waviness lines are judged against "
-        "without --baseline (default 500 N, stated as assumed)",
+        "without --baseline (default: the load a cmtool simulate file holds, else 500 N, "
+        "stated as assumed)",
     )
     p.add_argument(
         "--allow-clipping",
