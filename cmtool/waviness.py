@@ -196,10 +196,10 @@ def chain_floor(rms: float, n: int) -> float:
     """The median a good measurement chain's white floor has in a record's plain spectrum [U].
 
     ``features.separation.INSTRUMENT_FLOOR_DB`` under the record's RMS, white, read as
-    :func:`features.amplitude_spectrum` reads it (Hann window, peak scaling): a Rayleigh
-    median, 2 sigma sqrt(ln 2 sum w^2) / sum w. A waviness line is read over this floor where
-    the record's own is lower (a noise-free simulation has none), as the separation and the
-    1x-line search read theirs.
+    :func:`features.amplitude_spectrum` reads it (Hann window, peak scaling): a Rayleigh median
+    (``features.separation.instrument_floor_median``) scaled as the spectrum is, 2 / sum w. A
+    waviness line is read over this floor where the record's own is lower (a noise-free
+    simulation has none), as the separation and the 1x-line search read theirs.
 
     Parameters
     ----------
@@ -219,13 +219,10 @@ def chain_floor(rms: float, n: int) -> float:
         ``rms`` negative or not finite, or ``n`` not an integer of 4 or more, named with the
         allowed range.
     """
-    if not (isinstance(rms, int | float | np.floating) and math.isfinite(rms) and rms >= 0.0):
-        raise features.FeatureError(f"rms = {rms!r} is outside the allowed range [0, inf) [U]")
     if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 4:
         raise features.FeatureError(f"n = {n!r} is outside the allowed range: integers >= 4")
-    window = scipy.signal.get_window("hann", int(n))
-    sigma = float(rms) * 10.0 ** (-features.separation.INSTRUMENT_FLOOR_DB / 20.0)
-    return 2.0 * sigma * math.sqrt(math.log(2.0) * float(np.sum(window**2))) / float(window.sum())
+    window = scipy.signal.get_window("hann", int(n))  # features.amplitude_spectrum's
+    return features.separation.instrument_floor_median(rms, window) * 2.0 / float(window.sum())
 
 
 def line_false_alarm(f: np.ndarray, line: float, snr_db: float) -> float:

@@ -60,6 +60,7 @@ __all__ = [
     "ratio_for_false_alarm",
     "LINE_DB",
     "FALSE_ALARM",
+    "instrument_floor_median",
 ]
 
 #: A spectral bin this far above its local median is a discrete line [dB].
@@ -98,6 +99,51 @@ SETTLED = 1e-6
 TRANSFORM_CACHE_BYTES = 64 * 2**20
 #: Sample rate over the highest frequency analysed (the analyser convention fs = 2.56 f_max).
 ANALYSER_RATIO = 2.56
+
+
+def instrument_floor_median(rms: float, window: np.ndarray) -> float:
+    """The median a good chain's white floor has in a windowed transform of a record [U].
+
+    White noise ``INSTRUMENT_FLOOR_DB`` under the record's RMS, transformed with ``window``
+    (no normalisation: ``abs(rfft(x * window))``): each bin's magnitude is Rayleigh with
+    E|X|^2 = sigma^2 sum(w^2), so its median is sigma sqrt(ln 2 sum(w^2)). A line read over
+    this where a record's own floor is lower is read as a recording of it would be (the 1x-line
+    search, the race waviness reader; the separation adds the floor itself).
+
+    Parameters
+    ----------
+    rms : float
+        The record's RMS [U], 0 or more.
+    window : array_like, 1-D
+        The window the transform applies (at least 4 samples).
+
+    Returns
+    -------
+    float
+        The floor's median magnitude [U].
+
+    Raises
+    ------
+    FeatureError
+        ``rms`` negative or not finite, or a window under 4 samples, named with the range.
+
+    Examples
+    --------
+    >>> x = np.random.default_rng(0).normal(0.0, 10 ** (-INSTRUMENT_FLOOR_DB / 20), 48000)
+    >>> w = np.hanning(x.size)
+    >>> ratio = np.median(np.abs(np.fft.rfft(x * w))[1:-1]) / instrument_floor_median(1.0, w)
+    >>> bool(abs(ratio - 1) < 0.02)
+    True
+    """
+    if not (isinstance(rms, int | float | np.floating) and math.isfinite(rms) and rms >= 0.0):
+        raise FeatureError(f"rms = {rms!r} is outside the allowed range [0, inf) [U]")
+    window = np.asarray(window, dtype=float)
+    if window.ndim != 1 or window.size < 4:
+        raise FeatureError(
+            f"window of {window.size} samples is outside the allowed range: 1-D, 4 or more"
+        )
+    sigma = float(rms) * 10.0 ** (-INSTRUMENT_FLOOR_DB / 20.0)
+    return sigma * math.sqrt(math.log(2.0) * float(np.sum(window * window)))
 
 
 def remove_harmonics(x: np.ndarray, fs: float, fundamentals: Sequence[float]) -> np.ndarray:

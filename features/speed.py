@@ -16,7 +16,7 @@ import scipy.fft
 from scipy.signal import czt
 
 from ._validate import FeatureError, check_count, check_fs, check_positive, check_signal
-from .separation import INSTRUMENT_FLOOR_DB
+from .separation import instrument_floor_median
 from .spectra import peak_offset_bins
 
 __all__ = [
@@ -182,13 +182,11 @@ def shaft_rate_from_spectrum(
     # lobe's two bins either side and the interpolation's neighbour
     first_bin = max(0, int(0.8 * given_hz / fine) - 2 * pad - 1)
     last_bin = min(pad * n // 2, int(math.ceil(1.2 * given_hz / fine)) + 2 * pad + 2)
-    spectrum = _padded_spectrum((x - x.mean()) * np.hanning(n), pad * n, first_bin, last_bin)
+    window = np.hanning(n)
+    spectrum = _padded_spectrum((x - x.mean()) * window, pad * n, first_bin, last_bin)
     near = spectrum[int(0.8 * given_hz / fine) : int(math.ceil(1.2 * given_hz / fine)) + 1]
-    # the white floor of a good measurement chain, INSTRUMENT_FLOOR_DB under the RMS: the
-    # median of its Hann-windowed spectrum (a Rayleigh median, sqrt(ln 2 E|X|^2))
-    chain_floor = float(np.std(x)) * 10.0 ** (-INSTRUMENT_FLOOR_DB / 20.0)
-    chain_floor *= math.sqrt(math.log(2.0) * 0.375 * (n - 1))  # sum(hanning(n) ** 2)
-    floor = max(float(np.median(near)), chain_floor)
+    # no lower than a good measurement chain's white floor (INSTRUMENT_FLOOR_DB under the RMS)
+    floor = max(float(np.median(near)), instrument_floor_median(float(np.std(x)), window))
     low, high = given_hz * (1 - search), given_hz * (1 + search)
     first, height = _peak(spectrum, fine, low, high, mask_hz=3.0 * df)
     line_db = 20.0 * math.log10(max(height, 1e-300) / max(floor, 1e-300))
