@@ -31,6 +31,7 @@ from .separation import (
     select_band,
     separate_discrete,
 )
+from .severity import EntryExit, ar_prediction_error, entry_exit_spacing
 from .spectra import (
     ISO_15242_BANDS,
     acceleration_from_velocity,
@@ -70,6 +71,9 @@ __all__ = [
     "Evidence",
     "fault_evidence",
     "slip_line",
+    "EntryExit",
+    "ar_prediction_error",
+    "entry_exit_spacing",
     "SpeedEstimate",
     "TachoSpeed",
     "shaft_rate_from_spectrum",
