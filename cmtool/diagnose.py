@@ -58,6 +58,7 @@ from .quality import (  # the record's checks, kept importable from here
     check_signal_quality,
     clipped_share,
 )
+from .severity import spall_size
 
 __all__ = [
     "diagnose_signal",
@@ -151,16 +152,6 @@ SPEED_CORRECTION = 0.01
 FAULTS = {"outer race": "bpfo", "inner race": "bpfi", "ball": "two_bsf"}
 FAULT_NAMES = {key: name for name, key in FAULTS.items()}
 
-
-#: Why a detected fault's size is not given (docs/diagnosis.md "Severity"): said in the text,
-#: the JSON and the report of every fault verdict, so that nobody reads an absence as "small".
-SEVERITY_NOT_ESTIMATED = (
-    "not estimated: a pit's size is not in what this detector reads on a machine it was not "
-    "calibrated on (estimators trained on simulated pits of known size do worse than "
-    "answering the median size on another simulated rig; docs/diagnosis.md, Severity); trend "
-    "the evidence and the ISO 15242 velocity bands against a baseline instead (cmtool "
-    "diagnose FOLDER --report OUT with dated recordings in its MANIFEST.csv: trend.png)"
-)
 
 #: What the rule assumes of a local fault's impacts (docs/diagnosis.md, "What the rule needs"):
 #: stated in every diagnosis's assumptions, so that a healthy verdict on a short record of a
@@ -668,7 +659,9 @@ def diagnose_signal(
                 f"{found['end_s']:g} (the whole record's envelope shows no fault)"
             )
     if diagnosis.verdict != "healthy":
-        diagnosis.severity = {"estimated": False, "reason": SEVERITY_NOT_ESTIMATED}
+        diagnosis.severity, diagnosis.entry_exit = spall_size(
+            x, fs, diagnosis.verdict, geometry, freqs
+        )
     return diagnosis
 
 

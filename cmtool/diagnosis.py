@@ -69,7 +69,11 @@ class Diagnosis:
     baseline : dict or None
         The velocity bands against a healthy baseline recording and their change [dB].
     severity : dict or None
-        On a fault verdict, ``estimated`` (False) and why the fault's size is not given.
+        On a fault verdict, the fault's size (``cmtool.severity.spall_size``): ``estimated``
+        and either the race spall's length [mm] with its interval, or why it is not given.
+    entry_exit : features.EntryExit or None
+        The entry-exit timing behind ``severity`` (its averaged envelope, for the report's
+        figure; not in the JSON).
     segment_scan : dict or None
         The record weighed second by second (segments, their margins over the threshold
         [dB] and the one found), when its whole envelope showed no fault.
@@ -95,6 +99,7 @@ class Diagnosis:
     baseline: dict | None = None
     severity: dict | None = None
     segment_scan: dict | None = None
+    entry_exit: Any = None
 
     def to_dict(self) -> dict:
         """JSON-serialisable form (without the spectra).

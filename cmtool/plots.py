@@ -27,6 +27,7 @@ __all__ = [
     "waveform_window",
     "plot_kurtogram",
     "plot_confusion",
+    "plot_entry_exit",
     "plot_trend",
     "waviness_markers",
 ]
@@ -446,6 +447,49 @@ def plot_segment_evidence(
     ax.set_ylabel("evidence over threshold [dB]")
     ax.set_title(title)
     ax.legend(loc="best", fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return save_figure(fig, path)
+
+
+def plot_entry_exit(
+    average: np.ndarray,
+    fs: float,
+    path: str | Path,
+    *,
+    title: str,
+    spacing_s: float | None = None,
+) -> Path:
+    """The squared envelope averaged over a fault's impacts, with its entry event marked.
+
+    Parameters
+    ----------
+    average : numpy.ndarray
+        The averaged squared envelope before the impact, the impact last
+        (``features.EntryExit.average``) [U^2].
+    fs : float
+        Sample rate [Hz].
+    path : str or Path
+        PNG to write.
+    title : str
+        Title.
+    spacing_s : float, optional
+        The entry event's time before the impact [s], when one was resolved.
+
+    Returns
+    -------
+    Path
+    """
+    fig, ax = plt.subplots(figsize=(9, 3.6))
+    t_ms = 1e3 * (np.arange(average.size) - (average.size - 1)) / fs
+    ax.plot(t_ms, average, color="0.2", lw=1.0)
+    ax.axvline(0.0, color="tab:red", lw=1.2, label="impact (exit)")
+    if spacing_s is not None:
+        ax.axvline(-1e3 * spacing_s, color="tab:blue", lw=1.2, label="entry event")
+    ax.set_xlabel("time before the impact [ms]")
+    ax.set_ylabel("averaged squared envelope")
+    ax.set_title(title)
+    ax.legend(loc="upper left", fontsize=8)
     ax.grid(alpha=0.3)
     fig.tight_layout()
     return save_figure(fig, path)

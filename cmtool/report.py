@@ -94,7 +94,13 @@ def write_report(
     pathlib.Path
         ``report.md``'s path (``diagnosis.json`` and the PNGs beside it).
     """
-    from .plots import plot_kurtogram, plot_segment_evidence, plot_spectrum, plot_waveform
+    from .plots import (
+        plot_entry_exit,
+        plot_kurtogram,
+        plot_segment_evidence,
+        plot_spectrum,
+        plot_waveform,
+    )
     from .waviness import comparison_text
 
     out = Path(out)
@@ -150,6 +156,18 @@ def write_report(
                 out / "segments.png",
                 title=f"{title}: each fault's evidence by segment of {scan['segment_s']:g} s",
                 found=scanned,
+            )
+        )
+    timing, size = diagnosis.entry_exit, diagnosis.severity or {}
+    if timing is not None and timing.average.size:  # the race spall's timing (Fault size)
+        length = f": spall about {size['length_mm']:.2f} mm" if size.get("estimated") else ""
+        paths.append(
+            plot_entry_exit(
+                timing.average,
+                fs,
+                out / "entry_exit.png",
+                title=f"{title}: {timing.impacts} {diagnosis.verdict} impacts averaged{length}",
+                spacing_s=timing.spacing_s if timing.resolved else None,
             )
         )
     lines = [
@@ -212,6 +230,14 @@ def write_report(
         lines.append("")
     if diagnosis.severity:
         lines += ["## Fault size", "", diagnosis.severity["reason"], ""]
+        if timing is not None and timing.average.size:
+            lines += [
+                "Figure entry_exit.png: the record's random part, its ringing removed (an AR "
+                "prediction-error filter), squared envelope averaged over the impacts aligned "
+                "on each; a ball entering a spall makes an event before the impact at its exit "
+                "(docs/diagnosis.md, Severity).",
+                "",
+            ]
     if diagnosis.warnings:
         lines += ["## Warnings", ""] + [f"- {w}" for w in diagnosis.warnings] + [""]
     if scan and scan.get("margins_db"):

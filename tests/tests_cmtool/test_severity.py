@@ -1,0 +1,96 @@
+"""A race spall's length on a fault verdict (cmtool.severity; docs/diagnosis.md, Severity).
+
+The model's spalls: a ball unloads where it enters one and is struck where it leaves it.
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from cmtool.cli import main
+from cmtool.diagnose import diagnose_signal
+from cmtool.severity import BALL_NOT_ESTIMATED, contact_length_scale, rolling_speed, spall_size
+from generators import (
+    LocalizedDefect,
+    OperatingCondition,
+    SimulationSettings,
+    bearing,
+    characteristic_frequencies,
+    simulate,
+)
+
+FS = 48000.0
+
+
+def _record(surface: str, length: float, depth: float, noise: float, seed: int = 1):
+    """1 s of a 6205 at 1797 rpm and 400 N, 1 % slip, with the pit, in white noise of
+    ``noise`` x the record's RMS."""
+    op = OperatingCondition.from_rpm(1797, 400.0, random_slip=0.01, ball_jitter=0.005)
+    settings = SimulationSettings(fs=FS, duration=1.0, channels=("housing_acceleration_y",))
+    pit = LocalizedDefect(surface=surface, length=length, depth=depth)
+    x = simulate(bearing("6205"), op, pit, settings=settings, random_state=seed)
+    x = x["housing_acceleration_y"]
+    return x + np.random.default_rng(seed).normal(0.0, noise * x.std(), x.size)
+
+
+@pytest.mark.parametrize(("surface", "noise"), [("inner", 0.3), ("outer", 0.1)])
+def test_a_race_spalls_length_is_estimated_within_its_interval(surface, noise):
+    """3 mm x 50 um spalls: the verdict's race, a length within 10 % and an interval that holds
+    it (the outer race's entry is weaker in the housing's signal: less noise for it)."""
+    d = diagnose_signal(_record(surface, 3e-3, 50e-6, noise), FS, 1797, "6205", waviness=False)
+    assert d.verdict == f"{surface} race"
+    size = d.to_dict()["severity"]
+    assert size["estimated"] is True, size
+    assert size["length_mm"] == pytest.approx(3.0, rel=0.1)
+    low, high = size["interval_mm"]
+    assert low < 3.0 < high and high - low < 1.5
+    assert size["impacts"] >= 50 and size["reason"].startswith("spall length about")
+
+
+def test_a_cwru_size_pit_is_not_sized():
+    """A 0.18 mm pit, 0.28 mm deep, is bridged: one event per passage, nothing to time."""
+    d = diagnose_signal(_record("inner", 1.8e-4, 2.8e-4, 0.3), FS, 1797, "6205", waviness=False)
+    assert d.verdict == "inner race"
+    assert d.severity["estimated"] is False
+    assert d.severity["reason"].startswith("not estimated: no entry event")
+
+
+def test_what_is_not_sized_says_why():
+    g = bearing("6205")
+    f = characteristic_frequencies(g, 1797 / 60)
+    x = np.random.default_rng(0).standard_normal(12000)
+    ball, timing = spall_size(x, 12000.0, "ball", g, f)
+    assert ball == {"estimated": False, "reason": BALL_NOT_ESTIMATED} and timing is None
+    slow, timing = spall_size(x, 3000.0, "outer race", g, f)
+    assert slow["estimated"] is False and "3000 Hz" in slow["reason"] and timing is None
+    noise, timing = spall_size(x, 12000.0, "outer race", g, f)
+    assert noise["estimated"] is False and not timing.resolved
+
+
+def test_the_rolling_speed_and_the_contacts_length_scale():
+    """The contact crosses either race at omega (D^2 - d^2) / (4 D) (no slip, no contact
+    angle); the inner race's contact, more curved, has the shorter length scale."""
+    g = bearing("6205")
+    f = characteristic_frequencies(g, 30.0)
+    expected = (
+        2 * np.pi * 30.0 * (g.pitch_diameter**2 - g.ball_diameter**2) / (4 * g.pitch_diameter)
+    )
+    assert rolling_speed(g, f, "outer") == pytest.approx(expected, rel=1e-12)
+    assert rolling_speed(g, f, "inner") == pytest.approx(expected, rel=1e-12)
+    assert 0.2e-3 < contact_length_scale(g, "inner") < contact_length_scale(g, "outer") < 1e-3
+
+
+def test_cli_diagnose_gives_the_spalls_length(tmp_path, capsys):
+    """Text, JSON and report of a sized spall."""
+    npy = tmp_path / "spall.npy"
+    np.save(npy, _record("inner", 3e-3, 50e-6, 0.3))
+    args = ["diagnose", str(npy), "--fs", "48000", "--rpm", "1797", "--bearing", "6205"]
+    assert main([*args, "--report", str(tmp_path / "rep")]) == 0
+    assert "fault size: spall length about" in capsys.readouterr().out
+    report = (tmp_path / "rep" / "report.md").read_text()
+    assert "spall length about" in report.split("## Fault size", 1)[1].split("##", 1)[0]
+    assert (tmp_path / "rep" / "entry_exit.png").stat().st_size > 10_000
+    assert main([*args, "--json"]) == 0
+    size = json.loads(capsys.readouterr().out)["severity"]
+    assert size["estimated"] is True and size["interval_mm"][0] < 3.0 < size["interval_mm"][1]
