@@ -563,6 +563,11 @@ def test_demo_runs_end_to_end(tmp_path, capsys, monkeypatch, small_dataset, smal
     assert (tmp_path / "diagnosis_local_defect" / "report.md").exists()
     # the simulated inner-race pit is called inner race by the rule-based envelope detector
     assert "inner-race pit 0.18 mm: rule-based verdict inner race" in out
+    # the bridged pit is not sized, the 3 mm spall is (docs/diagnosis.md, Severity)
+    (pit_line,) = [line for line in out.splitlines() if "inner-race pit 0.18 mm" in line]
+    assert pit_line.endswith("fault size not estimated")
+    assert "spall 3 mm: rule-based verdict inner race; fault size spall length about" in out
+    assert (tmp_path / "diagnosis_spall" / "entry_exit.png").exists()
     # the simulations are in m/s^2: their velocity bands and overall vibration read in mm/s
     for name in ("diagnosis_simulated", "diagnosis_local_defect"):
         report = json.loads((tmp_path / name / "diagnosis.json").read_text())
