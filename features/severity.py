@@ -125,8 +125,7 @@ def ar_prediction_error(x: np.ndarray, order: int) -> np.ndarray:
     return sp_signal.lfilter(np.concatenate([[1.0], -coefficients]), [1.0], x)
 
 
-def _whitened_envelope(x: np.ndarray, fs: float, fundamentals: tuple[float, ...]) -> np.ndarray:
-    rest = separate_discrete(x, fs, fundamentals=fundamentals)
+def _whitened_envelope(rest: np.ndarray, fs: float) -> np.ndarray:
     order = int(max(AR_ORDER_LIMITS[0], min(AR_ORDER_LIMITS[1], AR_ORDER_S * fs)))
     y = ar_prediction_error(rest, order)
     y = sp_signal.sosfilt(sp_signal.butter(4, HIGH_PASS_HZ, "highpass", fs=fs, output="sos"), y)
@@ -175,6 +174,7 @@ def entry_exit_spacing(
     shaft_rate: float,
     ball_pass_rate: float,
     max_span_s: float,
+    random_part: np.ndarray | None = None,
 ) -> EntryExit:
     """Time between a spall's entry and exit events, averaged over the fault's impacts.
 
@@ -190,6 +190,10 @@ def entry_exit_spacing(
         The shaft's rate and the ball-pass rate (BPFO) [Hz]: their harmonics are removed first.
     max_span_s : float
         Longest spacing searched [s] (at most ``SPAN_PERIODS`` fault periods are).
+    random_part : array_like, optional
+        ``x``'s random part when already separated at the shaft and ball-pass rates
+        (``features.separate_discrete``, e.g. ``Evidence.random_part``) [U]: not separated
+        again.
 
     Returns
     -------
@@ -213,7 +217,13 @@ def entry_exit_spacing(
     check_positive("max_span_s", max_span_s, unit="s")
     if fs < 4.0 * HIGH_PASS_HZ:
         raise FeatureError(f"fs = {fs:g} Hz is outside the allowed range [4000, inf) Hz")
-    e = _whitened_envelope(x, fs, (shaft_rate, ball_pass_rate))
+    if random_part is None:
+        random_part = separate_discrete(x, fs, fundamentals=(shaft_rate, ball_pass_rate))
+    elif np.shape(random_part) != x.shape:
+        raise FeatureError(
+            f"random_part has shape {np.shape(random_part)}; x's shape {x.shape} is needed"
+        )
+    e = _whitened_envelope(np.asarray(random_part, dtype=np.float64), fs)
     period = 1.0 / fault_rate
     peaks, _ = sp_signal.find_peaks(e, distance=max(1, int(PEAK_SPACING * period * fs)))
     span = int(min(max_span_s, SPAN_PERIODS * period) * fs)

@@ -99,6 +99,36 @@ def test_an_event_that_runs_into_the_impact_is_no_entry():
     assert not result.resolved and "no entry event" in result.reason
 
 
+def test_a_random_part_given_is_not_separated_again():
+    """`random_part` (the rule's own, `Evidence.random_part`) gives the identical timing."""
+    from features import separate_discrete
+
+    x = _impacts([0.3])
+    rest = separate_discrete(x, FS, fundamentals=(29.0, RATE))
+    given = entry_exit_spacing(
+        x,
+        FS,
+        fault_rate=RATE,
+        shaft_rate=29.0,
+        ball_pass_rate=RATE,
+        max_span_s=3e-3,
+        random_part=rest,
+    )
+    alone = _spacing(x)
+    assert given.resolved and given.spacing_s == alone.spacing_s
+    np.testing.assert_array_equal(given.average, alone.average)
+    with pytest.raises(FeatureError, match="random_part has shape"):
+        entry_exit_spacing(
+            x,
+            FS,
+            fault_rate=RATE,
+            shaft_rate=29.0,
+            ball_pass_rate=RATE,
+            max_span_s=3e-3,
+            random_part=rest[:-1],
+        )
+
+
 def test_bad_input_is_refused_by_name():
     x = _impacts([0.3])
     with pytest.raises(FeatureError, match="fs = 2000 Hz"):
