@@ -1,15 +1,16 @@
-"""A race spall's length from its entry and exit events, on simulated datasets of known sizes.
+"""A spall's length from its entry and exit events, on simulated datasets of known sizes.
 
-Each inner- or outer-race record is given to ``cmtool.severity.spall_size`` with its own class
-as the verdict (what `cmtool diagnose` does after a right verdict), each healthy record as
-both races (an estimate there is a false one). Printed per dataset and class: records,
+Each inner-race, outer-race or ball record is given to ``cmtool.severity.spall_size`` with
+its own class as the verdict (what `cmtool diagnose` does after a right verdict), each healthy
+record as all three (an estimate there is a false one). Printed per dataset and class: records,
 estimates given, the share whose interval holds the true length, the median
 |log10(estimate / true)|, and the estimates given for spalls of 1.5 mm or more at a fault
 SNR of 20 dB or more; a CSV of every record with ``--csv``.
 
 The development and test draws of docs/diagnosis.md "Severity" are the rig recipes with the
-conditions replaced by spalls (lengths 0.5-4 mm, depths 10-100 um, 600-3600 rpm, fault SNR
-0-30 dB) and the rig recipes' own pits; the recipes are written out by ``--recipes DIR``:
+conditions replaced by race spalls or ball spalls (lengths 0.5-4 mm, depths 10-100 um,
+600-3600 rpm, fault SNR 0-30 dB; the balls' spin axes drifting by 0-0.2 rad/s) and the rig
+recipes' own pits; the recipes are written out by ``--recipes DIR``:
 
     .venv/bin/python benchmarks/severity_entry_exit.py --recipes recipes
     for r in recipes/*.toml; do cmtool generate $r --out data/$(basename $r .toml); done
@@ -31,7 +32,7 @@ from cmtool.severity import spall_size
 from generators import bearing, characteristic_frequencies
 
 ROOT = Path(__file__).resolve().parent.parent
-VERDICT = {"inner": "inner race", "outer": "outer race"}
+VERDICT = {"inner": "inner race", "outer": "outer race", "ball": "ball"}
 
 SNR_RANGE = "fault_snr_db = { min = 0, max = 30 }"
 POSITION = "position_rad = { min = -3.14159, max = 3.14159 }\n"
@@ -44,15 +45,32 @@ length_m = {{ min = 0.5e-3, max = 4e-3 }}
 depth_m = {{ min = 10e-6, max = 100e-6 }}
 {position}count = 80
 """
+BALL_CONDITIONS = """
+[[conditions]]
+label = "ball"
+surface = "ball"
+defect = "localized"
+length_m = { min = 0.5e-3, max = 4e-3 }
+depth_m = { min = 10e-6, max = 100e-6 }
+axis_drift_rad_s = { min = 0, max = 0.2 }
+count = 80
+"""
 
 
 def write_recipes(folder: Path) -> None:
-    """The test draws' recipes (seeds 7121-7125): spalls through the rigs' chains, rig pits."""
+    """The test draws' recipes (seeds 7121-7128): spalls through the rigs' chains, rig pits."""
     folder.mkdir(parents=True, exist_ok=True)
-    spall = (("cwru-rig", "[48000, 96000]", 7121), ("mfpt-rig", "[48828, 97656]", 7122))
-    for rig, rates, seed in (*spall, ("cwru-rig", "[12000]", 7123)):
+    draws = (
+        ("spall", "cwru-rig", "[48000, 96000]", 7121),
+        ("spall", "mfpt-rig", "[48828, 97656]", 7122),
+        ("spall", "cwru-rig", "[12000]", 7123),
+        ("ball-spall", "cwru-rig", "[48000, 96000]", 7126),
+        ("ball-spall", "mfpt-rig", "[48828, 97656]", 7127),
+        ("ball-spall", "cwru-rig", "[12000]", 7128),
+    )
+    for kind, rig, rates, seed in draws:
         text = (ROOT / "datasets" / f"{rig}.toml").read_text()
-        name = f"spall-{rig}" + ("-12k" if seed == 7123 else "")
+        name = f"{kind}-{rig}" + ("-12k" if rates == "[12000]" else "")
         text = re.sub(r'^name = ".*"', f'name = "{name}"', text, flags=re.M)
         text = re.sub(r"^seed = .*$", f"seed = {seed}", text, flags=re.M)
         text = re.sub(r"^fs_hz = .*$", f"fs_hz = {rates}", text, flags=re.M)
@@ -61,7 +79,9 @@ def write_recipes(folder: Path) -> None:
             r"^fault_snr_db = .*$", "fault_snr_db = { min = 0, max = 30 }", text, flags=re.M
         )
         text = text[: text.index("[[conditions]]")]
-        for race in ("inner", "outer"):
+        if kind == "ball-spall":
+            text += BALL_CONDITIONS
+        for race in ("inner", "outer") if kind == "spall" else ():
             position = (
                 "position_rad = { min = -3.14159, max = 3.14159 }\n" if race == "outer" else ""
             )
@@ -85,14 +105,11 @@ def _one(signal: np.ndarray, fs: float, name: str, rpm: float, verdict: str) -> 
 
 
 def evaluate(path: str, workers: int) -> pd.DataFrame:
-    """Every inner/outer record as its own race, every healthy record as both."""
+    """Every fault record as its own class, every healthy record as each of the three."""
     data = read_dataset(path)
     jobs, rows = [], []
     for _, r in data.iterrows():
-        races = (
-            [r.label] if r.label in VERDICT else ["inner", "outer"] if r.label == "healthy" else []
-        )
-        for race in races:
+        for race in list(VERDICT) if r.label == "healthy" else [r.label]:
             jobs.append(delayed(_one)(r.signal, r.fs_hz, r.bearing, r.rpm, VERDICT[race]))
             rows.append(
                 {
@@ -121,44 +138,46 @@ def _log_error(given: pd.DataFrame) -> float:
 
 
 def summary(table: pd.DataFrame) -> None:
-    """Per dataset and class; then the bar's figures over the spall and pit draws."""
+    """Per dataset and class (a healthy record per class it was run as); then the bars'
+    figures over the spall and pit draws, races and balls apart."""
     print(
-        "dataset | class | records | estimated | interval holds | median |log10 ratio| | "
-        "estimated of >= 1.5 mm at >= 20 dB"
+        "dataset | class (run as) | records | estimated | interval holds | "
+        "median |log10 ratio| | estimated of >= 1.5 mm at >= 20 dB"
     )
-    for (name, label), g in table.groupby(["dataset", "label"], sort=False):
+    for (name, label, run_as), g in table.groupby(["dataset", "label", "as"], sort=False):
         given = g[g.estimated]
         holds = f"{given.covered.mean():.2f}" if len(given) else "-"
-        error = (
-            np.median(np.abs(np.log10(given.estimate_mm / given.length_mm)))
-            if len(given)
-            else np.nan
-        )
+        error = f"{_log_error(given):.3f}" if len(given) else "-"
         big = g[(g.length_mm >= 1.5) & (g.fault_snr_db >= 20)]
+        shown = label if label == run_as else f"{label} ({run_as})"
         print(
-            f"{name} | {label} | {len(g)} | {len(given)} | {holds} | {error:.3f} | "
+            f"{name} | {shown} | {len(g)} | {len(given)} | {holds} | {error} | "
             f"{int(big.estimated.sum())}/{len(big)}"
         )
-    spalls = table[table.dataset.str.startswith("spall") & (table.label != "healthy")]
-    pits = table[table.dataset.str.startswith("pits") & (table.label != "healthy")]
-    healthy = table[table.label == "healthy"]
-    given = spalls[spalls.estimated]
-    big = spalls[(spalls.length_mm >= 1.5) & (spalls.fault_snr_db >= 20)]
-    if len(given):
-        print(
-            f"spalls: {len(given)} estimates of {len(spalls)}; interval holds the length for "
-            f"{given.covered.mean():.3f}; median |log10 ratio| "
-            f"{_log_error(given):.4f}; "
-            f"estimated {big.estimated.mean():.3f} of {len(big)} spalls >= 1.5 mm at >= 20 dB"
-        )
-    if len(pits):
-        wrong = pits.estimated & ~pits.covered
-        print(
-            f"rig pits: {int(pits.estimated.sum())} estimates of {len(pits)}, "
-            f"{int(wrong.sum())} missing the size ({wrong.mean():.3f} of the records)"
-        )
-    if len(healthy):
-        print(f"healthy (as each race): {int(healthy.estimated.sum())} estimates of {len(healthy)}")
+    for classes, what in ((("inner", "outer"), "races"), (("ball",), "balls")):
+        spalls = table[table.dataset.str.contains("spall") & table.label.isin(classes)]
+        pits = table[table.dataset.str.startswith("pits") & table.label.isin(classes)]
+        healthy = table[(table.label == "healthy") & table["as"].isin(classes)]
+        given = spalls[spalls.estimated]
+        big = spalls[(spalls.length_mm >= 1.5) & (spalls.fault_snr_db >= 20)]
+        if len(given):
+            print(
+                f"{what}, spalls: {len(given)} estimates of {len(spalls)}; the interval holds "
+                f"the length for {given.covered.mean():.3f}; median |log10 ratio| "
+                f"{_log_error(given):.4f}; estimated {big.estimated.mean():.3f} of {len(big)} "
+                "spalls >= 1.5 mm at >= 20 dB"
+            )
+        if len(pits):
+            wrong = pits.estimated & ~pits.covered
+            print(
+                f"{what}, rig pits: {int(pits.estimated.sum())} estimates of {len(pits)}, "
+                f"{int(wrong.sum())} missing the size ({wrong.mean():.3f} of the records)"
+            )
+        if len(healthy):
+            print(
+                f"{what}, healthy records run as one: {int(healthy.estimated.sum())} "
+                f"estimates of {len(healthy)}"
+            )
 
 
 def main() -> None:

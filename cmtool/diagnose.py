@@ -660,7 +660,7 @@ def diagnose_signal(
             )
     if diagnosis.verdict != "healthy":
         diagnosis.severity, diagnosis.entry_exit = spall_size(
-            x, fs, diagnosis.verdict, geometry, freqs
+            x, fs, diagnosis.verdict, geometry, freqs, evidence.random_part
         )
     return diagnosis
 

@@ -70,7 +70,7 @@ class Diagnosis:
         The velocity bands against a healthy baseline recording and their change [dB].
     severity : dict or None
         On a fault verdict, the fault's size (``cmtool.severity.spall_size``): ``estimated``
-        and either the race spall's length [mm] with its interval, or why it is not given.
+        and either the spall's length [mm] with its interval, or why it is not given.
     entry_exit : features.EntryExit or None
         The entry-exit timing behind ``severity`` (its averaged envelope, for the report's
         figure; not in the JSON).

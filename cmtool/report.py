@@ -159,7 +159,7 @@ def write_report(
             )
         )
     timing, size = diagnosis.entry_exit, diagnosis.severity or {}
-    if timing is not None and timing.average.size:  # the race spall's timing (Fault size)
+    if timing is not None and timing.average.size:  # the spall's timing (Fault size)
         length = f": spall about {size['length_mm']:.2f} mm" if size.get("estimated") else ""
         paths.append(
             plot_entry_exit(

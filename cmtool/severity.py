@@ -1,4 +1,4 @@
-"""A race spall's length from its entry and exit events (docs/diagnosis.md, "Severity").
+"""A spall's length from its entry and exit events (docs/diagnosis.md, "Severity").
 
 ``features.entry_exit_spacing`` times the entry event before each impact. A ball crosses the
 race at the rolling speed v = omega (D^2 - d^2 cos^2 alpha) / (4 D) relative to the faulty
@@ -9,7 +9,9 @@ record gives. So the length is v dt plus kappa s, where s = sqrt(2 R_x delta_cap
 length scale of the faulty race's contact (R_x its radius in the rolling direction,
 delta_cap one contact's Hertz deflection at the bearing's static capacity) and kappa spans
 what the loads of the simulated development draws gave (5-95 %), with the odd and even
-impacts' disagreement added to the timing.
+impacts' disagreement added to the timing. A ball's pit meets the outer and the inner race
+once per spin each: it is timed at 2 x BSF, its contact crosses it at the same v, and its
+offset is measured over the mean of the two races' s.
 """
 
 from __future__ import annotations
@@ -26,21 +28,20 @@ from generators.kinematics import BearingFrequencies
 #: draws (simulated spalls of 0.5-4 mm through the CWRU- and MFPT-rig chains, 600-3600 rpm,
 #: seeds 7101-7107): 5 %, 50 % and 95 %
 OFFSET_SCALE = (0.30, 0.60, 1.45)
+#: the same for a ball's spall over s_ball, the mean of the two races' s (seeds 7108-7114: ball
+#: spalls of 0.5-4 mm, their spin axes drifting by 0-0.2 rad/s)
+BALL_OFFSET_SCALE = (0.32, 0.94, 2.15)
 #: the longest spall searched [m]
 MAX_SPALL_M = 6e-3
-#: verdict -> the race whose contact crosses the spall
-RACES = {"outer race": "outer", "inner race": "inner"}
+#: verdict -> the surface that carries the spall
+SURFACES = {"outer race": "outer", "inner race": "inner", "ball": "ball"}
 
 METHOD = (
     "entry and exit events (Sawalhi and Randall 2011): the random part through an AR "
     "prediction-error filter, its squared envelope averaged over the impacts aligned on each, "
     "the entry the earliest clear event before the impact; length = rolling speed x spacing "
-    "+ the unloading inside the edges (0.30-1.45 x the race contact's length scale)"
-)
-
-BALL_NOT_ESTIMATED = (
-    "not estimated: the entry-exit timing is validated on race spalls only (a ball's pit "
-    "meets both races and turns with the ball; docs/diagnosis.md, Severity)"
+    "+ the unloading inside the edges (0.30-1.45 x the race contact's length scale; a ball's "
+    "pit, timed at 2 x BSF: 0.32-2.15 x the two races' mean)"
 )
 
 
@@ -90,7 +91,12 @@ def contact_length_scale(geometry: BearingGeometry, race: str) -> float:
 
 
 def spall_size(
-    x: np.ndarray, fs: float, verdict: str, geometry: BearingGeometry, freqs: BearingFrequencies
+    x: np.ndarray,
+    fs: float,
+    verdict: str,
+    geometry: BearingGeometry,
+    freqs: BearingFrequencies,
+    random_part: np.ndarray | None = None,
 ) -> tuple[dict, features.EntryExit | None]:
     """The fault's size for a diagnosis's ``severity``: estimated or why not.
 
@@ -101,11 +107,14 @@ def spall_size(
     fs : float
         Sample rate [Hz].
     verdict : str
-        The fault verdict ("outer race", "inner race" or "ball").
+        The fault verdict ("outer race", "inner race" or "ball"; another: not estimated).
     geometry : BearingGeometry
         The bearing.
     freqs : BearingFrequencies
         Its rates at the speed diagnosed [Hz].
+    random_part : ndarray, optional
+        ``x``'s random part separated at ``freqs``' shaft and ball-pass rates [U] (the rule's
+        ``Evidence.random_part``), so that it is not separated twice.
 
     Returns
     -------
@@ -115,25 +124,27 @@ def spall_size(
         ``impacts``, ``method``, ``reason``; when False, ``reason``.
     features.EntryExit or None
         The timing behind it (its averaged envelope for a figure); None where none was read
-        (a ball verdict, a record under 4 kHz).
+        (another verdict, a record under 4 kHz).
     """
-    race = RACES.get(verdict)
-    if race is None:
-        return {"estimated": False, "reason": BALL_NOT_ESTIMATED}, None
+    surface = SURFACES.get(verdict)
+    if surface is None:
+        return {"estimated": False, "reason": f"not estimated for a {verdict!r} verdict"}, None
     if fs < 4.0 * features.severity.HIGH_PASS_HZ:
         return {
             "estimated": False,
             "reason": f"not estimated: the events are read above "
             f"{features.severity.HIGH_PASS_HZ:g} Hz, which a record at {fs:g} Hz barely holds",
         }, None
-    speed = rolling_speed(geometry, freqs, race)
+    speed = rolling_speed(geometry, freqs, "inner" if surface == "inner" else "outer")
+    rate = {"outer": freqs.bpfo, "inner": freqs.bpfi, "ball": freqs.two_bsf}[surface]
     timing = features.entry_exit_spacing(
         x,
         fs,
-        fault_rate=freqs.bpfo if race == "outer" else freqs.bpfi,
+        fault_rate=rate,
         shaft_rate=freqs.shaft,
         ball_pass_rate=freqs.bpfo,
         max_span_s=MAX_SPALL_M / speed,
+        random_part=random_part,
     )
     if not timing.resolved:
         return {
@@ -144,8 +155,12 @@ def spall_size(
                 "told apart at this sample rate, has none (docs/diagnosis.md, Severity)"
             ),
         }, timing
-    scale = contact_length_scale(geometry, race)
-    low, mid, high = (k * scale for k in OFFSET_SCALE)
+    if surface == "ball":  # a ball's pit meets both races: their mean length scale
+        scale = 0.5 * sum(contact_length_scale(geometry, race) for race in ("inner", "outer"))
+        low, mid, high = (k * scale for k in BALL_OFFSET_SCALE)
+    else:
+        scale = contact_length_scale(geometry, surface)
+        low, mid, high = (k * scale for k in OFFSET_SCALE)
     passage = speed * timing.spacing_s
     spread = speed * timing.split_s
     length_mm = round(float(1e3 * (passage + mid)), 2)

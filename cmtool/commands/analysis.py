@@ -354,6 +354,9 @@ VERDICT_COLUMNS = (
     "velocity_high_change_db",
     "baseline",
     "waviness_hint",
+    "spall_length_mm",
+    "spall_low_mm",
+    "spall_high_mm",
     "warnings",
     "manifest_label",
     "error",
@@ -532,7 +535,7 @@ def _folder_row(task) -> tuple[dict, dict]:
         row["error"] = str(error)
         return row, {"file": entry.file, "error": str(error), "verdict": None, **listed}
     top = diagnosis.candidates[0]
-    wav = diagnosis.waviness
+    wav, size = diagnosis.waviness, diagnosis.severity or {}
     row.update(
         verdict=diagnosis.verdict,
         confidence=diagnosis.confidence,
@@ -544,7 +547,9 @@ def _folder_row(task) -> tuple[dict, dict]:
         band_high_hz=diagnosis.band_hz[1],
         waviness_hint=None if not wav else f"{wav['surface']} race order ~{wav['order']}",
         warnings=" | ".join(diagnosis.warnings) or None,
+        spall_length_mm=size.get("length_mm"),  # a spall's size (docs/diagnosis.md)
     )
+    row["spall_low_mm"], row["spall_high_mm"] = size.get("interval_mm") or (None, None)
     for c in diagnosis.candidates:
         row[f"{c['fault'].replace(' ', '_')}_margin_db"] = round(
             c["evidence_db"] - diagnosis.threshold_db, 2

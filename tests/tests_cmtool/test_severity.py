@@ -10,7 +10,7 @@ import pytest
 
 from cmtool.cli import main
 from cmtool.diagnose import diagnose_signal
-from cmtool.severity import BALL_NOT_ESTIMATED, contact_length_scale, rolling_speed, spall_size
+from cmtool.severity import contact_length_scale, rolling_speed, spall_size
 from generators import (
     LocalizedDefect,
     OperatingCondition,
@@ -34,12 +34,13 @@ def _record(surface: str, length: float, depth: float, noise: float, seed: int =
     return x + np.random.default_rng(seed).normal(0.0, noise * x.std(), x.size)
 
 
-@pytest.mark.parametrize(("surface", "noise"), [("inner", 0.3), ("outer", 0.1)])
-def test_a_race_spalls_length_is_estimated_within_its_interval(surface, noise):
-    """3 mm x 50 um spalls: the verdict's race, a length within 10 % and an interval that holds
-    it (the outer race's entry is weaker in the housing's signal: less noise for it)."""
+@pytest.mark.parametrize(("surface", "noise"), [("inner", 0.3), ("outer", 0.1), ("ball", 0.1)])
+def test_a_spalls_length_is_estimated_within_its_interval(surface, noise):
+    """3 mm x 50 um spalls: the verdict's race or ball, a length within 10 % and an interval
+    that holds it (an outer-race or a ball spall's entry is weaker in the housing's signal:
+    less noise for them)."""
     d = diagnose_signal(_record(surface, 3e-3, 50e-6, noise), FS, 1797, "6205", waviness=False)
-    assert d.verdict == f"{surface} race"
+    assert d.verdict == {"ball": "ball"}.get(surface, f"{surface} race")
     size = d.to_dict()["severity"]
     assert size["estimated"] is True, size
     assert size["length_mm"] == pytest.approx(3.0, rel=0.1)
@@ -60,12 +61,14 @@ def test_what_is_not_sized_says_why():
     g = bearing("6205")
     f = characteristic_frequencies(g, 1797 / 60)
     x = np.random.default_rng(0).standard_normal(12000)
-    ball, timing = spall_size(x, 12000.0, "ball", g, f)
-    assert ball == {"estimated": False, "reason": BALL_NOT_ESTIMATED} and timing is None
+    other, timing = spall_size(x, 12000.0, "cage", g, f)
+    assert other == {"estimated": False, "reason": "not estimated for a 'cage' verdict"}
+    assert timing is None
     slow, timing = spall_size(x, 3000.0, "outer race", g, f)
     assert slow["estimated"] is False and "3000 Hz" in slow["reason"] and timing is None
-    noise, timing = spall_size(x, 12000.0, "outer race", g, f)
-    assert noise["estimated"] is False and not timing.resolved
+    for verdict in ("outer race", "inner race", "ball"):
+        noise, timing = spall_size(x, 12000.0, verdict, g, f)
+        assert noise["estimated"] is False and not timing.resolved
 
 
 def test_the_rolling_speed_and_the_contacts_length_scale():
@@ -94,3 +97,25 @@ def test_cli_diagnose_gives_the_spalls_length(tmp_path, capsys):
     assert main([*args, "--json"]) == 0
     size = json.loads(capsys.readouterr().out)["severity"]
     assert size["estimated"] is True and size["interval_mm"][0] < 3.0 < size["interval_mm"][1]
+
+
+def test_a_routes_verdicts_table_gives_each_spalls_length(tmp_path):
+    """`cmtool diagnose FOLDER --report OUT`: verdicts.csv's spall columns, empty where no
+    size was estimated (a healthy record)."""
+    import pandas as pd
+
+    route = tmp_path / "route"
+    route.mkdir()
+    np.save(route / "spall.npy", _record("inner", 3e-3, 50e-6, 0.3))
+    np.save(route / "noise.npy", np.random.default_rng(3).standard_normal(48000))
+    (route / "MANIFEST.csv").write_text(
+        "file,sampling_rate_hz,shaft_rpm,bearing\n"
+        "spall.npy,48000,1797,6205\nnoise.npy,48000,1797,6205\n"
+    )
+    assert main(["diagnose", str(route), "--report", str(tmp_path / "out")]) == 0
+    table = pd.read_csv(tmp_path / "out" / "verdicts.csv").set_index("file")
+    spall, noise = table.loc["spall.npy"], table.loc["noise.npy"]
+    assert spall.verdict == "inner race"
+    assert spall.spall_low_mm < 3.0 < spall.spall_high_mm
+    assert spall.spall_length_mm == pytest.approx(3.0, rel=0.1)
+    assert noise.verdict == "healthy" and np.isnan(noise.spall_length_mm)
