@@ -38,6 +38,38 @@ SMALL_RECIPE = REPO / "datasets" / "small.toml"
 SHARED_RECORDING = REPO.parent / "shared" / "data" / "cwru" / "12k_Drive_End_IR007_0_105.mat"
 
 
+def _simulated_fault(
+    defect: LocalizedDefect,
+    load: float,
+    settings: SimulationSettings,
+    *,
+    noise: float,
+    seed: int,
+    out: Path,
+    title: str,
+):
+    """A 6205 at 1797 rpm with 1 % slip and ``defect``, diagnosed, its report written.
+
+    The housing's acceleration [m/s^2] in white noise ``noise`` x its RMS; returns the
+    diagnosis and the report's path.
+    """
+    from .diagnose import diagnose_signal, write_report
+
+    geometry = bearing("6205")
+    run = simulate(
+        geometry,
+        OperatingCondition.from_rpm(1797, load, random_slip=0.01, ball_jitter=0.005),
+        [defect],
+        scene=Scene(level="shaft+housing", ehl=True),
+        settings=settings,
+        random_state=seed,
+    )
+    x = run["housing_acceleration_y"]
+    x = x + np.random.default_rng(seed).normal(0, noise * x.std(), x.size)
+    diagnosis = diagnose_signal(x, run.fs, 1797.0, geometry, unit="m/s^2")
+    return diagnosis, write_report(diagnosis, out, x=x, fs=run.fs, title=title)
+
+
 def _size(diagnosis) -> str:
     """The fault size's headline: "spall length about ... mm (...)" or "not estimated"."""
     return (diagnosis.severity or {"reason": "-"})["reason"].split(":")[0]
@@ -156,22 +188,13 @@ def run_demo(out: Path, *, recipe: Path = SMALL_RECIPE, workers: int = 1) -> int
     # a local defect: a 0.18 mm (0.007 inch) inner-race pit, the CWRU seeded-fault size, with
     # the random slip of a real bearing (1 % cage speed, 0.005 rad of pocket play:
     # docs/realism.md), without which its impacts would be as periodic as a machine's lines
-    pit = simulate(
-        geometry,
-        OperatingCondition.from_rpm(1797, 300.0, random_slip=0.01, ball_jitter=0.005),
-        [LocalizedDefect(surface="inner", length=0.1778e-3, depth=0.28e-3)],
-        scene=scene,
-        settings=SimulationSettings(fs=12000.0, duration=1.0, settle_time=0.1),
-        random_state=2,
-    )
-    x = pit["housing_acceleration_y"]
-    x = x + np.random.default_rng(2).normal(0, 10 ** (-10 / 20) * x.std(), x.size)
-    diagnosis = diagnose_signal(x, pit.fs, 1797.0, geometry, unit="m/s^2")
-    report = write_report(
-        diagnosis,
-        out / "diagnosis_local_defect",
-        x=x,
-        fs=pit.fs,
+    diagnosis, report = _simulated_fault(
+        LocalizedDefect(surface="inner", length=0.1778e-3, depth=0.28e-3),
+        300.0,
+        SimulationSettings(fs=12000.0, duration=1.0, settle_time=0.1),
+        noise=10 ** (-10 / 20),
+        seed=2,
+        out=out / "diagnosis_local_defect",
         title="simulated inner-race pit 0.18 mm, 1797 rpm, 300 N",
     )
     print(
@@ -182,22 +205,13 @@ def run_demo(out: Path, *, recipe: Path = SMALL_RECIPE, workers: int = 1) -> int
 
     # a spall: 3 mm x 50 um on the inner race, 48 kHz, noise at 0.3 of the RMS; its entry and
     # exit events are timed for its length (docs/diagnosis.md, Severity)
-    spall = simulate(
-        geometry,
-        OperatingCondition.from_rpm(1797, 400.0, random_slip=0.01, ball_jitter=0.005),
-        [LocalizedDefect(surface="inner", length=3e-3, depth=50e-6)],
-        scene=scene,
-        settings=SimulationSettings(fs=48000.0, duration=1.0, channels=("housing_acceleration_y",)),
-        random_state=1,
-    )
-    x = spall["housing_acceleration_y"]
-    x = x + np.random.default_rng(1).normal(0, 0.3 * x.std(), x.size)
-    diagnosis = diagnose_signal(x, spall.fs, 1797.0, geometry, unit="m/s^2")
-    report = write_report(
-        diagnosis,
-        out / "diagnosis_spall",
-        x=x,
-        fs=spall.fs,
+    diagnosis, report = _simulated_fault(
+        LocalizedDefect(surface="inner", length=3e-3, depth=50e-6),
+        400.0,
+        SimulationSettings(fs=48000.0, duration=1.0, channels=("housing_acceleration_y",)),
+        noise=0.3,
+        seed=1,
+        out=out / "diagnosis_spall",
         title="simulated inner-race spall 3 mm x 50 um, 1797 rpm, 400 N",
     )
     print(

@@ -443,10 +443,18 @@ def plot_segment_evidence(
     ax.axhline(0.0, color="0.3", ls="--", lw=1.0, label="detection threshold (per segment)")
     if found:
         ax.axvspan(found["start_s"], found["end_s"], color="0.85", zorder=0, label="found here")
-    ax.set_xlabel("time in the record [s]")
-    ax.set_ylabel("evidence over threshold [dB]")
+    labels = ("time in the record [s]", "evidence over threshold [dB]")
+    return _finish_time_plot(fig, ax, labels, title, path, legend="best")
+
+
+def _finish_time_plot(
+    fig: Figure, ax: Any, labels: tuple[str, str], title: str, path: str | Path, *, legend: str
+) -> Path:
+    """Axis labels, title, a small legend and a grid; the figure saved."""
+    ax.set_xlabel(labels[0])
+    ax.set_ylabel(labels[1])
     ax.set_title(title)
-    ax.legend(loc="best", fontsize=8)
+    ax.legend(loc=legend, fontsize=8)
     ax.grid(alpha=0.3)
     fig.tight_layout()
     return save_figure(fig, path)
@@ -486,13 +494,8 @@ def plot_entry_exit(
     ax.axvline(0.0, color="tab:red", lw=1.2, label="impact (exit)")
     if spacing_s is not None:
         ax.axvline(-1e3 * spacing_s, color="tab:blue", lw=1.2, label="entry event")
-    ax.set_xlabel("time before the impact [ms]")
-    ax.set_ylabel("averaged squared envelope")
-    ax.set_title(title)
-    ax.legend(loc="upper left", fontsize=8)
-    ax.grid(alpha=0.3)
-    fig.tight_layout()
-    return save_figure(fig, path)
+    labels = ("time before the impact [ms]", "averaged squared envelope")
+    return _finish_time_plot(fig, ax, labels, title, path, legend="upper left")
 
 
 def plot_confusion(
