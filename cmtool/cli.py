@@ -358,7 +358,7 @@ def build_parser() -> argparse.ArgumentParser:
         default=None,
         help="radial load [N] of the healthy model that waviness lines are judged against "
         "without --baseline (default: the load a cmtool simulate file holds, else 500 N, "
-        "stated as assumed)",
+        "stated as assumed); given or from the file, it also narrows a spall size's interval",
     )
     p.add_argument(
         "--allow-clipping",

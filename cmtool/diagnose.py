@@ -426,7 +426,8 @@ def diagnose_signal(
     load_n : float, optional
         Radial load [N] of the healthy model whose lines race waviness is judged against
         when no baseline is given (default ``cmtool.waviness.DEFAULT_LOAD_N``, said in the
-        assumptions).
+        assumptions); when given, a spall size's interval is scaled at its ball load
+        (``cmtool.severity.spall_size``).
     waviness : bool
         Judge race waviness on a healthy verdict (five healthy simulations of the bearing
         when no baseline is given, about 0.1 s); ``cmtool bench`` leaves it out.
@@ -660,7 +661,7 @@ def diagnose_signal(
             )
     if diagnosis.verdict != "healthy":
         diagnosis.severity, diagnosis.entry_exit = spall_size(
-            x, fs, diagnosis.verdict, geometry, freqs, evidence.random_part
+            x, fs, diagnosis.verdict, geometry, freqs, evidence.random_part, load_n
         )
     return diagnosis
 

@@ -31,6 +31,10 @@ OFFSET_SCALE = (0.30, 0.60, 1.45)
 #: the same for a ball's spall over s_ball, the mean of the two races' s (seeds 7108-7114: ball
 #: spalls of 0.5-4 mm, their spin axes drifting by 0-0.2 rad/s)
 BALL_OFFSET_SCALE = (0.32, 0.94, 2.15)
+#: with the radial load given: the offset over s at the Stribeck ball load 5 F_r / (Z cos
+#: alpha) instead of at the static capacity (the same development draws), races and balls
+LOADED_OFFSET_SCALE = (1.00, 1.95, 2.85)
+BALL_LOADED_OFFSET_SCALE = (1.06, 2.27, 4.69)
 #: the longest spall searched [m]
 MAX_SPALL_M = 6e-3
 #: verdict -> the surface that carries the spall
@@ -41,7 +45,8 @@ METHOD = (
     "prediction-error filter, its squared envelope averaged over the impacts aligned on each, "
     "the entry the earliest clear event before the impact; length = rolling speed x spacing "
     "+ the unloading inside the edges (0.30-1.45 x the race contact's length scale; a ball's "
-    "pit, timed at 2 x BSF: 0.32-2.15 x the two races' mean)"
+    "pit, timed at 2 x BSF: 0.32-2.15 x the two races' mean; with the radial load given, "
+    "1.00-2.85 and 1.06-4.69 x the scale at the Stribeck ball load)"
 )
 
 
@@ -69,8 +74,10 @@ def rolling_speed(geometry: BearingGeometry, freqs: BearingFrequencies, race: st
     return 2.0 * math.pi * (freqs.shaft - freqs.ftf) * 0.5 * (geometry.pitch_diameter - d_cos)
 
 
-def contact_length_scale(geometry: BearingGeometry, race: str) -> float:
-    """sqrt(2 R_x delta_cap) of the race's contact [m].
+def contact_length_scale(
+    geometry: BearingGeometry, race: str, ball_load: float | None = None
+) -> float:
+    """sqrt(2 R_x delta) of the race's contact [m], delta its Hertz deflection under a ball load.
 
     Parameters
     ----------
@@ -78,15 +85,18 @@ def contact_length_scale(geometry: BearingGeometry, race: str) -> float:
         The bearing.
     race : {"outer", "inner"}
         The race.
+    ball_load : float, optional
+        The ball load [N]; default the static capacity's (``contact_static_capacity``).
 
     Returns
     -------
     float
         The distance inside a sharp edge at which the edge's sagitta reaches one contact's
-        Hertz deflection at the static capacity's ball load [m].
+        Hertz deflection under that ball load [m].
     """
     contact = hertz_contact(geometry, race)
-    deflection = (contact_static_capacity(geometry) / contact.stiffness_constant) ** (2.0 / 3.0)
+    load = contact_static_capacity(geometry) if ball_load is None else ball_load
+    deflection = (load / contact.stiffness_constant) ** (2.0 / 3.0)
     return math.sqrt(2.0 * contact.geometry.rx * deflection)
 
 
@@ -97,6 +107,7 @@ def spall_size(
     geometry: BearingGeometry,
     freqs: BearingFrequencies,
     random_part: np.ndarray | None = None,
+    load_n: float | None = None,
 ) -> tuple[dict, features.EntryExit | None]:
     """The fault's size for a diagnosis's ``severity``: estimated or why not.
 
@@ -115,6 +126,9 @@ def spall_size(
     random_part : ndarray, optional
         ``x``'s random part separated at ``freqs``' shaft and ball-pass rates [U] (the rule's
         ``Evidence.random_part``), so that it is not separated twice.
+    load_n : float, optional
+        The radial load [N], when known: the offset is scaled at the Stribeck ball load
+        5 F_r / (Z cos alpha), a narrower interval (docs/diagnosis.md, Severity).
 
     Returns
     -------
@@ -155,12 +169,18 @@ def spall_size(
                 "told apart at this sample rate, has none (docs/diagnosis.md, Severity)"
             ),
         }, timing
-    if surface == "ball":  # a ball's pit meets both races: their mean length scale
-        scale = 0.5 * sum(contact_length_scale(geometry, race) for race in ("inner", "outer"))
-        low, mid, high = (k * scale for k in BALL_OFFSET_SCALE)
-    else:
-        scale = contact_length_scale(geometry, surface)
-        low, mid, high = (k * scale for k in OFFSET_SCALE)
+    ball_load = None
+    if load_n is not None and load_n > 0.0:
+        ball_load = 5.0 * load_n / (geometry.ball_count * math.cos(geometry.contact_angle))
+    races = ("inner", "outer") if surface == "ball" else (surface,)  # a ball's: their mean
+    scale = sum(contact_length_scale(geometry, race, ball_load) for race in races) / len(races)
+    kappa = {
+        (False, False): OFFSET_SCALE,
+        (True, False): BALL_OFFSET_SCALE,
+        (False, True): LOADED_OFFSET_SCALE,
+        (True, True): BALL_LOADED_OFFSET_SCALE,
+    }[surface == "ball", ball_load is not None]
+    low, mid, high = (k * scale for k in kappa)
     passage = speed * timing.spacing_s
     spread = speed * timing.split_s
     length_mm = round(float(1e3 * (passage + mid)), 2)
@@ -175,9 +195,11 @@ def spall_size(
         "entry_exit_ms": round(float(1e3 * timing.spacing_s), 4),
         "impacts": timing.impacts,
         "method": METHOD,
+        "load_n": float(load_n) if ball_load is not None else None,
         "reason": (
             f"spall length about {length_mm:.2f} mm ({interval_mm[0]:.2f}-{interval_mm[1]:.2f} "
             f"mm): entry and exit events {1e3 * timing.spacing_s:.3f} ms apart over "
             f"{timing.impacts} impacts, rolling speed {speed:.2f} m/s"
+            + (f", radial load {load_n:g} N" if ball_load is not None else "")
         ),
     }, timing

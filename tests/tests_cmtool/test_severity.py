@@ -119,3 +119,17 @@ def test_a_routes_verdicts_table_gives_each_spalls_length(tmp_path):
     assert spall.spall_low_mm < 3.0 < spall.spall_high_mm
     assert spall.spall_length_mm == pytest.approx(3.0, rel=0.1)
     assert noise.verdict == "healthy" and np.isnan(noise.spall_length_mm)
+
+
+def test_the_radial_load_given_narrows_the_interval():
+    """With the 400 N the record was simulated at, the interval is scaled at the ball load
+    (5 F_r / Z): narrower than without a load, and it still holds the length."""
+    x = _record("inner", 3e-3, 50e-6, 0.3)
+    alone = diagnose_signal(x, FS, 1797, "6205", waviness=False).severity
+    loaded = diagnose_signal(x, FS, 1797, "6205", waviness=False, load_n=400.0).severity
+    assert alone["estimated"] and loaded["estimated"] and alone["load_n"] is None
+    assert loaded["load_n"] == 400.0 and "radial load 400 N" in loaded["reason"]
+    assert loaded["entry_exit_ms"] == alone["entry_exit_ms"]  # the same timing
+    low, high = loaded["interval_mm"]
+    assert low < 3.0 < high
+    assert high - low < 0.8 * (alone["interval_mm"][1] - alone["interval_mm"][0])
