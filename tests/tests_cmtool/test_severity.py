@@ -133,3 +133,20 @@ def test_the_radial_load_given_narrows_the_interval():
     low, high = loaded["interval_mm"]
     assert low < 3.0 < high
     assert high - low < 0.8 * (alone["interval_mm"][1] - alone["interval_mm"][0])
+
+
+def test_a_size_on_a_bearing_kappa_was_not_measured_on_says_so():
+    """The offset was measured on the 6205 and the MFPT bearing: a 6308's spall (4 mm x 50 um,
+    800 N, noise at 0.1 of the RMS) is sized, its interval holds the length, and it says
+    where the interval was validated; a 6205's does not need to."""
+    op = OperatingCondition.from_rpm(1797, 800.0, random_slip=0.01, ball_jitter=0.005)
+    settings = SimulationSettings(fs=FS, duration=1.0, channels=("housing_acceleration_y",))
+    pit = LocalizedDefect(surface="inner", length=4e-3, depth=50e-6)
+    x = simulate(bearing("6308"), op, pit, settings=settings, random_state=1)
+    x = x["housing_acceleration_y"]
+    x = x + np.random.default_rng(1).normal(0.0, 0.1 * x.std(), x.size)
+    size = diagnose_signal(x, FS, 1797, "6308", waviness=False).severity
+    assert size["estimated"] and size["interval_mm"][0] < 4.0 < size["interval_mm"][1]
+    assert "measured on the 6205 and the MFPT bearing" in size["reason"]
+    ours = diagnose_signal(_record("inner", 3e-3, 50e-6, 0.3), FS, 1797, "6205", waviness=False)
+    assert ours.severity["estimated"] and "measured on" not in ours.severity["reason"]
