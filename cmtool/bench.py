@@ -279,7 +279,7 @@ def builtin_outputs(
     geometry = catalog_bearing(bearing) if isinstance(bearing, str) else bearing
     freqs = characteristic_frequencies(geometry, rpm / 60.0)
     rates = {fault: getattr(freqs, key) for fault, key in FAULTS.items()}
-    d = diagnose_signal(x, fs, rpm, geometry, model=model, waviness=False)
+    d = diagnose_signal(x, fs, rpm, geometry, model=model, waviness=False, severity=False)
     margins = {c["fault"]: c["evidence_db"] - d.threshold_db for c in d.candidates}
     out = {"envelope": DetectorOutput(d.rule_verdict["label"], margins)}
     ses = envelope_scores(x, fs, rates)

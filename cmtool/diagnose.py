@@ -399,6 +399,7 @@ def diagnose_signal(
     waviness: bool = True,
     unit: str | None = None,
     speed_source: str = "auto",
+    severity: bool = True,
 ) -> Diagnosis:
     """Diagnose one signal.
 
@@ -431,6 +432,9 @@ def diagnose_signal(
     waviness : bool
         Judge race waviness on a healthy verdict (five healthy simulations of the bearing
         when no baseline is given, about 0.1 s); ``cmtool bench`` leaves it out.
+    severity : bool
+        Size a fault verdict's spall (``cmtool.severity.spall_size``, about 10 ms a second of
+        record); ``cmtool bench`` leaves it out (``severity`` then None).
     unit : {"g", "m/s^2", "mm/s", "m/s", "in/s"}, optional
         The signal's unit where it is known (``VIBRATION_UNITS``): the ISO 15242 velocity
         bands are then also given in mm/s (``velocity_bands_mm_s``). A velocity record is
@@ -659,7 +663,7 @@ def diagnose_signal(
                 f"; the rule's evidence is that of seconds {found['start_s']:g}-"
                 f"{found['end_s']:g} (the whole record's envelope shows no fault)"
             )
-    if diagnosis.verdict != "healthy":
+    if diagnosis.verdict != "healthy" and severity:
         diagnosis.severity, diagnosis.entry_exit = spall_size(
             x, fs, diagnosis.verdict, geometry, freqs, evidence.random_part, load_n
         )

@@ -150,3 +150,15 @@ def test_a_size_on_a_bearing_kappa_was_not_measured_on_says_so():
     assert "measured on the 6205 and the MFPT bearing" in size["reason"]
     ours = diagnose_signal(_record("inner", 3e-3, 50e-6, 0.3), FS, 1797, "6205", waviness=False)
     assert ours.severity["estimated"] and "measured on" not in ours.severity["reason"]
+
+
+def test_the_size_can_be_left_out():
+    """`severity=False` (what `cmtool bench` asks: it scores verdicts, not sizes) leaves the
+    size out of a fault verdict, and nothing else changes."""
+    x = _record("inner", 3e-3, 50e-6, 0.3)
+    sized = diagnose_signal(x, FS, 1797, "6205", waviness=False)
+    unsized = diagnose_signal(x, FS, 1797, "6205", waviness=False, severity=False)
+    assert sized.severity["estimated"] and unsized.severity is None
+    assert "severity" not in unsized.to_dict()
+    without = {k: v for k, v in sized.to_dict().items() if k != "severity"}
+    assert unsized.to_dict() == without
