@@ -175,7 +175,9 @@ def spall_size(
             "reason": (
                 f"not estimated: {timing.reason} ({timing.impacts} impacts averaged); a pit "
                 "bridged by the balls, or too faint or too short for its two events to be "
-                "told apart at this sample rate, has none (docs/diagnosis.md, Severity)"
+                "told apart at this sample rate, has none (docs/diagnosis.md, Severity); trend "
+                "the fault's evidence instead (cmtool diagnose FOLDER --report OUT with dated "
+                "recordings in its MANIFEST.csv: trend.png)"
             ),
         }, timing
     ball_load = None
