@@ -361,8 +361,9 @@ def plot_trend(
     *,
     title: str,
     band_unit: str,
+    spall_mm: tuple[Sequence[float], Sequence[float], Sequence[float]] | None = None,
 ) -> Path:
-    """A machine's trend: each fault's evidence over the threshold, and the velocity bands.
+    """A machine's trend: faults' evidence, velocity bands, a spall's length where sized.
 
     Parameters
     ----------
@@ -378,6 +379,9 @@ def plot_trend(
         PNG to write.
     title, band_unit : str
         Title; the bands' unit.
+    spall_mm : (sequence, sequence, sequence) of float, optional
+        Per recording the spall's length and its interval's ends [mm] (NaN where none was
+        sized, ``Diagnosis.severity``): a third panel when any was.
 
     Returns
     -------
@@ -385,7 +389,11 @@ def plot_trend(
         The written PNG.
     """
     path = Path(path)
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(10, 6), dpi=110, sharex=True)
+    sized = spall_mm is not None and bool(np.isfinite(np.asarray(spall_mm[0], float)).any())
+    fig, axes = plt.subplots(
+        3 if sized else 2, 1, figsize=(10, 8.5 if sized else 6), dpi=110, sharex=True
+    )
+    top, bottom = axes[0], axes[1]
     for fault, values in margins.items():
         top.plot(times, values, marker="o", color=_FAULT_COLORS.get(fault), label=fault)
     top.axhline(0.0, color="0.3", ls="--", lw=1.0, label="detection threshold")
@@ -398,9 +406,23 @@ def plot_trend(
         bottom.plot(times, values, marker="s", label=name, ls="--" if band == "overall" else "-")
     bottom.set_yscale("log")
     bottom.set_ylabel(f"velocity RMS [{band_unit}]")
-    bottom.set_xlabel("time")
     bottom.legend(loc="best", fontsize=8)
     bottom.grid(alpha=0.3)
+    if sized:
+        length, low, high = (np.asarray(v, dtype=float) for v in spall_mm)
+        axes[2].errorbar(
+            times,
+            length,
+            yerr=[length - low, high - length],
+            fmt="o",
+            capsize=4,
+            color="tab:purple",
+            label="spall length (interval: docs/diagnosis.md, Severity)",
+        )
+        axes[2].set_ylabel("spall length [mm]")
+        axes[2].legend(loc="best", fontsize=8)
+        axes[2].grid(alpha=0.3)
+    axes[-1].set_xlabel("time")
     fig.autofmt_xdate()
     fig.tight_layout()
     return save_figure(fig, path)

@@ -322,6 +322,7 @@ def _print_diagnosis(diagnosis) -> None:
         print(f"  warning: {w}")
 
 
+SPALL_COLUMNS = ("length", "low", "high")  # spall_<k>_mm: the size and its interval [mm]
 #: Columns of ``verdicts.csv`` (``cmtool diagnose FOLDER --report OUT``).
 VERDICT_COLUMNS = (
     "file",
@@ -354,9 +355,7 @@ VERDICT_COLUMNS = (
     "velocity_high_change_db",
     "baseline",
     "waviness_hint",
-    "spall_length_mm",
-    "spall_low_mm",
-    "spall_high_mm",
+    *(f"spall_{k}_mm" for k in SPALL_COLUMNS),
     "warnings",
     "manifest_label",
     "error",
@@ -610,9 +609,8 @@ def _plot_trends(table, out: Path) -> list[Path]:
     dated = table[table["time"].notna() & table["error"].isna()].copy()
     dated["machine"] = dated["machine"].fillna("")
     paths = []
-    groups = list(dated.groupby("machine", sort=True))
+    groups = [(m, part.sort_values("time")) for m, part in dated.groupby("machine", sort=True)]
     for machine, part in groups:
-        part = part.sort_values("time")
         if len(part) < 2:
             continue
         if part["velocity_unit"].nunique() > 1:
@@ -632,6 +630,7 @@ def _plot_trends(table, out: Path) -> list[Path]:
                 out / name,
                 title=f"trend{' of ' + machine if machine else ''}: {len(part)} recordings",
                 band_unit=str(part["velocity_unit"].iloc[0]),
+                spall_mm=tuple(part[f"spall_{k}_mm"].astype(float) for k in SPALL_COLUMNS),
             )
         )
     return paths

@@ -162,3 +162,36 @@ def test_the_size_can_be_left_out():
     assert "severity" not in unsized.to_dict()
     without = {k: v for k, v in sized.to_dict().items() if k != "severity"}
     assert unsized.to_dict() == without
+
+
+def test_a_machines_trend_shows_its_spall_growing(tmp_path):
+    """Dated recordings of one machine (healthy, then a 3 mm and a 3.5 mm inner-race spall):
+    the sizes in verdicts.csv grow, and trend.png gets a third panel for them (a taller
+    figure than a trend with no size)."""
+    import matplotlib.image
+    import pandas as pd
+
+    route = tmp_path / "route"
+    route.mkdir()
+    records = {
+        "m1.npy": np.random.default_rng(5).standard_normal(48000),
+        "m2.npy": _record("inner", 3e-3, 50e-6, 0.3),
+        "m3.npy": _record("inner", 3.5e-3, 50e-6, 0.3),
+    }
+    lines = ["file,sampling_rate_hz,shaft_rpm,bearing,machine,time"]
+    for month, (name, x) in enumerate(records.items(), start=1):
+        np.save(route / name, x)
+        lines.append(f"{name},48000,1797,6205,pump,2026-{month:02d}-01T08:00")
+    (route / "MANIFEST.csv").write_text("\n".join(lines) + "\n")
+    assert main(["diagnose", str(route), "--report", str(tmp_path / "out")]) == 0
+    table = pd.read_csv(tmp_path / "out" / "verdicts.csv").set_index("file")
+    assert np.isnan(table.loc["m1.npy", "spall_length_mm"])
+    assert 2.7 < table.loc["m2.npy", "spall_length_mm"] < table.loc["m3.npy", "spall_length_mm"]
+    sized = matplotlib.image.imread(tmp_path / "out" / "trend.png").shape[0]
+    np.save(route / "m0.npy", np.random.default_rng(6).standard_normal(48000))
+    (route / "MANIFEST.csv").write_text(
+        "\n".join(lines[:2]) + "\nm0.npy,48000,1797,6205,pump,2026-02-01T08:00\n"
+    )  # two healthy records
+    assert main(["diagnose", str(route), "--report", str(tmp_path / "healthy")]) == 0
+    unsized = matplotlib.image.imread(tmp_path / "healthy" / "trend.png").shape[0]
+    assert sized > 1.25 * unsized
