@@ -21,7 +21,12 @@ import math
 import numpy as np
 
 import features
-from generators import BearingGeometry, contact_static_capacity, hertz_contact
+from generators import (
+    BearingGeometry,
+    contact_static_capacity,
+    entrainment_speed,
+    hertz_contact,
+)
 from generators.kinematics import BearingFrequencies
 
 #: kappa: the offset (L - v dt) over the race contact's length scale s on the development
@@ -57,30 +62,6 @@ METHOD = (
     "pit, timed at 2 x BSF: 0.32-2.15 x the two races' mean; with the radial load given, "
     "1.00-2.85 and 1.06-4.69 x the scale at the Stribeck ball load)"
 )
-
-
-def rolling_speed(geometry: BearingGeometry, freqs: BearingFrequencies, race: str) -> float:
-    """Speed of the contact over the race [m/s], relative to the race.
-
-    Parameters
-    ----------
-    geometry : BearingGeometry
-        The bearing.
-    freqs : BearingFrequencies
-        Its rates at the shaft speed [Hz] (``shaft`` and ``ftf`` used).
-    race : {"outer", "inner"}
-        The faulty race.
-
-    Returns
-    -------
-    float
-        omega_cage r_outer on the outer race, (omega_shaft - omega_cage) r_inner on the inner
-        race [m/s] (equal for a radial ball bearing without slip).
-    """
-    d_cos = geometry.ball_diameter * math.cos(geometry.contact_angle)
-    if race == "outer":
-        return 2.0 * math.pi * freqs.ftf * 0.5 * (geometry.pitch_diameter + d_cos)
-    return 2.0 * math.pi * (freqs.shaft - freqs.ftf) * 0.5 * (geometry.pitch_diameter - d_cos)
 
 
 def contact_length_scale(
@@ -158,7 +139,7 @@ def spall_size(
             "reason": f"not estimated: the events are read above "
             f"{features.severity.HIGH_PASS_HZ:g} Hz, which a record at {fs:g} Hz barely holds",
         }, None
-    speed = rolling_speed(geometry, freqs, "inner" if surface == "inner" else "outer")
+    speed = entrainment_speed(geometry, freqs.shaft)  # the contact's speed over each surface
     rate = {"outer": freqs.bpfo, "inner": freqs.bpfi, "ball": freqs.two_bsf}[surface]
     timing = features.entry_exit_spacing(
         x,

@@ -10,13 +10,14 @@ import pytest
 
 from cmtool.cli import main
 from cmtool.diagnose import diagnose_signal
-from cmtool.severity import contact_length_scale, rolling_speed, spall_size
+from cmtool.severity import contact_length_scale, spall_size
 from generators import (
     LocalizedDefect,
     OperatingCondition,
     SimulationSettings,
     bearing,
     characteristic_frequencies,
+    entrainment_speed,
     simulate,
 )
 
@@ -79,8 +80,12 @@ def test_the_rolling_speed_and_the_contacts_length_scale():
     expected = (
         2 * np.pi * 30.0 * (g.pitch_diameter**2 - g.ball_diameter**2) / (4 * g.pitch_diameter)
     )
-    assert rolling_speed(g, f, "outer") == pytest.approx(expected, rel=1e-12)
-    assert rolling_speed(g, f, "inner") == pytest.approx(expected, rel=1e-12)
+    # the speed severity uses (generators.entrainment_speed) is the contact's speed over the
+    # outer race (cage x outer radius) and over the inner race ((shaft - cage) x inner radius)
+    outer = 2 * np.pi * f.ftf * 0.5 * (g.pitch_diameter + g.ball_diameter)
+    inner = 2 * np.pi * (f.shaft - f.ftf) * 0.5 * (g.pitch_diameter - g.ball_diameter)
+    for speed in (entrainment_speed(g, 30.0), outer, inner):
+        assert speed == pytest.approx(expected, rel=1e-12)
     assert 0.2e-3 < contact_length_scale(g, "inner") < contact_length_scale(g, "outer") < 1e-3
 
 
