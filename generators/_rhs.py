@@ -62,6 +62,7 @@ from generators._kernels import (
     TABLE_INNER,
     TABLE_OUTER,
     TABLE_SERIES,
+    _gap_squeeze,
     _hertz_dry,
     _hertz_ehl_table,
 )
@@ -153,6 +154,10 @@ def _rhs_inline(scene, ehl, y, p, wav, dydt, loads, scratch):
                     p,
                     TABLE_OUTER,
                 )
+                if qi == 0.0:  # apart: the film between ball and race (docs/model.md 4.4)
+                    qi = _gap_squeeze(di, ddi, k_inner, film_inner, squeeze_inner, floor, max_inner)
+                if qo == 0.0:
+                    qo = _gap_squeeze(do, ddo, k_outer, film_outer, squeeze_outer, floor, max_outer)
             else:
                 qi = _hertz_dry(di, ddi, k_inner, tau)
                 qo = _hertz_dry(do, ddo, k_outer, tau)

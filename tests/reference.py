@@ -198,7 +198,16 @@ class ReferenceModel:
             return self._film(which, q)
 
         if delta + film(0.0) <= 0:
-            return 0.0
+            if which == "series" or rate <= 0:
+                return 0.0
+            # apart (scene full): Reynolds' squeeze film (4.5) at the separation -delta as
+            # they approach; Guembel's condition (no pressure under ambient) leaves none as
+            # they separate; weighted to zero at onset over the Hertz approach at the load
+            # floor (docs/model.md 4.4)
+            gap = -(delta + film(0.0))
+            gap_floor = (self.floor / kc) ** (2 / 3)
+            c_sq = squeeze_damping(self.geometry, which, self.lub, -delta) * self.film_factor
+            return c_sq * gap / (gap + gap_floor) * rate
         # exact solution of Q = K (delta + h(Q))^1.5 (docs/model.md 4.3)
         q_hi = kc * (delta + film(0.0)) ** 1.5
         q = (

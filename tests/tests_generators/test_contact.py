@@ -240,6 +240,47 @@ def test_squeeze_film_damping_values():
     )
 
 
+def test_the_film_between_a_ball_and_a_race_apart_resists_their_approach_only():
+    """Scene full's balls apart from a race meet the film between them (docs/model.md 4.4):
+    Reynolds' squeeze force (4.5) at their separation as they approach, weighted to zero at
+    onset over the Hertz approach at the load floor, nothing as they separate (Guembel). Checked
+    against squeeze_film_damping at the separation, each race, 6205 at 1800 rpm; at onset
+    continuous with the film contact's force (1e-15 m either side, both under 1e-6 of the
+    unweighted squeeze force there)."""
+    from generators import OperatingCondition, Scene, SimulationSettings
+    from generators import _kernels as K
+    from generators.model import prepare
+
+    g = bearing("6205")
+    prep = prepare(
+        g,
+        OperatingCondition.from_rpm(1800, 500.0),
+        scene=Scene(level="full", ehl=True),
+        settings=SimulationSettings(fs=12000.0, duration=0.01),
+    )
+    p, rate = prep.p, 1e-3  # approach speed [m/s]
+    floor = p[K.P_FILM_LOAD_FLOOR]
+    for table, race in ((K.TABLE_INNER, "inner"), (K.TABLE_OUTER, "outer")):
+        film, h_max = p[K.P_FILM_INNER + table], p[K.P_FILM_INNER_MAX + table]
+        squeeze, k = p[K.P_SQUEEZE_INNER + table], p[K.P_K_INNER + table]
+        contact = hertz_contact(g, race)
+        gap_floor = (floor / k) ** (2 / 3)
+        for separation in (1e-6, 5e-6, 40e-6):
+            delta = -separation
+            gap = separation - h_max
+            expected = squeeze_film_damping(contact, LUBRICANTS["VG68"], separation) * rate
+            expected *= gap / (gap + gap_floor)
+            force = K._gap_squeeze(delta, rate, k, film, squeeze, floor, h_max)
+            assert force == pytest.approx(expected, rel=1e-9)
+            assert K._gap_squeeze(delta, -rate, k, film, squeeze, floor, h_max) == 0.0
+        onset, full = -h_max, squeeze * film / h_max * rate  # the unweighted force there
+        assert (
+            0.0 < K._gap_squeeze(onset - 1e-15, rate, k, film, squeeze, floor, h_max) < 1e-6 * full
+        )
+        assert 0.0 < _film_contact_exact(p, table, onset + 1e-15, rate) < 1e-6 * full
+        assert K._gap_squeeze(onset + 1e-9, rate, k, film, squeeze, floor, h_max) == 0.0
+
+
 def test_film_bad_input():
     g, lub = bearing("6205"), LUBRICANTS["VG68"]
     c = hertz_contact(g, "inner")
