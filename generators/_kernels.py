@@ -241,25 +241,30 @@ def _hertz_ehl(delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h
     return q if q > 0.0 else 0.0
 
 
-@numba.njit(**_JIT)
-def _gap_squeeze(delta, delta_rate, k_hertz, film, squeeze, floor, h_max):
+@numba.njit(**_JIT_INLINE)
+def _gap_squeeze(delta, delta_rate, film, squeeze, h_max, gap_floor):
     """Squeeze-film force [N] of a lubricated pair of surfaces apart (docs/model.md 4.4).
 
     Out of contact (delta + h_max < 0) the surfaces are -delta apart and a flooded film
     between them resists their approach by c_sq = squeeze * film / (-delta), (4.5) at that
     separation (Reynolds' 6 pi eta R^2 / h for a sphere); as they separate it gives nothing
-    (Guembel's cavitation condition: no pressure under ambient). The weight g / (g + g_floor),
-    g = -(delta + h_max) the gap beyond the film at zero load and g_floor = (floor / K)^(2/3)
-    the Hertz approach at the film's load floor, takes it to zero at onset as Q / (Q + floor)
-    takes the contact's squeeze term there, so the force is continuous. Only scene ``full``
-    uses it: its balls have masses that the film holds back; massless balls have no motion of
-    their own between the races.
+    (Guembel's cavitation condition: no pressure under ambient). The weight g / (g +
+    gap_floor), g = -(delta + h_max) the gap beyond the film at zero load and ``gap_floor``
+    = (floor / K)^(2/3) the Hertz approach at the film's load floor (:func:`_gap_floor`),
+    takes it to zero at onset as Q / (Q + floor) takes the contact's squeeze term there, so
+    the force is continuous. Only scene ``full`` uses it: its balls have masses that the film
+    holds back; massless balls have no motion of their own between the races.
     """
     gap = -(delta + h_max)
     if gap <= 0.0 or delta_rate <= 0.0:
         return 0.0
-    gap_floor = math.exp(2.0 / 3.0 * math.log(floor / k_hertz))
     return squeeze * film / (-delta) * gap / (gap + gap_floor) * delta_rate
+
+
+@numba.njit(**_JIT_INLINE)
+def _gap_floor(floor, k_hertz):
+    """The Hertz approach [m] at the film's load floor, (floor / K)^(2/3): :func:`_gap_squeeze`."""
+    return math.exp(2.0 / 3.0 * math.log(floor / k_hertz))
 
 
 @numba.njit(**_JIT_INLINE)

@@ -62,6 +62,7 @@ from generators._kernels import (
     TABLE_INNER,
     TABLE_OUTER,
     TABLE_SERIES,
+    _gap_floor,
     _gap_squeeze,
     _hertz_dry,
     _hertz_ehl_table,
@@ -97,6 +98,9 @@ def _rhs_inline(scene, ehl, y, p, wav, dydt, loads, scratch):
     max_inner, max_outer = p[P_FILM_INNER_MAX], p[P_FILM_OUTER_MAX]
     squeeze_series = p[P_SQUEEZE_SERIES]
     inv_ball_mass = 1.0 / p[P_BALL_MASS] if scene == SCENE_FULL else 0.0
+    floor_inner = floor_outer = 0.0  # the film between ball and race apart (scene full)
+    if scene == SCENE_FULL and ehl:
+        floor_inner, floor_outer = _gap_floor(floor, k_inner), _gap_floor(floor, k_outer)
     centripetal = wc * wc
     pitch_radius = p[P_PITCH_RADIUS]
     gravity = p[P_GRAVITY]
@@ -155,9 +159,9 @@ def _rhs_inline(scene, ehl, y, p, wav, dydt, loads, scratch):
                     TABLE_OUTER,
                 )
                 if qi == 0.0:  # apart: the film between ball and race (docs/model.md 4.4)
-                    qi = _gap_squeeze(di, ddi, k_inner, film_inner, squeeze_inner, floor, max_inner)
+                    qi = _gap_squeeze(di, ddi, film_inner, squeeze_inner, max_inner, floor_inner)
                 if qo == 0.0:
-                    qo = _gap_squeeze(do, ddo, k_outer, film_outer, squeeze_outer, floor, max_outer)
+                    qo = _gap_squeeze(do, ddo, film_outer, squeeze_outer, max_outer, floor_outer)
             else:
                 qi = _hertz_dry(di, ddi, k_inner, tau)
                 qo = _hertz_dry(do, ddo, k_outer, tau)
