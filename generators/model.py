@@ -98,7 +98,9 @@ class SimulationResult:
         Every parameter of the run (bearing, operating point, rig, scene, settings, defects,
         integrator statistics), JSON-serialisable.
     contact_loads : ndarray or None, shape (n, 2, Z)
-        Inner [:, 0] and outer [:, 1] contact load of every ball [N], when requested.
+        Inner [:, 0] and outer [:, 1] contact load of every ball [N], when requested (in
+        scene ``full`` with the film, also the film's push between a ball and a race apart,
+        docs/model.md 4.4: count a contact as loaded over a threshold, e.g. 0.1 N).
     """
 
     time: np.ndarray
