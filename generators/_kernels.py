@@ -84,8 +84,10 @@ from generators import kernel_cache
     P_TABLE_INV_STEP_INNER,
     P_TABLE_INV_STEP_OUTER,
     P_TABLE_INV_STEP_SERIES,
+    P_GAP_FLOOR_INNER,
+    P_GAP_FLOOR_OUTER,
     P_SIZE,
-) = range(47)
+) = range(49)
 # Film tables (EHL scenes): from P_SIZE on, three tables (inner, outer, series contact) of
 # P_TABLE_NODES nodes each, every node [Q, dQ/ds, C, dC/ds]: the static force Q = K d^1.5 and
 # the damping coefficient C, d solving d = delta + h(K d^1.5), on a grid uniform in
@@ -94,7 +96,8 @@ TABLE_INNER, TABLE_OUTER, TABLE_SERIES = 0, 1, 2
 # P_FILM_*: h_c = P_FILM_* * (Q + floor)^FILM_EXPONENT [m] (Hamrock-Dowson, docs/model.md 4.2).
 # P_SQUEEZE_*: squeeze-film damping c = P_SQUEEZE_* * (Q + floor)^-FILM_EXPONENT [N s/m]
 # (docs/model.md 4.5 with h_c inserted); P_SQUEEZE_SERIES is the series combination for
-# massless balls.
+# massless balls. P_GAP_FLOOR_*: the Hertz approach at the film's load floor, (floor / K)^(2/3)
+# [m], over which the film between a ball and a race apart fades at onset (``_gap_squeeze``).
 
 FILM_EXPONENT = -0.067
 FILM_ITERATIONS = 2  # Newton steps on d = delta + h(K d^1.5): error 1e-5 (tests/reference.py)
@@ -250,7 +253,7 @@ def _gap_squeeze(delta, delta_rate, film, squeeze, h_max, gap_floor):
     separation (Reynolds' 6 pi eta R^2 / h for a sphere); as they separate it gives nothing
     (Guembel's cavitation condition: no pressure under ambient). The weight g / (g +
     gap_floor), g = -(delta + h_max) the gap beyond the film at zero load and ``gap_floor``
-    = (floor / K)^(2/3) the Hertz approach at the film's load floor (:func:`_gap_floor`),
+    = (floor / K)^(2/3) the Hertz approach at the film's load floor (``P_GAP_FLOOR_*``),
     takes it to zero at onset as Q / (Q + floor) takes the contact's squeeze term there, so
     the force is continuous. Only scene ``full`` uses it: its balls have masses that the film
     holds back; massless balls have no motion of their own between the races.
@@ -258,13 +261,7 @@ def _gap_squeeze(delta, delta_rate, film, squeeze, h_max, gap_floor):
     gap = -(delta + h_max)
     if gap <= 0.0 or delta_rate <= 0.0:
         return 0.0
-    return squeeze * film / (-delta) * gap / (gap + gap_floor) * delta_rate
-
-
-@numba.njit(**_JIT_INLINE)
-def _gap_floor(floor, k_hertz):
-    """The Hertz approach [m] at the film's load floor, (floor / K)^(2/3): :func:`_gap_squeeze`."""
-    return math.exp(2.0 / 3.0 * math.log(floor / k_hertz))
+    return squeeze * film * gap * delta_rate / (-delta * (gap + gap_floor))
 
 
 @numba.njit(**_JIT_INLINE)

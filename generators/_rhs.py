@@ -32,6 +32,8 @@ from generators._kernels import (
     P_FILM_OUTER_MAX,
     P_FILM_OUTER_REF,
     P_GAP,
+    P_GAP_FLOOR_INNER,
+    P_GAP_FLOOR_OUTER,
     P_GRAVITY,
     P_HOUSING_MASS,
     P_K_INNER,
@@ -62,7 +64,6 @@ from generators._kernels import (
     TABLE_INNER,
     TABLE_OUTER,
     TABLE_SERIES,
-    _gap_floor,
     _gap_squeeze,
     _hertz_dry,
     _hertz_ehl_table,
@@ -98,9 +99,7 @@ def _rhs_inline(scene, ehl, y, p, wav, dydt, loads, scratch):
     max_inner, max_outer = p[P_FILM_INNER_MAX], p[P_FILM_OUTER_MAX]
     squeeze_series = p[P_SQUEEZE_SERIES]
     inv_ball_mass = 1.0 / p[P_BALL_MASS] if scene == SCENE_FULL else 0.0
-    floor_inner = floor_outer = 0.0  # the film between ball and race apart (scene full)
-    if scene == SCENE_FULL and ehl:
-        floor_inner, floor_outer = _gap_floor(floor, k_inner), _gap_floor(floor, k_outer)
+    floor_inner, floor_outer = p[P_GAP_FLOOR_INNER], p[P_GAP_FLOOR_OUTER]
     centripetal = wc * wc
     pitch_radius = p[P_PITCH_RADIUS]
     gravity = p[P_GRAVITY]

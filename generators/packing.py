@@ -360,6 +360,9 @@ def pack_parameters(
         kri, kro = ki ** (2 / 3), ko ** (2 / 3)
         ri, ro = kri / (kri + kro), kro / (kri + kro)
         p[K.P_SQUEEZE_SERIES] = p[K.P_SQUEEZE_INNER] * ro**2 + p[K.P_SQUEEZE_OUTER] * ri**2
+        # the film between ball and race apart (scene full): the Hertz approach at the floor
+        p[K.P_GAP_FLOOR_INNER] = (qfloor / ki) ** (2 / 3)
+        p[K.P_GAP_FLOOR_OUTER] = (qfloor / ko) ** (2 / 3)
     return p
 
 

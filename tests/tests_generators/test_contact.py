@@ -265,20 +265,24 @@ def test_the_film_between_a_ball_and_a_race_apart_resists_their_approach_only():
         squeeze, k = p[K.P_SQUEEZE_INNER + table], p[K.P_K_INNER + table]
         contact = hertz_contact(g, race)
         gap_floor = (floor / k) ** (2 / 3)
+        packed_floor = p[K.P_GAP_FLOOR_INNER + table]
+        assert packed_floor == pytest.approx(gap_floor, rel=1e-12)
         for separation in (1e-6, 5e-6, 40e-6):
             delta = -separation
             gap = separation - h_max
             expected = squeeze_film_damping(contact, LUBRICANTS["VG68"], separation) * rate
             expected *= gap / (gap + gap_floor)
-            force = K._gap_squeeze(delta, rate, film, squeeze, h_max, K._gap_floor(floor, k))
+            force = K._gap_squeeze(delta, rate, film, squeeze, h_max, packed_floor)
             assert force == pytest.approx(expected, rel=1e-9)
-            assert K._gap_squeeze(delta, -rate, film, squeeze, h_max, K._gap_floor(floor, k)) == 0.0
+            assert K._gap_squeeze(delta, -rate, film, squeeze, h_max, packed_floor) == 0.0
         onset, full = -h_max, squeeze * film / h_max * rate  # the unweighted force there
         assert (
-            0.0 < K._gap_squeeze(onset - 1e-15, rate, film, squeeze, h_max, gap_floor) < 1e-6 * full
+            0.0
+            < K._gap_squeeze(onset - 1e-15, rate, film, squeeze, h_max, packed_floor)
+            < 1e-6 * full
         )
         assert 0.0 < _film_contact_exact(p, table, onset + 1e-15, rate) < 1e-6 * full
-        assert K._gap_squeeze(onset + 1e-9, rate, film, squeeze, h_max, gap_floor) == 0.0
+        assert K._gap_squeeze(onset + 1e-9, rate, film, squeeze, h_max, packed_floor) == 0.0
 
 
 def test_film_bad_input():
