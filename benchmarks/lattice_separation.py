@@ -65,7 +65,9 @@ def remove_lines(x: np.ndarray, fs: float, families: list[tuple[float, float]]) 
     margin = separation.COUPLED_BINS * fs / n
     transforms, lines = [], []
     for f0, offset in families:
-        kmin = math.floor((margin - offset) / f0) + 1
+        # a plain series from its first harmonic, as remove_harmonics fits it; an offset
+        # series from its first line a coupling width above 0 Hz
+        kmin = 1 if offset == 0.0 else math.floor((margin - offset) / f0) + 1
         kmax = math.floor((0.5 * fs - margin - offset) / f0)
         if f0 * n / fs < 4 or kmax < kmin:
             continue
@@ -93,12 +95,15 @@ def remove_lines(x: np.ndarray, fs: float, families: list[tuple[float, float]]) 
 
 def main(path: str, mode: str) -> None:
     rates: dict[str, float] = {}
-    shipped_separation = separation.separate_discrete
+    shipped_harmonics = separation.remove_harmonics
     shipped_evidence = evidence.fault_evidence
 
-    def separate(x, fs, *, fundamentals=(), **kw):
-        if mode == "none":
-            return shipped_separation(x, fs, fundamentals=fundamentals, **kw)
+    def separate(x, fs, fundamentals=()):
+        # in place of the separation's harmonic fit, so that the instrument floor it adds next
+        # is scaled to the record's RMS as shipped (until stop 72 the lattice was fitted before
+        # the whole separation, whose floor then lay 50 dB under the fit's residue instead)
+        if mode == "none" or len(fundamentals) != 2:
+            return shipped_harmonics(x, fs, fundamentals)
         shaft, bpfo = fundamentals
         families = [(shaft, 0.0), (bpfo, 0.0)]
         if mode in ("shaft", "all"):
@@ -112,13 +117,13 @@ def main(path: str, mode: str) -> None:
             # each ball's own events at the cage rate, modulated by its spin
             ftf, two_bsf = rates["ftf"], rates["two_bsf"]
             families += [(ftf, 0.0)] + [(ftf, (s * two_bsf) % ftf) for s in (1, -1)]
-        return shipped_separation(remove_lines(x, fs, families), fs, fundamentals=(), **kw)
+        return remove_lines(x, fs, families)
 
     def fault_evidence(x, fs, fault_frequencies):
         rates.update(fault_frequencies)
         return shipped_evidence(x, fs, fault_frequencies)
 
-    evidence.separate_discrete = separate
+    separation.remove_harmonics = separate
     features.fault_evidence = fault_evidence
     if path == "clean":
         print(mode, "clean:", " ".join(_clean_verdicts()))
