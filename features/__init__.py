@@ -21,6 +21,7 @@ from .detectors import (
 )
 from .envelope import KurtogramResult, envelope, envelope_spectrum, kurtogram, prewhiten
 from .evidence import EVIDENCE_NAMES, Evidence, fault_evidence, slip_line
+from .lattice import held_offsets, inner_race_lattice_offsets
 from .separation import (
     FALSE_ALARM,
     LINE_DB,
@@ -87,6 +88,8 @@ __all__ = [
     "select_band",
     "separate_discrete",
     "discrete_over_random_db",
+    "held_offsets",
+    "inner_race_lattice_offsets",
     "CONTEXT_COLUMNS",
     "DEFAULT_FAULTS",
     "FeatureError",

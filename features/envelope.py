@@ -24,6 +24,7 @@ from scipy import fft as sp_fft
 
 from . import _windows
 from ._validate import FeatureError, check_band, check_count, check_fs, check_positive, check_signal
+from .lattice import inner_race_lattice_offsets
 from .separation import fault_band, separate_discrete
 from .spectra import amplitude_spectrum
 
@@ -221,7 +222,12 @@ def envelope_spectrum(
     if band is None and fault_frequencies:
         rates = {k: v for k, v in fault_frequencies.items() if k in ("bpfo", "bpfi", "two_bsf")}
         periodic = tuple(fault_frequencies[k] for k in ("shaft", "bpfo") if k in fault_frequencies)
-        x = separate_discrete(x, fs, fundamentals=periodic)
+        lattice = ()
+        if len(periodic) == 2 and "bpfi" in fault_frequencies:  # as fault_evidence fits it
+            lattice = inner_race_lattice_offsets(
+                fault_frequencies["bpfo"], fault_frequencies["bpfi"]
+            )
+        x = separate_discrete(x, fs, fundamentals=periodic, lattice=lattice)
         cage = fault_frequencies.get("ftf")
         if cage is None and all(k in fault_frequencies for k in ("shaft", "bpfo", "bpfi")):
             # BPFO = Z x FTF and BPFO + BPFI = Z x the shaft rate, whatever the geometry

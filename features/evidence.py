@@ -52,6 +52,7 @@ import numpy as np
 
 from ._validate import FeatureError, check_fs, check_positive, check_signal
 from .envelope import envelope
+from .lattice import inner_race_lattice_offsets
 from .separation import (
     ANALYSER_RATIO,
     BAND_FLOOR_FACTOR,
@@ -301,7 +302,12 @@ def fault_evidence(x: np.ndarray, fs: float, fault_frequencies: Mapping[str, flo
             f"{top / BAND_FLOOR_FACTOR:g} Hz)"
         )
     rates = {k: ctx[k] for k in EVIDENCE_FAULTS}
-    random_part = separate_discrete(x, fs, fundamentals=(ctx["shaft"], ctx["bpfo"]))
+    random_part = separate_discrete(
+        x,
+        fs,
+        fundamentals=(ctx["shaft"], ctx["bpfo"]),
+        lattice=inner_race_lattice_offsets(ctx["bpfo"], ctx["bpfi"]),
+    )
     selection = fault_band(random_part, fs, rates, ctx["ftf"])
     return best_band_evidence(random_part, fs, ctx, selection)
 

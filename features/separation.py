@@ -46,6 +46,7 @@ from .false_alarm import (  # noqa: F401 (moved in stop 56, still exported here)
     plain_line_false_alarm,
     ratio_for_false_alarm,
 )
+from .lattice import held_offsets
 
 __all__ = [
     "remove_harmonics",
@@ -146,7 +147,9 @@ def instrument_floor_median(rms: float, window: np.ndarray) -> float:
     return sigma * math.sqrt(math.log(2.0) * float(np.sum(window * window)))
 
 
-def remove_harmonics(x: np.ndarray, fs: float, fundamentals: Sequence[float]) -> np.ndarray:
+def remove_harmonics(
+    x: np.ndarray, fs: float, fundamentals: Sequence[float], offsets: Sequence[float] = ()
+) -> np.ndarray:
     """Subtract every harmonic of each fundamental: the synchronous part of the signal.
 
     The harmonics k f0 below fs/2 of every fundamental are fitted to the record together by
@@ -173,6 +176,10 @@ def remove_harmonics(x: np.ndarray, fs: float, fundamentals: Sequence[float]) ->
         Sample rate [Hz].
     fundamentals : sequence of float
         Fundamental frequencies [Hz] (each at least two periods in the record).
+    offsets : sequence of float
+        Further series of the last fundamental f0, the lines o + k f0 [Hz] for each offset
+        o in (0, f0) (slices of a lattice, ``features.lattice``), fitted with the rest;
+        none without fundamentals.
 
     Returns
     -------
@@ -191,15 +198,22 @@ def remove_harmonics(x: np.ndarray, fs: float, fundamentals: Sequence[float]) ->
             continue
         count = int((0.5 * fs - COUPLED_BINS / duration) // f0)
         if count >= 1:  # none below fs / 2: nothing of it in the record to remove
-            families.append((f0, count))
+            families.append((f0, 0.0, 1, count))
+    if families and offsets and families[-1][0] == fundamentals[-1]:
+        f0 = families[-1][0]
+        for offset in offsets:  # o + k f0 from a coupling width over 0 Hz to one under fs/2
+            first = math.floor((COUPLED_BINS / duration - offset) / f0) + 1
+            last = math.floor((0.5 * fs - COUPLED_BINS / duration - offset) / f0)
+            if last >= first:
+                families.append((f0, float(offset), first, last - first + 1))
     if not families:
         return y
     weights = np.hanning(n)
     weights = weights / weights.sum()
-    transforms = [_harmonic_transforms(n, f0, count, fs) for f0, count in families]
-    lines = np.concatenate([f0 * np.arange(1, count + 1) for f0, count in families])
+    transforms = [_harmonic_transforms(n, *family, fs) for family in families]
+    lines = np.concatenate([o + f0 * np.arange(k, k + c) for f0, o, k, c in families])
     solve = sparse_linalg.splu(_hann_gram(lines / fs, n)).solve
-    splits = np.cumsum([count for _, count in families])[:-1]
+    splits = np.cumsum([c for *_, c in families])[:-1]
     total = np.zeros(n)
     scale = float(np.sqrt(np.sum(weights * y * y))) or 1.0
     moved = math.inf
@@ -273,11 +287,18 @@ class _HarmonicTransforms:
     do records of the same length, rate and fundamental (:func:`_harmonic_transforms`).
     """
 
-    def __init__(self, n: int, f0: float, count: int, fs: float) -> None:
+    def __init__(self, n: int, f0: float, offset: float, first: int, count: int, fs: float) -> None:
         step = np.exp(2j * np.pi * f0 / fs)
-        self.analysis = sp_signal.CZT(n, m=count, w=1 / step, a=step)
+        # the series' first line: step itself for a harmonic series (the same bits as before
+        # offsets existed), offset + first f0 for a lattice slice
+        start = (
+            step
+            if offset == 0.0 and first == 1
+            else np.exp(2j * np.pi * (offset + first * f0) / fs)
+        )
+        self.analysis = sp_signal.CZT(n, m=count, w=1 / step, a=start)
         self.synthesis = sp_signal.CZT(count, m=n, w=step, a=1.0)
-        self.ramp = step ** np.arange(n)
+        self.ramp = start ** np.arange(n)
 
     @property
     def nbytes(self) -> int:
@@ -297,22 +318,26 @@ class _HarmonicTransforms:
         return np.real(self.synthesis(amplitudes) * self.ramp)
 
 
-_transform_cache: OrderedDict[tuple[int, float, int, float], _HarmonicTransforms] = OrderedDict()
+_transform_cache: OrderedDict[tuple[int, float, float, int, int, float], _HarmonicTransforms] = (
+    OrderedDict()
+)
 _transform_cache_lock = threading.Lock()
 
 
-def _harmonic_transforms(n: int, f0: float, count: int, fs: float) -> _HarmonicTransforms:
+def _harmonic_transforms(
+    n: int, f0: float, offset: float, first: int, count: int, fs: float
+) -> _HarmonicTransforms:
     """:class:`_HarmonicTransforms` of one family, kept for the next record alike.
 
     The least recently used are dropped once the kept ones hold more than
     ``TRANSFORM_CACHE_BYTES``. The same transforms as made anew: the results are the same bits.
     """
-    key = (n, f0, count, fs)
+    key = (n, f0, offset, first, count, fs)
     with _transform_cache_lock:
         if key in _transform_cache:
             _transform_cache.move_to_end(key)
             return _transform_cache[key]
-    transforms = _HarmonicTransforms(n, f0, count, fs)
+    transforms = _HarmonicTransforms(n, f0, offset, first, count, fs)
     with _transform_cache_lock:
         _transform_cache[key] = transforms
         held = sum(t.nbytes for t in _transform_cache.values())
@@ -328,10 +353,13 @@ def separate_discrete(
     fundamentals: Sequence[float] = (),
     line_db: float = LINE_DB,
     window_hz: float = LINE_WINDOW_HZ,
+    lattice: Sequence[float] = (),
 ) -> np.ndarray:
     """The random part of a signal: periodic components and discrete spectral lines removed.
 
-    1. the harmonic series of each known ``fundamentals`` (:func:`remove_harmonics`);
+    1. the harmonic series of each known ``fundamentals`` (:func:`remove_harmonics`), with
+       the series of the last one offset by each ``lattice`` offset that the record holds
+       (``features.lattice.held_offsets``: a wavy inner race's slices of the line lattice);
     2. a white floor ``INSTRUMENT_FLOOR_DB`` below the record's RMS is added (seeded by the
        record itself), the floor of a good measurement chain, so that a noise-free simulated
        signal is judged as a recording of it would be (a measured record has a higher floor
@@ -352,6 +380,10 @@ def separate_discrete(
         Line threshold over the local median [dB].
     window_hz : float
         Width of the running median [Hz] (at least 21 bins).
+    lattice : sequence of float
+        Candidate offsets [Hz] in [0, f0) of further series of the last fundamental f0
+        (``features.lattice.inner_race_lattice_offsets``), each fitted only where the record
+        holds it; with none held the result is the same as without.
 
     Returns
     -------
@@ -369,12 +401,17 @@ def separate_discrete(
     >>> bool(np.std(rest - noise) < 0.3 * np.std(noise))
     True
     """
-    spec, lines = _line_editing(x, fs, fundamentals, line_db, window_hz)
+    spec, lines = _line_editing(x, fs, fundamentals, line_db, window_hz, lattice)
     return np.fft.irfft(np.where(lines, 0.0, spec), np.size(x))
 
 
 def _line_editing(
-    x: np.ndarray, fs: float, fundamentals: Sequence[float], line_db: float, window_hz: float
+    x: np.ndarray,
+    fs: float,
+    fundamentals: Sequence[float],
+    line_db: float,
+    window_hz: float,
+    lattice: Sequence[float] = (),
 ) -> tuple[np.ndarray, np.ndarray]:
     """:func:`separate_discrete`'s spectrum after steps 1-2 and its mask of edited bins."""
     x = check_signal(x, min_length=64)
@@ -383,6 +420,10 @@ def _line_editing(
     check_positive("window_hz", window_hz, unit="Hz")
     n = x.size
     y = remove_harmonics(x, fs, fundamentals)
+    if lattice and fundamentals:
+        held = held_offsets(y, fs, fundamentals[-1], lattice)
+        if held:  # fitted again with the slices held, jointly (their lines couple)
+            y = remove_harmonics(x, fs, fundamentals, held)
     rms = float(np.std(x))
     if rms > 0.0:
         seed = np.frombuffer(np.ascontiguousarray(x[:64], dtype=float).tobytes(), np.uint32)

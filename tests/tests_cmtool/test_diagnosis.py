@@ -884,6 +884,31 @@ def test_inner_race_waviness_across_speeds_is_no_local_fault():
     assert verdicts == ["healthy", "healthy"]
 
 
+@pytest.mark.parametrize("rig_name", ["default", "heavy"])
+def test_inner_race_waviness_of_z_lobes_is_no_outer_race_fault_at_2400_rpm(rig_name, monkeypatch):
+    """Inner-race waviness of Z = 9 lobes (1 um, 500 N, 2400 rpm, 12 kHz, 5 % noise) puts its
+    lines on the series k BPFI + n BPFO, whose beats fall at BPFO: fitted as slices of the
+    line lattice where the record holds them (features.lattice), it is healthy; without the
+    slices the rule reads it as an outer-race fault (docs/diagnosis.md, stop 72)."""
+    import features.evidence
+    from generators import OperatingCondition, Rig, SimulationSettings, Waviness, bearing, simulate
+
+    rigs = {
+        "default": Rig(),
+        "heavy": Rig(housing_mass=6.0, pedestal_stiffness=2e8, shaft_mass=2.5),
+    }
+    g = bearing("6205")
+    settings = SimulationSettings(fs=12000.0, duration=1.0, channels=("housing_acceleration_y",))
+    op = OperatingCondition.from_rpm(2400, 500.0)
+    wav = Waviness(surface="inner", order=9, amplitude=1e-6)
+    x = simulate(g, op, wav, rig=rigs[rig_name], settings=settings, random_state=3)
+    x = x["housing_acceleration_y"]
+    x = x + np.random.default_rng(72).normal(0.0, 0.05 * np.std(x), x.size)
+    assert diagnose_signal(x, 12000.0, 2400, g, waviness=False).verdict == "healthy"
+    monkeypatch.setattr(features.evidence, "inner_race_lattice_offsets", lambda *args: ())
+    assert diagnose_signal(x, 12000.0, 2400, g, waviness=False).verdict == "outer race"
+
+
 @pytest.mark.xfail(
     strict=True,
     raises=AssertionError,
