@@ -868,7 +868,9 @@ def test_a_model_that_learnt_no_local_fault_does_not_hide_one(bundle):
 def test_inner_race_waviness_across_speeds_is_no_local_fault():
     """Inner-race waviness N_w = 9 (1 um) is periodic, no local fault: at 900 rpm (25.6 kHz) and
     1500 rpm (12 kHz), 500 N, 5 % noise, the rule detector should call it healthy. It calls
-    both "outer race" (benchmarks/sweep_waviness_verdicts.py: 2 of 24 such cases healthy)."""
+    both "outer race" (benchmarks/sweep_waviness_verdicts.py: 2 of 24 such cases healthy at
+    stop 31; 13 of 24 since stop 72 fits the race's lattice slices, the 900 rpm cases and
+    some at 1500 rpm still not, their slices beyond what a 1 s record resolves)."""
     from generators import OperatingCondition, SimulationSettings, Waviness, bearing, simulate
 
     g = bearing("6205")
