@@ -42,6 +42,7 @@ from collections import Counter
 import numpy as np
 from lattice_separation import OffsetFamily, remove_lines
 from scipy.signal import find_peaks
+from sweep_waviness_verdicts import CHANNEL, RIGS  # the sweep's cases (benchmarks/ on the path)
 
 import features
 import features.evidence as evidence
@@ -49,7 +50,6 @@ import features.separation as separation
 from cmtool.diagnose import diagnose_signal
 from generators import (
     OperatingCondition,
-    Rig,
     SimulationSettings,
     Waviness,
     bearing,
@@ -59,12 +59,6 @@ from generators import (
 
 #: A slice is fitted where its comb holds this many times the null combs' median power.
 GATE = 4.0
-CHANNEL = "housing_acceleration_y"
-RIGS = {
-    "default": Rig(),
-    "light": Rig(housing_mass=0.8, pedestal_stiffness=2e7),
-    "heavy": Rig(housing_mass=6.0, pedestal_stiffness=2e8, shaft_mass=2.5),
-}
 
 
 def comb_power(r: np.ndarray, fs: float, spacing: float, offset: float) -> float:
