@@ -893,7 +893,15 @@ def test_inner_race_waviness_of_z_lobes_is_no_outer_race_fault_at_2400_rpm(rig_n
     line lattice where the record holds them (features.lattice), it is healthy; without the
     slices the rule reads it as an outer-race fault (docs/diagnosis.md, stop 72)."""
     import features.evidence
-    from generators import OperatingCondition, Rig, SimulationSettings, Waviness, bearing, simulate
+    from generators import (
+        OperatingCondition,
+        Rig,
+        SimulationSettings,
+        Waviness,
+        bearing,
+        characteristic_frequencies,
+        simulate,
+    )
 
     rigs = {
         "default": Rig(),
@@ -906,7 +914,13 @@ def test_inner_race_waviness_of_z_lobes_is_no_outer_race_fault_at_2400_rpm(rig_n
     x = simulate(g, op, wav, rig=rigs[rig_name], settings=settings, random_state=3)
     x = x["housing_acceleration_y"]
     x = x + np.random.default_rng(72).normal(0.0, 0.05 * np.std(x), x.size)
-    assert diagnose_signal(x, 12000.0, 2400, g, waviness=False).verdict == "healthy"
+    d = diagnose_signal(x, 12000.0, 2400, g, waviness=False)
+    assert d.verdict == "healthy"
+    # the library's automatic band offers the same slices: the command's band
+    f = characteristic_frequencies(g, 40.0)
+    rates = {"bpfo": f.bpfo, "bpfi": f.bpfi, "two_bsf": f.two_bsf, "shaft": f.shaft}
+    _, _, band = features.envelope_spectrum(x, 12000.0, fault_frequencies=rates, return_band=True)
+    assert band == pytest.approx(d.band_hz)
     monkeypatch.setattr(features.evidence, "inner_race_lattice_offsets", lambda *args: ())
     assert diagnose_signal(x, 12000.0, 2400, g, waviness=False).verdict == "outer race"
 
