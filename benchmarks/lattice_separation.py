@@ -98,14 +98,15 @@ def main(path: str, mode: str) -> None:
     shipped_harmonics = separation.remove_harmonics
     shipped_evidence = evidence.fault_evidence
 
-    def separate(x, fs, fundamentals=()):
+    def separate(x, fs, fundamentals=(), offsets=()):
         # in place of the separation's harmonic fit, so that the instrument floor it adds next
         # is scaled to the record's RMS as shipped (until stop 72 the lattice was fitted before
         # the whole separation, whose floor then lay 50 dB under the fit's residue instead)
         if mode == "none" or len(fundamentals) != 2:
-            return shipped_harmonics(x, fs, fundamentals)
+            return shipped_harmonics(x, fs, fundamentals, offsets)
         shaft, bpfo = fundamentals
-        families = [(shaft, 0.0), (bpfo, 0.0)]
+        # the shipped fit's series, with the inner race's lattice slices it holds (stop 72)
+        families = [(shaft, 0.0), (bpfo, 0.0)] + [(bpfo, o) for o in offsets]
         if mode in ("shaft", "all"):
             families += [(shaft, (s * q * bpfo) % shaft) for q in (1, 2) for s in (1, -1)]
         if mode in ("cage", "all"):

@@ -198,11 +198,12 @@ def separate_fitted_lines(
     fundamentals=(),
     line_db: float = separation.LINE_DB,
     window_hz: float = separation.LINE_WINDOW_HZ,
+    lattice=(),
 ) -> np.ndarray:
     """``features.separate_discrete`` with lines fitted and subtracted instead of zeroed."""
     x = np.asarray(x, dtype=float)
     n = x.size
-    y = separation.remove_harmonics(x, fs, fundamentals)
+    y = separation.remove_periodic(x, fs, fundamentals, lattice)
     rms = float(np.std(x))
     seed = np.frombuffer(np.ascontiguousarray(x[:64], dtype=float).tobytes(), np.uint32)
     floor_rms = rms * 10.0 ** (-separation.INSTRUMENT_FLOOR_DB / 20.0)

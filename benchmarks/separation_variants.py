@@ -38,7 +38,7 @@ from scipy import ndimage
 
 import features.evidence as evidence
 from cmtool.diagnose import diagnose_signal
-from features.separation import INSTRUMENT_FLOOR_DB, NEIGHBOURS, remove_harmonics
+from features.separation import INSTRUMENT_FLOOR_DB, NEIGHBOURS, remove_periodic
 from generators import (
     LocalizedDefect,
     OperatingCondition,
@@ -115,9 +115,9 @@ def cases() -> list[dict]:
     return out
 
 
-def _floored(x: np.ndarray, fs: float, fundamentals) -> np.ndarray:
+def _floored(x: np.ndarray, fs: float, fundamentals, lattice=()) -> np.ndarray:
     """The shipped separation's first two steps: harmonics removed, the instrument floor added."""
-    y = remove_harmonics(x, fs, fundamentals)
+    y = remove_periodic(x, fs, fundamentals, lattice)
     seed = np.frombuffer(np.ascontiguousarray(x[:64], dtype=float).tobytes(), np.uint32)
     floor = np.std(x) * 10.0 ** (-INSTRUMENT_FLOOR_DB / 20.0)
     return y + np.random.default_rng(seed).normal(0.0, floor, x.size)
@@ -132,9 +132,9 @@ def _edit(spec: np.ndarray, floor: np.ndarray, ratio: float) -> np.ndarray:
     return np.where(lines, 0.0, spec)
 
 
-def drs(x, fs, fundamentals=(), delay_s=0.1, segment_s=0.125):
+def drs(x, fs, fundamentals=(), lattice=(), delay_s=0.1, segment_s=0.125):
     """Shipped separation, then frequency-domain DRS (Antoni and Randall 2004)."""
-    y = SHIPPED(x, fs, fundamentals=fundamentals)
+    y = SHIPPED(x, fs, fundamentals=fundamentals, lattice=lattice)
     n, seg, delay = y.size, int(round(segment_s * fs)), int(round(delay_s * fs))
     window = np.hanning(seg)
     cross = np.zeros(seg // 2 + 1, complex)
@@ -153,9 +153,9 @@ def drs(x, fs, fundamentals=(), delay_s=0.1, segment_s=0.125):
     return y - predicted
 
 
-def mirror(x, fs, fundamentals=()):
+def mirror(x, fs, fundamentals=(), lattice=()):
     """Bin editing of the record and its mirror image, 13.8 dB over the median."""
-    y = _floored(x, fs, fundamentals)
+    y = _floored(x, fs, fundamentals, lattice)
     y = y - y.mean()
     z = np.concatenate([y, y[::-1]])
     spec = np.fft.rfft(z)
@@ -164,15 +164,15 @@ def mirror(x, fs, fundamentals=()):
     return np.fft.irfft(_edit(spec, floor, 10 ** (13.8 / 20)), z.size)[: y.size]
 
 
-def trim(x, fs, fundamentals=()):
+def trim(x, fs, fundamentals=(), lattice=()):
     """The shipped separation without the record's first and last tenth."""
-    y = SHIPPED(x, fs, fundamentals=fundamentals)
+    y = SHIPPED(x, fs, fundamentals=fundamentals, lattice=lattice)
     return y[y.size // 10 : y.size - y.size // 10]
 
 
-def percentile(x, fs, fundamentals=()):
+def percentile(x, fs, fundamentals=(), lattice=()):
     """Bin editing against the 20th percentile of the neighbourhood, 14.9 dB over it."""
-    y = _floored(x, fs, fundamentals)
+    y = _floored(x, fs, fundamentals, lattice)
     spec = np.fft.rfft(y - y.mean())
     bins = max(21, int(round(20.0 * y.size / fs))) | 1
     floor = ndimage.percentile_filter(np.abs(spec), 20, size=bins, mode="nearest")

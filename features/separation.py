@@ -50,6 +50,7 @@ from .lattice import held_offsets
 
 __all__ = [
     "remove_harmonics",
+    "remove_periodic",
     "separate_discrete",
     "discrete_over_random_db",
     "select_band",
@@ -231,6 +232,39 @@ def remove_harmonics(
     return y - total
 
 
+def remove_periodic(
+    x: np.ndarray, fs: float, fundamentals: Sequence[float], lattice: Sequence[float] = ()
+) -> np.ndarray:
+    """:func:`remove_harmonics`, and the lattice slices the record holds fitted jointly.
+
+    The last fundamental's series offset by each ``lattice`` offset that the record holds
+    (``features.lattice.held_offsets``) are fitted with the harmonic series: step 1 of
+    :func:`separate_discrete`. Where none is held, :func:`remove_harmonics`'s result itself.
+
+    Parameters
+    ----------
+    x : array_like, 1-D
+        Signal [U].
+    fs : float
+        Sample rate [Hz].
+    fundamentals : sequence of float
+        Fundamental frequencies [Hz].
+    lattice : sequence of float
+        Candidate offsets [Hz] in [0, f0) of the last fundamental f0's further series.
+
+    Returns
+    -------
+    ndarray
+        ``x`` minus its mean, the harmonic series and the series held.
+    """
+    y = remove_harmonics(x, fs, fundamentals)
+    if lattice and fundamentals:
+        held = held_offsets(y, fs, fundamentals[-1], lattice)
+        if held:  # fitted again with the slices held, jointly (their lines couple)
+            y = remove_harmonics(x, fs, fundamentals, held)
+    return y
+
+
 def _hann_gram(lines: np.ndarray, n: int) -> sparse.csc_matrix:
     """Gram matrix of the Hann-weighted fit of complex sinusoids at ``lines`` [cycles/sample].
 
@@ -359,7 +393,7 @@ def separate_discrete(
 
     1. the harmonic series of each known ``fundamentals`` (:func:`remove_harmonics`), with
        the series of the last one offset by each ``lattice`` offset that the record holds
-       (``features.lattice.held_offsets``: a wavy inner race's slices of the line lattice);
+       (:func:`remove_periodic`: a wavy inner race's slices of the line lattice);
     2. a white floor ``INSTRUMENT_FLOOR_DB`` below the record's RMS is added (seeded by the
        record itself), the floor of a good measurement chain, so that a noise-free simulated
        signal is judged as a recording of it would be (a measured record has a higher floor
@@ -419,11 +453,7 @@ def _line_editing(
     check_positive("line_db", line_db, unit="dB")
     check_positive("window_hz", window_hz, unit="Hz")
     n = x.size
-    y = remove_harmonics(x, fs, fundamentals)
-    if lattice and fundamentals:
-        held = held_offsets(y, fs, fundamentals[-1], lattice)
-        if held:  # fitted again with the slices held, jointly (their lines couple)
-            y = remove_harmonics(x, fs, fundamentals, held)
+    y = remove_periodic(x, fs, fundamentals, lattice)
     rms = float(np.std(x))
     if rms > 0.0:
         seed = np.frombuffer(np.ascontiguousarray(x[:64], dtype=float).tobytes(), np.uint32)
