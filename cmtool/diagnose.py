@@ -588,8 +588,11 @@ def diagnose_signal(
             "slowest_rate_periods": round(x.size / fs * _slowest_fault_rate(ctx), 1),
             **({"record_total_s": round(whole / fs, 6)} if whole > x.size else {}),
             "band_hz": [round(b, 2) for b in spectra.band],
+            "lattice_slices": list(evidence.lattice_orders),
             "band_selection": (
-                "harmonics of the shaft and ball-pass rates and discrete lines (> "
+                "harmonics of the shaft and ball-pass rates, the series k BPFI + n BPFO of a "
+                "wavy inner race of Z lobes where the record holds them (k: lattice_slices), "
+                "and discrete lines (> "
                 f"{features.LINE_DB:g} dB over the local median) removed, then the band of "
                 f"{len(selection.bands)} candidates at least "
                 f"{min(features.table.MIN_BAND_FACTOR * fastest, fs / 4):.0f} Hz wide "

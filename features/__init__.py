@@ -21,7 +21,7 @@ from .detectors import (
 )
 from .envelope import KurtogramResult, envelope, envelope_spectrum, kurtogram, prewhiten
 from .evidence import EVIDENCE_NAMES, Evidence, fault_evidence, slip_line
-from .lattice import held_offsets, inner_race_lattice_offsets
+from .lattice import held_offsets, inner_race_lattice_offsets, inner_race_lattice_orders
 from .separation import (
     FALSE_ALARM,
     LINE_DB,
@@ -90,6 +90,7 @@ __all__ = [
     "discrete_over_random_db",
     "held_offsets",
     "inner_race_lattice_offsets",
+    "inner_race_lattice_orders",
     "CONTEXT_COLUMNS",
     "DEFAULT_FAULTS",
     "FeatureError",

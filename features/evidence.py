@@ -52,7 +52,7 @@ import numpy as np
 
 from ._validate import FeatureError, check_fs, check_positive, check_signal
 from .envelope import envelope
-from .lattice import inner_race_lattice_offsets
+from .lattice import inner_race_lattice_offsets, inner_race_lattice_orders
 from .separation import (
     ANALYSER_RATIO,
     BAND_FLOOR_FACTOR,
@@ -180,6 +180,9 @@ class Evidence:
     families : dict of str to list
         Per fault, each line weighed: (name, (ratio [dB], found [Hz], bins searched, floor
         bins)), before any is explained.
+    lattice_orders : tuple of int
+        The series k BPFI + n BPFO the separation found held and fitted (``features.lattice``),
+        by their signed k; empty where none was.
     """
 
     features: dict[str, float]
@@ -191,6 +194,7 @@ class Evidence:
     envelope_amplitude: np.ndarray
     combined: dict[str, dict] = field(default_factory=dict)
     families: dict[str, list] = field(default_factory=dict)
+    lattice_orders: tuple[int, ...] = ()
 
 
 def combine_lines(
@@ -302,14 +306,15 @@ def fault_evidence(x: np.ndarray, fs: float, fault_frequencies: Mapping[str, flo
             f"{top / BAND_FLOOR_FACTOR:g} Hz)"
         )
     rates = {k: ctx[k] for k in EVIDENCE_FAULTS}
-    random_part = separate_discrete(
-        x,
-        fs,
-        fundamentals=(ctx["shaft"], ctx["bpfo"]),
-        lattice=inner_race_lattice_offsets(ctx["bpfo"], ctx["bpfi"]),
+    lattice = inner_race_lattice_offsets(ctx["bpfo"], ctx["bpfi"])
+    random_part, held = separate_discrete(
+        x, fs, fundamentals=(ctx["shaft"], ctx["bpfo"]), lattice=lattice, return_held=True
     )
     selection = fault_band(random_part, fs, rates, ctx["ftf"])
-    return best_band_evidence(random_part, fs, ctx, selection)
+    orders = tuple(
+        k for k, o in zip(inner_race_lattice_orders(), lattice, strict=True) if o in held
+    )
+    return replace(best_band_evidence(random_part, fs, ctx, selection), lattice_orders=orders)
 
 
 def best_band_evidence(

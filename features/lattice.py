@@ -29,6 +29,7 @@ from ._validate import FeatureError, check_fs, check_positive, check_signal
 
 __all__ = [
     "inner_race_lattice_offsets",
+    "inner_race_lattice_orders",
     "held_offsets",
     "LATTICE_ORDERS",
     "LATTICE_GATE",
@@ -86,6 +87,29 @@ def inner_race_lattice_offsets(
     return tuple(
         float((sign * k * rate) % spacing) for k in range(1, int(orders) + 1) for sign in (1, -1)
     )
+
+
+def inner_race_lattice_orders(orders: int = LATTICE_ORDERS) -> tuple[int, ...]:
+    """The signed harmonic k of BPFI of each offset :func:`inner_race_lattice_offsets` gives.
+
+    Parameters
+    ----------
+    orders : int
+        As :func:`inner_race_lattice_offsets`.
+
+    Returns
+    -------
+    tuple of int
+        +k for k BPFI, -k for -k BPFI, in the offsets' order.
+
+    Examples
+    --------
+    >>> inner_race_lattice_orders(2)
+    (1, -1, 2, -2)
+    """
+    if not isinstance(orders, int | np.integer) or orders < 1:
+        raise FeatureError(f"orders = {orders!r} is outside the allowed range: an integer >= 1")
+    return tuple(sign * k for k in range(1, int(orders) + 1) for sign in (1, -1))
 
 
 def held_offsets(

@@ -233,8 +233,13 @@ def remove_harmonics(
 
 
 def remove_periodic(
-    x: np.ndarray, fs: float, fundamentals: Sequence[float], lattice: Sequence[float] = ()
-) -> np.ndarray:
+    x: np.ndarray,
+    fs: float,
+    fundamentals: Sequence[float],
+    lattice: Sequence[float] = (),
+    *,
+    return_held: bool = False,
+) -> np.ndarray | tuple[np.ndarray, tuple[float, ...]]:
     """:func:`remove_harmonics`, and the lattice slices the record holds fitted jointly.
 
     The last fundamental's series offset by each ``lattice`` offset that the record holds
@@ -251,18 +256,23 @@ def remove_periodic(
         Fundamental frequencies [Hz].
     lattice : sequence of float
         Candidate offsets [Hz] in [0, f0) of the last fundamental f0's further series.
+    return_held : bool
+        Also return the offsets held [Hz].
 
     Returns
     -------
     ndarray
         ``x`` minus its mean, the harmonic series and the series held.
+    held : tuple of float
+        Only with ``return_held=True``.
     """
     y = remove_harmonics(x, fs, fundamentals)
+    held: tuple[float, ...] = ()
     if lattice and fundamentals:
         held = held_offsets(y, fs, fundamentals[-1], lattice)
         if held:  # fitted again with the slices held, jointly (their lines couple)
             y = remove_harmonics(x, fs, fundamentals, held)
-    return y
+    return (y, held) if return_held else y
 
 
 def _hann_gram(lines: np.ndarray, n: int) -> sparse.csc_matrix:
@@ -388,7 +398,8 @@ def separate_discrete(
     line_db: float = LINE_DB,
     window_hz: float = LINE_WINDOW_HZ,
     lattice: Sequence[float] = (),
-) -> np.ndarray:
+    return_held: bool = False,
+) -> np.ndarray | tuple[np.ndarray, tuple[float, ...]]:
     """The random part of a signal: periodic components and discrete spectral lines removed.
 
     1. the harmonic series of each known ``fundamentals`` (:func:`remove_harmonics`), with
@@ -418,11 +429,15 @@ def separate_discrete(
         Candidate offsets [Hz] in [0, f0) of further series of the last fundamental f0
         (``features.lattice.inner_race_lattice_offsets``), each fitted only where the record
         holds it; with none held the result is the same as without.
+    return_held : bool
+        Also return the ``lattice`` offsets held and fitted [Hz].
 
     Returns
     -------
     ndarray
         The random part, same length and unit as ``x`` (mean removed).
+    held : tuple of float
+        Only with ``return_held=True``.
 
     Examples
     --------
@@ -435,8 +450,9 @@ def separate_discrete(
     >>> bool(np.std(rest - noise) < 0.3 * np.std(noise))
     True
     """
-    spec, lines = _line_editing(x, fs, fundamentals, line_db, window_hz, lattice)
-    return np.fft.irfft(np.where(lines, 0.0, spec), np.size(x))
+    spec, lines, held = _line_editing(x, fs, fundamentals, line_db, window_hz, lattice)
+    random_part = np.fft.irfft(np.where(lines, 0.0, spec), np.size(x))
+    return (random_part, held) if return_held else random_part
 
 
 def _line_editing(
@@ -446,14 +462,14 @@ def _line_editing(
     line_db: float,
     window_hz: float,
     lattice: Sequence[float] = (),
-) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`separate_discrete`'s spectrum after steps 1-2 and its mask of edited bins."""
+) -> tuple[np.ndarray, np.ndarray, tuple[float, ...]]:
+    """:func:`separate_discrete`'s spectrum after steps 1-2, edited bins, lattice offsets held."""
     x = check_signal(x, min_length=64)
     fs = check_fs(fs)
     check_positive("line_db", line_db, unit="dB")
     check_positive("window_hz", window_hz, unit="Hz")
     n = x.size
-    y = remove_periodic(x, fs, fundamentals, lattice)
+    y, held = remove_periodic(x, fs, fundamentals, lattice, return_held=True)
     rms = float(np.std(x))
     if rms > 0.0:
         seed = np.frombuffer(np.ascontiguousarray(x[:64], dtype=float).tobytes(), np.uint32)
@@ -468,7 +484,7 @@ def _line_editing(
         lines[1:] |= lines[:-1].copy()
         lines[:-1] |= lines[1:].copy()
     lines[0] = True  # the mean
-    return spec, lines
+    return spec, lines, held
 
 
 def discrete_over_random_db(
@@ -518,7 +534,7 @@ def discrete_over_random_db(
     low, high = (float(b) for b in band)
     if not 0.0 <= low < high:
         raise FeatureError(f"band = {band!r}: need 0 <= low < high [Hz]")
-    spec, lines = _line_editing(x, fs, fundamentals, line_db, window_hz)
+    spec, lines, _ = _line_editing(x, fs, fundamentals, line_db, window_hz)
     f = np.fft.rfftfreq(np.asarray(x).size, 1.0 / fs)
     inside = (f >= low) & (f <= high)
     inside[0] = False

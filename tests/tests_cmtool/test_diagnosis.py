@@ -916,13 +916,20 @@ def test_inner_race_waviness_of_z_lobes_is_no_outer_race_fault_at_2400_rpm(rig_n
     x = x + np.random.default_rng(72).normal(0.0, 0.05 * np.std(x), x.size)
     d = diagnose_signal(x, 12000.0, 2400, g, waviness=False)
     assert d.verdict == "healthy"
+    # the assumptions say which series k BPFI + n BPFO were fitted (k = 1 among them)
+    assert (
+        1 in d.assumptions["lattice_slices"]
+        and "k BPFI + n BPFO" in d.assumptions["band_selection"]
+    )
     # the library's automatic band offers the same slices: the command's band
     f = characteristic_frequencies(g, 40.0)
     rates = {"bpfo": f.bpfo, "bpfi": f.bpfi, "two_bsf": f.two_bsf, "shaft": f.shaft}
     _, _, band = features.envelope_spectrum(x, 12000.0, fault_frequencies=rates, return_band=True)
     assert band == pytest.approx(d.band_hz)
     monkeypatch.setattr(features.evidence, "inner_race_lattice_offsets", lambda *args: ())
-    assert diagnose_signal(x, 12000.0, 2400, g, waviness=False).verdict == "outer race"
+    monkeypatch.setattr(features.evidence, "inner_race_lattice_orders", lambda *args: ())
+    without = diagnose_signal(x, 12000.0, 2400, g, waviness=False)
+    assert without.verdict == "outer race" and without.assumptions["lattice_slices"] == []
 
 
 @pytest.mark.xfail(

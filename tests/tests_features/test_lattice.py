@@ -26,6 +26,7 @@ def test_inner_race_lattice_offsets_are_k_bpfi_modulo_bpfo_both_ways():
     assert offsets == pytest.approx(expected, abs=1e-12)
     assert all(0.0 <= o < BPFO for o in offsets)
     assert len(inner_race_lattice_offsets(BPFO, BPFI)) == 2 * features.lattice.LATTICE_ORDERS
+    assert features.inner_race_lattice_orders(3) == (1, -1, 2, -2, 3, -3)
     with pytest.raises(FeatureError, match="ball_pass_inner"):
         inner_race_lattice_offsets(BPFO, -1.0)
     with pytest.raises(FeatureError, match="orders = 0"):
@@ -92,7 +93,10 @@ def test_a_held_slice_is_fitted_out_of_the_random_part():
     alone = separate_discrete(noise, FS, fundamentals=periodic)
     without = separate_discrete(x, FS, fundamentals=periodic)
     lattice = inner_race_lattice_offsets(BPFO, BPFI)
-    fitted = separate_discrete(x, FS, fundamentals=periodic, lattice=lattice)
+    fitted, held = separate_discrete(
+        x, FS, fundamentals=periodic, lattice=lattice, return_held=True
+    )
+    assert set(offsets) <= set(held)  # what the separation says it fitted
     left_without, left_fitted = _skirts(without, alone, offsets), _skirts(fitted, alone, offsets)
     assert left_without > 0.1
     assert left_fitted < 0.2 * left_without
