@@ -36,6 +36,11 @@ def print_diagnosis(diagnosis: Diagnosis) -> None:
         + f", fs {a['fs_hz']:g} Hz, {a['record_s']:g} s ({a['samples']} samples), "
         f"channel {a['channel']}"
     )
+    if slices := a.get("lattice_slices"):
+        print(
+            "  periodic part also fitted: the series k BPFI + n BPFO of a wavy inner race of Z "
+            f"lobes, k = {', '.join(f'{k:+d}' for k in slices)} (held by this record's lines)"
+        )
     if "bearing_geometry" in a:
         print(f"  bearing geometry {a['bearing_geometry']}")
     for c in diagnosis.candidates:

@@ -887,7 +887,9 @@ def test_inner_race_waviness_across_speeds_is_no_local_fault():
 
 
 @pytest.mark.parametrize("rig_name", ["default", "heavy"])
-def test_inner_race_waviness_of_z_lobes_is_no_outer_race_fault_at_2400_rpm(rig_name, monkeypatch):
+def test_inner_race_waviness_of_z_lobes_is_no_outer_race_fault_at_2400_rpm(
+    rig_name, monkeypatch, tmp_path, capsys
+):
     """Inner-race waviness of Z = 9 lobes (1 um, 500 N, 2400 rpm, 12 kHz, 5 % noise) puts its
     lines on the series k BPFI + n BPFO, whose beats fall at BPFO: fitted as slices of the
     line lattice where the record holds them (features.lattice), it is healthy; without the
@@ -926,10 +928,19 @@ def test_inner_race_waviness_of_z_lobes_is_no_outer_race_fault_at_2400_rpm(rig_n
     rates = {"bpfo": f.bpfo, "bpfi": f.bpfi, "two_bsf": f.two_bsf, "shaft": f.shaft}
     _, _, band = features.envelope_spectrum(x, 12000.0, fault_frequencies=rates, return_band=True)
     assert band == pytest.approx(d.band_hz)
+    # the command's text states the slices fitted, as the JSON does
+    np.save(tmp_path / "wavy.npy", x)
+    argv = ["diagnose", str(tmp_path / "wavy.npy"), "--fs", "12000", "--rpm", "2400"]
+    argv += ["--bearing", "6205"]
+    assert main(argv) == 0
+    said = [line for line in capsys.readouterr().out.splitlines() if "k BPFI + n BPFO" in line]
+    assert len(said) == 1 and "k = +1, -1" in said[0], said
     monkeypatch.setattr(features.evidence, "inner_race_lattice_offsets", lambda *args: ())
     monkeypatch.setattr(features.evidence, "inner_race_lattice_orders", lambda *args: ())
     without = diagnose_signal(x, 12000.0, 2400, g, waviness=False)
     assert without.verdict == "outer race" and without.assumptions["lattice_slices"] == []
+    assert main(argv) == 0
+    assert "k BPFI + n BPFO" not in capsys.readouterr().out  # none held, none stated
 
 
 @pytest.mark.xfail(
