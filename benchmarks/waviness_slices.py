@@ -27,7 +27,9 @@ pits, clean and in noise 3 x the RMS:
   record, after the shipped fit, exceeds ``GATE`` times the median of 24 combs of the same
   spacing at offsets (j + 0.5) BPFO / 24 (what the random part puts on any comb): the
   exploration ``shipped`` came from (the same slices, the comb read by chirp-z transforms);
-- ``gated-all M``: the same for every slice |m| <= M.
+- ``gated-all M``: the same for every slice |m| <= M;
+- ``orders K``: the shipped gate and joint fit with the series k BPFI + n BPFO, k <= K,
+  offered (``features.lattice.inner_race_lattice_offsets(..., orders=K)``; stop 73).
 
 Run: .venv/bin/python benchmarks/waviness_slices.py [MODE [K]] [--order N] [--pits] |
 --lines RPM FS
@@ -36,6 +38,7 @@ Run: .venv/bin/python benchmarks/waviness_slices.py [MODE [K]] [--order N] [--pi
 import argparse
 import itertools
 import math
+import sys
 import time
 from collections import Counter
 
@@ -84,7 +87,27 @@ def patch(mode: str, size: int, chosen: list[int]) -> None:
 
         separation.held_offsets = held
         return
+    if mode == "orders":  # the shipped gate and fit, the series k <= size offered
+        lattice = sys.modules["features.lattice"]
+        shipped_held = separation.held_offsets
+
+        def offered(bpfo, bpfi, orders=size):
+            return lattice.inner_race_lattice_offsets(bpfo, bpfi, orders)
+
+        def held(residue, fs, spacing, offsets):
+            out = shipped_held(residue, fs, spacing, offsets)
+            chosen.append(len(out))
+            return out
+
+        evidence.inner_race_lattice_offsets = offered
+        evidence.inner_race_lattice_orders = lambda orders=size: lattice.inner_race_lattice_orders(
+            orders
+        )
+        sys.modules["features.envelope"].inner_race_lattice_offsets = offered
+        separation.held_offsets = held
+        return
     evidence.inner_race_lattice_offsets = lambda *args, **kwargs: ()  # no slices offered
+    evidence.inner_race_lattice_orders = lambda *args, **kwargs: ()
     if mode == "before":
         return
     shipped_harmonics = separation.remove_harmonics
