@@ -38,8 +38,9 @@ def print_diagnosis(diagnosis: Diagnosis) -> None:
     )
     if slices := a.get("lattice_slices"):
         print(
-            "  periodic part also fitted: the series k BPFI + n BPFO of a wavy inner race of Z "
-            f"lobes, k = {', '.join(f'{k:+d}' for k in slices)} (held by this record's lines)"
+            "  periodic part also fitted: the series k BPFI + n BPFO, k = "
+            + ", ".join(f"{k:+d}" for k in slices)
+            + " (this record holds lines there; a wavy inner race of Z lobes puts its own there)"
         )
     if "bearing_geometry" in a:
         print(f"  bearing geometry {a['bearing_geometry']}")
