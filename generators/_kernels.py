@@ -86,8 +86,11 @@ from generators import kernel_cache
     P_TABLE_INV_STEP_SERIES,
     P_GAP_FLOOR_INNER,
     P_GAP_FLOOR_OUTER,
+    P_ENTRAINMENT_INNER,
+    P_ENTRAINMENT_OUTER,
+    P_ENTRAINMENT_SERIES,
     P_SIZE,
-) = range(49)
+) = range(52)
 # Film tables (EHL scenes): from P_SIZE on, three tables (inner, outer, series contact) of
 # P_TABLE_NODES nodes each, every node [Q, dQ/ds, C, dC/ds]: the static force Q = K d^1.5 and
 # the damping coefficient C, d solving d = delta + h(K d^1.5), on a grid uniform in
@@ -98,9 +101,13 @@ TABLE_INNER, TABLE_OUTER, TABLE_SERIES = 0, 1, 2
 # (docs/model.md 4.5 with h_c inserted); P_SQUEEZE_SERIES is the series combination for
 # massless balls. P_GAP_FLOOR_*: the Hertz approach at the film's load floor, (floor / K)^(2/3)
 # [m], over which the film between a ball and a race apart fades at onset (``_gap_squeeze``).
+# P_ENTRAINMENT_* (inner, outer, series in TABLE_* order): the square of the rigid-isoviscous
+# entrainment coefficient C [N^2 m] of a flooded contact at light load, w = C / sqrt(h)
+# (docs/model.md 4.6; 0: not modelled, the film carries nothing before the EHL contact).
 
 FILM_EXPONENT = -0.067
 FILM_ITERATIONS = 2  # Newton steps on d = delta + h(K d^1.5): error 1e-5 (tests/reference.py)
+ENTRAINMENT_ITERATIONS = 100  # at most (safeguarded Newton on ln Q; 5-10 typical)
 
 SCENE_SHAFT = 0
 SCENE_SHAFT_HOUSING = 1
@@ -209,7 +216,9 @@ def _hertz_dry(delta, delta_rate, k_hertz, damping_time):
 
 
 @numba.njit(**_JIT)
-def _hertz_ehl(delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max):
+def _hertz_ehl(
+    delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max, entrainment
+):
     """Hertz contact in series with the EHL film (docs/model.md 4.3-4.4).
 
     Solves d = delta + h(K d^1.5) for the elastic approach d, with the film
@@ -219,8 +228,13 @@ def _hertz_ehl(delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h
     -0.1005 h/d Q/(Q + floor). Then adds the dry (stiffness-proportional) and squeeze-film
     damping; the squeeze term is weighted by Q / (Q + floor) so that Q is continuous at onset.
     ``h_max`` = film * floor^-0.067 is the film at zero load: no contact while
-    delta + h_max <= 0.
+    delta + h_max <= 0. With ``entrainment`` = C^2 > 0 the film law is the composite of
+    :func:`_entrained_film` instead, which has no onset.
     """
+    if entrainment > 0.0:
+        return _entrained_film(
+            delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, entrainment
+        )
     if delta + h_max <= 0.0:
         return 0.0
     d = delta + h_ref
@@ -240,6 +254,50 @@ def _hertz_ehl(delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h
     q = k_hertz * d * root
     # squeeze * (Q + floor)^0.067 == squeeze * film / h (h of the last Newton iterate)
     c = damping_time * 1.5 * k_hertz * root + q / (q + floor) * squeeze * film / h
+    q = q + c * delta_rate
+    return q if q > 0.0 else 0.0
+
+
+@numba.njit(**_JIT)
+def _entrained_film(delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, entrainment):
+    """A flooded lubricated contact from the rigid-isoviscous to the EHL regime (docs/model.md 4.6).
+
+    The film carries the load Q at the gap h(Q) = film (Q + floor)^-0.067 + C^2 / Q^2: the
+    EHL film of :func:`_hertz_ehl` under load and, at light load, the rigid-isoviscous film of a
+    rolling point contact (Hamrock and Dowson), Q = C / sqrt(h). The approach solves
+    (Q / K)^(2/3) - h(Q) = delta for Q > 0 (strictly increasing in Q: one root) by Newton's
+    method on ln Q, kept inside a bisection bracket; Q is smooth in delta, with no onset: a
+    contact the rigid approach leaves g apart carries C / sqrt(g) and more as it closes. Then
+    the dry and the squeeze-film damping of :func:`_hertz_ehl`, the squeeze term at the
+    composite gap.
+    """
+    lo = -40.0  # ln Q [ln N]: the root lies between 4e-18 N and 5e21 N
+    hi = 50.0
+    log_k = math.log(k_hertz)
+    q_guess = k_hertz * max(delta, 0.0) ** 1.5 + math.sqrt(entrainment / max(abs(delta), 1e-12))
+    v = min(max(math.log(q_guess), lo + 1.0), hi - 1.0)
+    for _ in range(ENTRAINMENT_ITERATIONS):
+        q = math.exp(v)
+        elastic = math.exp((2.0 / 3.0) * (v - log_k))
+        ehl = film * math.exp(FILM_EXPONENT * math.log(q + floor))
+        rigid = entrainment / (q * q)
+        residual = elastic - ehl - rigid - delta
+        if residual > 0.0:
+            hi = v
+        else:
+            lo = v
+        slope = (2.0 / 3.0) * elastic - FILM_EXPONENT * ehl * q / (q + floor) + 2.0 * rigid
+        step = v - residual / slope
+        if not lo < step < hi:
+            step = 0.5 * (lo + hi)
+        if abs(step - v) <= 1e-14 * max(abs(v), 1.0):
+            v = step
+            break
+        v = step
+    q = math.exp(v)
+    d = math.exp((2.0 / 3.0) * (v - log_k))
+    h = film * math.exp(FILM_EXPONENT * math.log(q + floor)) + entrainment / (q * q)
+    c = damping_time * 1.5 * k_hertz * math.sqrt(d) + q / (q + floor) * squeeze * film / h
     q = q + c * delta_rate
     return q if q > 0.0 else 0.0
 
@@ -276,6 +334,11 @@ def _hertz_ehl_table(
     Q + C delta', clipped at zero. Outside the table the Newton solution of :func:`_hertz_ehl`
     is used.
     """
+    entrainment = p[P_ENTRAINMENT_INNER + table]
+    if entrainment > 0.0:  # no table: the composite law has no onset to tabulate from
+        return _entrained_film(
+            delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, entrainment
+        )
     x = delta + h_max
     if x <= 0.0:
         return 0.0
@@ -284,7 +347,7 @@ def _hertz_ehl_table(
     i = int(x)
     if i >= nodes - 1:
         return _hertz_ehl(
-            delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max
+            delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max, 0.0
         )
     base = P_SIZE + 4 * (table * nodes + i)
     q = _film_force(

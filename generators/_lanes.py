@@ -357,6 +357,7 @@ def _series_film(delta, delta_rate, c, b, tab, nodes):
             c[C_FLOOR, b],
             c[C_REF, b],
             c[C_MAX, b],
+            0.0,  # no entrainment in lanes (batches.lanes_supported)
         )
     base = 4 * i
     q = _film_force(

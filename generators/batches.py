@@ -20,7 +20,8 @@ def lanes_supported(prep: Prepared) -> bool:
     """Whether :func:`simulate_lanes` can integrate this prepared run.
 
     RK4 in the ``shaft`` or ``shaft+housing`` scene with waviness only (no local defects, fewer
-    than ``MAX_ROWS`` table rows, at most ``MAX_BALLS`` balls) and no contact-load record.
+    than ``MAX_ROWS`` table rows, at most ``MAX_BALLS`` balls), no contact-load record and no
+    film entrainment (``Rig.film_entrainment_factor``).
 
     Parameters
     ----------
@@ -38,6 +39,7 @@ def lanes_supported(prep: Prepared) -> bool:
         and bool(np.all(prep.wav[:, K.W_SURFACE] <= K.SURF_BALL))
         and prep.wav.shape[0] < _lanes.MAX_ROWS
         and prep.geometry.ball_count <= _lanes.MAX_BALLS
+        and prep.p[K.P_ENTRAINMENT_SERIES] == 0.0  # the composite film law: one-signal path
     )
 
 

@@ -20,6 +20,7 @@ from .contact import (
     film_thickness,
     hertz_contact,
     load_deflection_constants,
+    rigid_isoviscous_coefficient,
     squeeze_film_damping,
 )
 from .defects import defect_path
@@ -363,6 +364,12 @@ def pack_parameters(
         # the film between ball and race apart (scene full): the Hertz approach at the floor
         p[K.P_GAP_FLOOR_INNER] = (qfloor / ki) ** (2 / 3)
         p[K.P_GAP_FLOOR_OUTER] = (qfloor / ko) ** (2 / 3)
+        if rig.film_entrainment_factor > 0.0:  # docs/model.md 4.6: C^2 of w = C / sqrt(h)
+            share = rig.film_entrainment_factor**2
+            p[K.P_ENTRAINMENT_INNER] = share * rigid_isoviscous_coefficient(ci, lub, u) ** 2
+            p[K.P_ENTRAINMENT_OUTER] = share * rigid_isoviscous_coefficient(co, lub, u) ** 2
+            # in series one load crosses both films: h_i + h_o = (C_i^2 + C_o^2) / Q^2
+            p[K.P_ENTRAINMENT_SERIES] = p[K.P_ENTRAINMENT_INNER] + p[K.P_ENTRAINMENT_OUTER]
     return p
 
 

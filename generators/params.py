@@ -278,6 +278,11 @@ class Rig:
         damping vanishes continuously at contact onset (docs/model.md 1.2, option D1).
     film_damping_factor : float
         Multiplier on the squeeze-film damping of docs/model.md (4.5) (option D2) [-].
+    film_entrainment_factor : float
+        The film's load at light load as a share of a flooded contact's rigid-isoviscous
+        load (docs/model.md 4.6), in [0, 1]: 0 (default) leaves the film carrying nothing
+        until the EHL contact begins, 1 is fully flooded; starvation lies between. Needs the
+        film (``Scene(ehl=True)``) and massless balls (scene ``shaft`` or ``shaft+housing``) [-].
     lubricant : Lubricant
         Lubricant (used when the scene has the EHL film).
     loading_stiffness : float
@@ -296,6 +301,7 @@ class Rig:
     shaft_damping: float = 600.0
     contact_damping_time: float = 2e-7
     film_damping_factor: float = 1.0
+    film_entrainment_factor: float = 0.0
     lubricant: Lubricant = field(default_factory=lambda: LUBRICANTS["VG68"])
     loading_stiffness: float = 0.0
     gravity: bool = True
@@ -309,6 +315,7 @@ class Rig:
         check_real("shaft_damping", self.shaft_damping, low=0.0, high=1e7, unit="N s/m")
         check_real("contact_damping_time", self.contact_damping_time, low=0.0, high=1e-4, unit="s")
         check_real("film_damping_factor", self.film_damping_factor, low=0.0, high=10.0)
+        check_real("film_entrainment_factor", self.film_entrainment_factor, low=0.0, high=1.0)
         check_real("loading_stiffness", self.loading_stiffness, low=0.0, high=1e12, unit="N/m")
         check_real("unbalance", self.unbalance, low=0.0, high=10.0, unit="kg m")
         if not isinstance(self.gravity, bool):

@@ -349,6 +349,12 @@ def prepare_checked(
     # runs the dry path; a film of a few nanometres adds nothing but a stiffness so high that
     # the integration crawls (1e-9 rpm took minutes per millisecond)
     ehl = bool(scene.ehl) and operating.shaft_frequency >= EHL_MIN_SHAFT_FREQUENCY
+    if rig.film_entrainment_factor > 0.0 and (not scene.ehl or level == "full"):
+        raise ParameterError(
+            f"rig.film_entrainment_factor = {rig.film_entrainment_factor:g} needs the film and "
+            f"massless balls (Scene(ehl=True), level shaft or shaft+housing); the scene is "
+            f"{level} {'with' if scene.ehl else 'without'} the film: allowed 0 there"
+        )
     p = pack_parameters(geometry, operating, rig, ehl, freqs)
     if ehl:
         p = with_film_tables(p)

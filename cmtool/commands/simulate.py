@@ -304,6 +304,14 @@ def add_model_arguments(p: argparse.ArgumentParser) -> None:
         help="multiplier on the EHL film's squeeze damping [-]",
     )
     r.add_argument(
+        "--film-entrainment-factor",
+        type=float,
+        default=d.film_entrainment_factor,
+        help="the film's load at light load as a share of a flooded contact's rigid-isoviscous "
+        "load, 0-1 (0: none, the film carries nothing before the EHL contact; 1: flooded; "
+        "docs/model.md 4.6) [-]",
+    )
+    r.add_argument(
         "--lubricant",
         default=next(k for k, v in LUBRICANTS.items() if v == d.lubricant),
         choices=sorted(LUBRICANTS),
@@ -391,6 +399,7 @@ def _model_inputs(args: argparse.Namespace):
         shaft_damping=args.shaft_damping,
         contact_damping_time=args.contact_damping_time,
         film_damping_factor=args.film_damping_factor,
+        film_entrainment_factor=args.film_entrainment_factor,
         lubricant=LUBRICANTS[args.lubricant],
         loading_stiffness=args.loading_stiffness,
         unbalance=args.unbalance,
