@@ -11,8 +11,11 @@ pits, so a change to the detector can be weighed on both sides.
   slip and 0.005 rad of ball jitter, 600-3000 rpm, 200 and 1000 N, the same rates, white
   noise at each ``--noise`` multiple of the signal's RMS; ``--pits`` cases.
 
+``--entrainment F`` runs every case with ``Rig.film_entrainment_factor`` F (docs/model.md 4.6;
+stop 73).
+
 Run: .venv/bin/python benchmarks/sweep_rule_detector.py [--healthy 120] [--pits 90]
-[--noise 0 3 4]
+[--noise 0 3 4] [--entrainment 1]
 """
 
 import argparse
@@ -25,6 +28,7 @@ from cmtool.diagnose import diagnose_signal
 from generators import (
     LocalizedDefect,
     OperatingCondition,
+    Rig,
     SimulationSettings,
     bearing,
     simulate,
@@ -34,13 +38,16 @@ BEARINGS = ("6205", "6203", "6305", "6002", "6308", "mfpt")
 RATES = (12000.0, 25600.0, 48000.0)
 CHANNEL = "housing_acceleration_y"
 VERDICT = {"inner": "inner race", "outer": "outer race", "ball": "ball"}
+ENTRAINMENT = [0.0]  # Rig.film_entrainment_factor of every run (--entrainment)
 
 
 def _run(name, rpm, load, fs, defects=(), random_state=None, **operating):
     g = bearing(name)
     settings = SimulationSettings(fs=fs, duration=1.0, channels=(CHANNEL,))
     op = OperatingCondition.from_rpm(rpm, load, **operating)
-    return g, simulate(g, op, *defects, settings=settings, random_state=random_state)[CHANNEL]
+    rig = Rig(film_entrainment_factor=ENTRAINMENT[0])
+    x = simulate(g, op, *defects, rig=rig, settings=settings, random_state=random_state)
+    return g, x[CHANNEL]
 
 
 def healthy(count: int) -> None:
@@ -85,6 +92,8 @@ if __name__ == "__main__":
     parser.add_argument("--healthy", type=int, default=120)
     parser.add_argument("--pits", type=int, default=90)
     parser.add_argument("--noise", type=float, nargs="+", default=[0.0, 3.0, 4.0])
+    parser.add_argument("--entrainment", type=float, default=0.0, help="film entrainment [-]")
     args = parser.parse_args()
+    ENTRAINMENT[0] = args.entrainment
     healthy(args.healthy)
     pits(args.pits, args.noise)

@@ -6,10 +6,15 @@ given surface and order, 1 um, through three rigs (the model's default, a light 
 housing), at 900, 1500, 2400 and 3600 rpm, 500 N, 12 and 25.6 kHz, with white noise of 5 %
 of the signal's RMS, and counts the verdicts. No threshold is chosen on it: it measures.
 
+``--entrainment F`` runs every case with ``Rig.film_entrainment_factor`` F (docs/model.md 4.6;
+stop 73).
+
 Run: .venv/bin/python benchmarks/sweep_waviness_verdicts.py [--surface inner --order 9]
+[--entrainment 1]
 """
 
 import argparse
+import dataclasses
 import itertools
 import time
 from collections import Counter
@@ -33,6 +38,7 @@ def main() -> None:
     parser.add_argument("--order", type=int, default=9)
     parser.add_argument("--amplitude", type=float, default=1e-6, help="[m]")
     parser.add_argument("--bearing", default="6205")
+    parser.add_argument("--entrainment", type=float, default=0.0, help="film entrainment [-]")
     args = parser.parse_args()
     g = bearing(args.bearing)
     noise = np.random.default_rng(18)
@@ -44,6 +50,7 @@ def main() -> None:
         settings = SimulationSettings(fs=fs, duration=1.0, channels=(CHANNEL,))
         op = OperatingCondition.from_rpm(rpm, 500.0)
         wav = Waviness(surface=args.surface, order=args.order, amplitude=args.amplitude)
+        rig = dataclasses.replace(rig, film_entrainment_factor=args.entrainment)
         x = simulate(g, op, wav, rig=rig, settings=settings, random_state=3)[CHANNEL]
         x = x + noise.normal(0.0, 0.05 * np.std(x), x.size)
         start = time.perf_counter()
