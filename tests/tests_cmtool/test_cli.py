@@ -314,6 +314,7 @@ MODEL_FLAGS = [
     ("--shaft-damping", "450", "rig", "shaft_damping", 450.0),
     ("--contact-damping-time", "3e-7", "rig", "contact_damping_time", 3e-7),
     ("--film-damping-factor", "0.4", "rig", "film_damping_factor", 0.4),
+    ("--film-entrainment-factor", "0.6", "rig", "film_entrainment_factor", 0.6),
     ("--loading-stiffness", "1.5e6", "rig", "loading_stiffness", 1.5e6),
     ("--unbalance", "2e-5", "rig", "unbalance", 2e-5),
     ("--no-gravity", None, "rig", "gravity", False),
