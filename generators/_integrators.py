@@ -20,12 +20,14 @@ from generators._kernels import (
     DEFECTS_ALL,
     DEFECTS_NONE,
     DEFECTS_SLIP,
+    FILM_ENTRAINED,
     FILM_NAMES,
     N_OUT_ACCEL,
     N_OUT_STATE,
     P_BALL_COUNT,
     P_MAX_DISPLACEMENT,
     PHASE_ANCHOR,
+    SCENE_FULL,
     SCENE_NAMES,
     STATUS_OK,
     STATUS_STEP_COLLAPSE,
@@ -648,7 +650,13 @@ def _rhs_entry(scene: int, ehl: int):
     return _specialised(entry, "rhs", scene, ehl)
 
 
-PAIRS = tuple((scene, ehl) for scene in SCENE_NAMES for ehl in FILM_NAMES)
+#: Every (scene, film mode) compiled: the film's entrainment with massless balls only.
+PAIRS = tuple(
+    (scene, ehl)
+    for scene in SCENE_NAMES
+    for ehl in FILM_NAMES
+    if not (scene == SCENE_FULL and ehl == FILM_ENTRAINED)
+)
 RK4 = {pair: _rk4_entry(*pair) for pair in PAIRS}
 DOPRI5 = {pair: _dopri5_entry(*pair) for pair in PAIRS}
 RHS = {pair: _rhs_entry(*pair) for pair in PAIRS}

@@ -116,7 +116,11 @@ SCENE_FULL = 2
 SCENE_NAMES = {SCENE_SHAFT: "shaft", SCENE_SHAFT_HOUSING: "shaft_housing", SCENE_FULL: "full"}
 FILM_DRY = 0
 FILM_EHL = 1
-FILM_NAMES = {FILM_DRY: "dry", FILM_EHL: "ehl"}
+#: The film with its entrainment at light load (:func:`_entrained_film`, docs/model.md 4.6):
+#: massless-ball scenes only, one signal at a time (not in lanes). A mode of its own, compiled
+#: apart, so that the film's default path is the same machine code as without it.
+FILM_ENTRAINED = 2
+FILM_NAMES = {FILM_DRY: "dry", FILM_EHL: "ehl", FILM_ENTRAINED: "entrained"}
 
 SURF_OUTER = 0
 SURF_INNER = 1
@@ -216,9 +220,7 @@ def _hertz_dry(delta, delta_rate, k_hertz, damping_time):
 
 
 @numba.njit(**_JIT)
-def _hertz_ehl(
-    delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max, entrainment
-):
+def _hertz_ehl(delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max):
     """Hertz contact in series with the EHL film (docs/model.md 4.3-4.4).
 
     Solves d = delta + h(K d^1.5) for the elastic approach d, with the film
@@ -228,13 +230,8 @@ def _hertz_ehl(
     -0.1005 h/d Q/(Q + floor). Then adds the dry (stiffness-proportional) and squeeze-film
     damping; the squeeze term is weighted by Q / (Q + floor) so that Q is continuous at onset.
     ``h_max`` = film * floor^-0.067 is the film at zero load: no contact while
-    delta + h_max <= 0. With ``entrainment`` = C^2 > 0 the film law is the composite of
-    :func:`_entrained_film` instead, which has no onset.
+    delta + h_max <= 0. (With the film's entrainment, :func:`_entrained_film` instead.)
     """
-    if entrainment > 0.0:
-        return _entrained_film(
-            delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, entrainment
-        )
     if delta + h_max <= 0.0:
         return 0.0
     d = delta + h_ref
@@ -334,11 +331,6 @@ def _hertz_ehl_table(
     Q + C delta', clipped at zero. Outside the table the Newton solution of :func:`_hertz_ehl`
     is used.
     """
-    entrainment = p[P_ENTRAINMENT_INNER + table]
-    if entrainment > 0.0:  # no table: the composite law has no onset to tabulate from
-        return _entrained_film(
-            delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, entrainment
-        )
     x = delta + h_max
     if x <= 0.0:
         return 0.0
@@ -347,7 +339,7 @@ def _hertz_ehl_table(
     i = int(x)
     if i >= nodes - 1:
         return _hertz_ehl(
-            delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max, 0.0
+            delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, h_ref, h_max
         )
     base = P_SIZE + 4 * (table * nodes + i)
     q = _film_force(

@@ -45,6 +45,8 @@ from generators._integrators import _hermite_weights
 from generators._kernels import (
     _JIT,
     _JIT_INLINE,
+    FILM_DRY,
+    FILM_EHL,
     FILM_NAMES,
     P_BALL_COUNT,
     P_BALL_SPIN_SPEED,
@@ -357,7 +359,6 @@ def _series_film(delta, delta_rate, c, b, tab, nodes):
             c[C_FLOOR, b],
             c[C_REF, b],
             c[C_MAX, b],
-            0.0,  # no entrainment in lanes (batches.lanes_supported)
         )
     base = 4 * i
     q = _film_force(
@@ -754,4 +755,7 @@ def _rk4_entry(scene: int, ehl: int):
 
 #: The scenes the lanes integrate (massless balls).
 LANE_SCENES = (SCENE_SHAFT, SCENE_SHAFT_HOUSING)
-RK4 = {(scene, ehl): _rk4_entry(scene, ehl) for scene in LANE_SCENES for ehl in FILM_NAMES}
+#: The film modes the lanes run (the film's entrainment, ``FILM_ENTRAINED``, runs one signal at
+#: a time: ``batches.lanes_supported``).
+LANE_FILMS = (FILM_DRY, FILM_EHL)
+RK4 = {(scene, ehl): _rk4_entry(scene, ehl) for scene in LANE_SCENES for ehl in LANE_FILMS}

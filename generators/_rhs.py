@@ -20,10 +20,12 @@ import numba
 from generators._kernels import (
     _JIT,
     _JIT_INLINE,
+    FILM_ENTRAINED,
     P_BALL_COUNT,
     P_BALL_MASS,
     P_CAGE_SPEED,
     P_CONTACT_DAMPING_TIME,
+    P_ENTRAINMENT_SERIES,
     P_FILM_INNER,
     P_FILM_INNER_MAX,
     P_FILM_INNER_REF,
@@ -64,6 +66,7 @@ from generators._kernels import (
     TABLE_INNER,
     TABLE_OUTER,
     TABLE_SERIES,
+    _entrained_film,
     _gap_squeeze,
     _hertz_dry,
     _hertz_ehl_table,
@@ -98,6 +101,7 @@ def _rhs_inline(scene, ehl, y, p, wav, dydt, loads, scratch):
     ref_inner, ref_outer = p[P_FILM_INNER_REF], p[P_FILM_OUTER_REF]
     max_inner, max_outer = p[P_FILM_INNER_MAX], p[P_FILM_OUTER_MAX]
     squeeze_series = p[P_SQUEEZE_SERIES]
+    entrainment = p[P_ENTRAINMENT_SERIES] if ehl == FILM_ENTRAINED else 0.0
     inv_ball_mass = 1.0 / p[P_BALL_MASS] if scene == SCENE_FULL else 0.0
     floor_inner, floor_outer = p[P_GAP_FLOOR_INNER], p[P_GAP_FLOOR_OUTER]
     centripetal = wc * wc
@@ -174,7 +178,18 @@ def _rhs_inline(scene, ehl, y, p, wav, dydt, loads, scratch):
             if has_waviness:
                 d += scratch[0, j] + scratch[2, j] + scratch[4, j] + scratch[6, j]
                 dd += scratch[1, j] + scratch[3, j] + scratch[5, j] + scratch[7, j]
-            if ehl:
+            if ehl == FILM_ENTRAINED:  # docs/model.md 4.6: no table, no onset
+                qi = _entrained_film(
+                    d,
+                    dd,
+                    k_series,
+                    tau,
+                    film_inner + film_outer,
+                    squeeze_series,
+                    floor,
+                    entrainment,
+                )
+            elif ehl:
                 qi = _hertz_ehl_table(
                     d,
                     dd,

@@ -290,7 +290,7 @@ def error_bound_step(prep: Prepared, bound: float, oversample: int) -> tuple[flo
     slowest = float(lines.min()) if lines.size else 10.0
     window = max(min(prep.settings.duration, PILOT_MAX_DURATION), PILOT_PERIODS / slowest)
     n_out = int(math.ceil(window * fs))
-    stable = stability_step(prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0)
+    stable = stability_step(prep.scene_code, prep.film_mode, prep.p, prep.wav, prep.y0)
     step = min(LONGEST_STEP, stable, defect_step(prep.p, prep.wav))
     record_dt = 1.0 / (fs * oversample)
     shortest = min(step, DEFAULT_STEP_MASSLESS) * SHORTEST_FRACTION

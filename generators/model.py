@@ -256,7 +256,7 @@ def _run_rk4(prep: Prepared, plan: Plan, record: _Record) -> tuple[int, float, d
     """Fixed-step RK4 over the plan's grid: (status, time reached, integrator statistics)."""
     status, t_fail, _ = _integrators._rk4(
         prep.scene_code,
-        int(prep.ehl),
+        prep.film_mode,
         prep.y0,
         prep.p,
         prep.wav,
@@ -296,7 +296,7 @@ def _run_dopri5(prep: Prepared, plan: Plan, record: _Record) -> tuple[int, float
     max_steps = int(settings.max_steps_per_second * span) + 1000
     status, t_fail, _ = _integrators._dopri5(
         prep.scene_code,
-        int(prep.ehl),
+        prep.film_mode,
         prep.y0,
         prep.p,
         prep.wav,
@@ -404,7 +404,7 @@ def natural_frequencies(
     frozen = dataclasses.replace(operating, shaft_frequency=0.0)
     prep = prepare(bearing, frozen, scene=scene, rig=rig)
     nd = prep.y0.size // 2
-    jac = jacobian(prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0)
+    jac = jacobian(prep.scene_code, prep.film_mode, prep.p, prep.wav, prep.y0)
     if prep.scene_name == "shaft":
         # the one-way housing estimate is not part of the shaft scene's dynamics
         keep = [0, 1, nd, nd + 1]

@@ -234,6 +234,20 @@ class Prepared:
     y0: np.ndarray
     max_ball_load: float
 
+    @property
+    def film_mode(self) -> int:
+        """The kernels' film mode: ``_kernels.FILM_DRY``, ``FILM_EHL`` or ``FILM_ENTRAINED``.
+
+        Returns
+        -------
+        int
+            ``FILM_ENTRAINED`` where the film carries its entrainment at light load
+            (``Rig.film_entrainment_factor``, docs/model.md 4.6), else the film switch.
+        """
+        if not self.ehl:
+            return K.FILM_DRY
+        return K.FILM_ENTRAINED if self.p[K.P_ENTRAINMENT_SERIES] > 0.0 else K.FILM_EHL
+
 
 T = TypeVar("T")
 
@@ -460,7 +474,7 @@ def plan_run(prep: Prepared) -> Plan:
             # little, within the stability step, to put the records on the step grid where
             # shortening cannot (12 and 48 kHz)
             step, longest = default_step_and_growth(
-                prep.scene_name, prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0
+                prep.scene_name, prep.scene_code, prep.film_mode, prep.p, prep.wav, prep.y0
             )
         refine = True  # never step over a pit, whatever the step
         oversample = oversample or default_oversample(settings.fs)

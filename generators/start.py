@@ -58,7 +58,6 @@ def _ball_equilibrium(
                 p[K.P_FILM_LOAD_FLOOR],
                 p[K.P_FILM_INNER_REF],
                 p[K.P_FILM_INNER_MAX],
-                p[K.P_ENTRAINMENT_INNER],
             )
             qo = K._hertz_ehl(
                 do,
@@ -70,7 +69,6 @@ def _ball_equilibrium(
                 p[K.P_FILM_LOAD_FLOOR],
                 p[K.P_FILM_OUTER_REF],
                 p[K.P_FILM_OUTER_MAX],
-                p[K.P_ENTRAINMENT_OUTER],
             )
         else:
             qi = K._hertz_dry(di, 0.0, p[K.P_K_INNER], tau)

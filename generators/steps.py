@@ -29,7 +29,7 @@ DEFAULT_OVERSAMPLE = 4
 MIN_RECORD_RATE = 96e3
 
 
-def jacobian(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray) -> np.ndarray:
+def jacobian(code: int, ehl: int, p: np.ndarray, wav: np.ndarray, y0: np.ndarray) -> np.ndarray:
     """Jacobian of the first-order right-hand side at ``y0``, t = 0, by central differences.
 
     Displacements are perturbed by 1e-11 m, velocities by 1e-7 m/s (docs/model.md 7.5).
@@ -38,8 +38,9 @@ def jacobian(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarra
     ----------
     code : int
         The scene's kernel code (``_kernels.SCENE_SHAFT``, ``SCENE_SHAFT_HOUSING``, ``SCENE_FULL``).
-    ehl : bool
-        With the lubricant film.
+    ehl : int
+        The film mode (``_kernels.FILM_DRY``, ``FILM_EHL``, ``FILM_ENTRAINED``; a bool is the
+        film switch).
     p : ndarray
         The parameter vector (``generators.packing.pack_parameters``).
     wav : ndarray
@@ -74,7 +75,7 @@ DEFECT_STEPS = 10
 
 
 def default_step(
-    level: str, code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray
+    level: str, code: int, ehl: int, p: np.ndarray, wav: np.ndarray, y0: np.ndarray
 ) -> float:
     """Default RK4 step [s] of a scene (local defects aside: :func:`defect_substeps`).
 
@@ -93,8 +94,9 @@ def default_step(
         The scene's level.
     code : int
         The scene's kernel code (``_kernels.SCENE_SHAFT``, ``SCENE_SHAFT_HOUSING``, ``SCENE_FULL``).
-    ehl : bool
-        With the lubricant film.
+    ehl : int
+        The film mode (``_kernels.FILM_DRY``, ``FILM_EHL``, ``FILM_ENTRAINED``; a bool is the
+        film switch).
     p : ndarray
         The parameter vector (``generators.packing.pack_parameters``).
     wav : ndarray
@@ -111,7 +113,7 @@ def default_step(
 
 
 def default_step_and_growth(
-    level: str, code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray
+    level: str, code: int, ehl: int, p: np.ndarray, wav: np.ndarray, y0: np.ndarray
 ) -> tuple[float, float]:
     """:func:`default_step`, and how far :func:`rk4_schedule` may lengthen it (``longest``).
 
@@ -126,8 +128,9 @@ def default_step_and_growth(
         The scene's level.
     code : int
         The scene's kernel code (``_kernels.SCENE_SHAFT``, ``SCENE_SHAFT_HOUSING``, ``SCENE_FULL``).
-    ehl : bool
-        With the lubricant film.
+    ehl : int
+        The film mode (``_kernels.FILM_DRY``, ``FILM_EHL``, ``FILM_ENTRAINED``; a bool is the
+        film switch).
     p : ndarray
         The parameter vector (``generators.packing.pack_parameters``).
     wav : ndarray
@@ -182,7 +185,7 @@ def defect_substeps(step: float, p: np.ndarray, wav: np.ndarray) -> int:
     return max(1, math.ceil(step / limit - 1e-9))
 
 
-def stability_step(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.ndarray) -> float:
+def stability_step(code: int, ehl: int, p: np.ndarray, wav: np.ndarray, y0: np.ndarray) -> float:
     """``STABILITY_SAFETY`` times RK4's stability limit of the scene linearised at ``y0`` [s].
 
     min_i r(arg lambda_i) / |lambda_i| over the eigenvalues of the Jacobian
@@ -192,8 +195,9 @@ def stability_step(code: int, ehl: bool, p: np.ndarray, wav: np.ndarray, y0: np.
     ----------
     code : int
         The scene's kernel code (``_kernels.SCENE_SHAFT``, ``SCENE_SHAFT_HOUSING``, ``SCENE_FULL``).
-    ehl : bool
-        With the lubricant film.
+    ehl : int
+        The film mode (``_kernels.FILM_DRY``, ``FILM_EHL``, ``FILM_ENTRAINED``; a bool is the
+        film switch).
     p : ndarray
         The parameter vector (``generators.packing.pack_parameters``).
     wav : ndarray

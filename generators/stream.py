@@ -203,7 +203,7 @@ class SignalStream:
         out_loads = np.zeros((count if record_loads else 1, 2, z))
         status, t_end, y_end = _integrators._rk4(
             prep.scene_code,
-            int(prep.ehl),
+            prep.film_mode,
             y,
             prep.p,
             prep.wav,

@@ -757,7 +757,7 @@ def bound_steps(recipe: dict, cases: Iterable[Case]) -> dict[tuple, tuple[float,
             # the form errors' rows stay (they come before any local defect's)
             waviness = prep.wav[prep.wav[:, K.W_SURFACE] <= K.SURF_BALL]
             prep = dataclasses.replace(prep, wav=np.ascontiguousarray(waviness), defects=())
-        limit = stability_step(prep.scene_code, prep.ehl, prep.p, prep.wav, prep.y0)
+        limit = stability_step(prep.scene_code, prep.film_mode, prep.p, prep.wav, prep.y0)
         members.append(
             ((limit, -case.rpm, case.rpm, -case.radial_load_n, case.radial_load_n), prep)
         )

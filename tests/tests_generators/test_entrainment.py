@@ -83,19 +83,17 @@ def test_the_entrained_film_has_no_onset_and_meets_both_regimes():
     k, tau, film, squeeze, floor, h_ref, h_max, c2 = _film_parameters()
     assert c2 > 0.0
     gap = 100e-6
-    q = K._hertz_ehl(-gap, 0.0, k, tau, film, squeeze, floor, h_ref, h_max, c2)
+    q = K._entrained_film(-gap, 0.0, k, tau, film, squeeze, floor, c2)
     assert q == pytest.approx(math.sqrt(c2 / gap), rel=0.01)  # h_max (0.9 um) is 1 % of g
     for delta in (5e-6, 10e-6):  # 60 N and 400 N through the series contact
-        q = K._hertz_ehl(delta, 0.0, k, tau, film, squeeze, floor, h_ref, h_max, c2)
-        plain = K._hertz_ehl(delta, 0.0, k, tau, film, squeeze, floor, h_ref, h_max, 0.0)
-        exact = K._hertz_ehl(delta, 0.0, k, tau, film, squeeze, floor, h_ref, h_max, 1e-300)
+        q = K._entrained_film(delta, 0.0, k, tau, film, squeeze, floor, c2)
+        plain = K._hertz_ehl(delta, 0.0, k, tau, film, squeeze, floor, h_ref, h_max)
+        exact = K._entrained_film(delta, 0.0, k, tau, film, squeeze, floor, 1e-300)
         assert q == pytest.approx(exact, rel=1e-3) and exact == pytest.approx(plain, rel=1e-4)
     deltas = np.linspace(-10e-6, 2e-6, 601)
-    loads = np.array(
-        [K._hertz_ehl(d, 0.0, k, tau, film, squeeze, floor, h_ref, h_max, c2) for d in deltas]
-    )
+    loads = np.array([K._entrained_film(d, 0.0, k, tau, film, squeeze, floor, c2) for d in deltas])
     plain = np.array(
-        [K._hertz_ehl(d, 0.0, k, tau, film, squeeze, floor, h_ref, h_max, 0.0) for d in deltas]
+        [K._hertz_ehl(d, 0.0, k, tau, film, squeeze, floor, h_ref, h_max) for d in deltas]
     )
     assert np.all(loads > 0.0) and np.all(np.diff(loads) > 0.0)
     assert np.all(plain[deltas < -h_max] == 0.0)  # the onset the entrainment removes
@@ -109,6 +107,8 @@ def test_the_entrained_film_has_no_onset_and_meets_both_regimes():
 
 
 def test_entrainment_needs_the_film_and_massless_balls_and_runs_outside_lanes():
+    """Refused, by name, in scene full and without the film; its runs leave the lanes and run
+    the kernels' own film mode."""
     g = bearing("6205")
     op = OperatingCondition.from_rpm(1800.0, 500.0)
     rig = Rig(film_entrainment_factor=0.5)
@@ -116,8 +116,10 @@ def test_entrainment_needs_the_film_and_massless_balls_and_runs_outside_lanes():
     for scene in (Scene(level="full", ehl=True), Scene(level="shaft+housing", ehl=False)):
         with pytest.raises(ParameterError, match="film_entrainment_factor = 0.5"):
             prepare(g, op, scene=scene, rig=rig, settings=settings)
-    assert not lanes_supported(prepare(g, op, rig=rig, settings=settings))
-    assert lanes_supported(prepare(g, op, settings=settings))
+    entrained = prepare(g, op, rig=rig, settings=settings)
+    plain = prepare(g, op, settings=settings)
+    assert not lanes_supported(entrained) and lanes_supported(plain)
+    assert (entrained.film_mode, plain.film_mode) == (K.FILM_ENTRAINED, K.FILM_EHL)
     with pytest.raises(ParameterError, match="film_entrainment_factor"):
         Rig(film_entrainment_factor=1.5)
 
