@@ -26,7 +26,7 @@ def warm(part: int = 0, parts: int = 1) -> dict[str, list]:
     from generators import _lanes as lanes
     from generators import bearing, simulate
     from generators.model import prepare, simulate_lanes
-    from generators.params import OperatingCondition, Scene, SimulationSettings
+    from generators.params import OperatingCondition, Rig, Scene, SimulationSettings
 
     b = bearing("6205")
     op = OperatingCondition.from_rpm(1800, 500)
@@ -46,6 +46,17 @@ def warm(part: int = 0, parts: int = 1) -> dict[str, list]:
                         [prepare(b, op, scene=scene, settings=settings)], "housing_acceleration_y"
                     )
                 )
+    for level in ("shaft+housing", "shaft"):  # the film's entrainment (no lanes, no full)
+        for integrator in ("rk4", "dopri5"):
+            scene = Scene(level=level, ehl=True)
+            settings = SimulationSettings(
+                fs=12000, duration=0.002, settle_time=0.0, integrator=integrator
+            )
+            runs.append(
+                lambda scene=scene, settings=settings: simulate(
+                    b, op, scene=scene, rig=Rig(film_entrainment_factor=1.0), settings=settings
+                )
+            )
     for level in ("shaft+housing", "shaft", "full"):
         for ehl in (True, False):
             settings = SimulationSettings(
