@@ -89,13 +89,22 @@ from generators import kernel_cache
     P_ENTRAINMENT_INNER,
     P_ENTRAINMENT_OUTER,
     P_ENTRAINMENT_SERIES,
+    P_ENTRAINED_NODES,
+    P_ENTRAINED_ORIGIN,
+    P_ENTRAINED_STEP,
+    P_ENTRAINED_INV_STEP,
     P_SIZE,
-) = range(52)
+) = range(56)
 # Film tables (EHL scenes): from P_SIZE on, three tables (inner, outer, series contact) of
 # P_TABLE_NODES nodes each, every node [Q, dQ/ds, C, dC/ds]: the static force Q = K d^1.5 and
 # the damping coefficient C, d solving d = delta + h(K d^1.5), on a grid uniform in
 # s = sqrt(delta + h_max) (delta >= -h_max; packing._film_tables).
 TABLE_INNER, TABLE_OUTER, TABLE_SERIES = 0, 1, 2
+# With the film's entrainment (FILM_ENTRAINED), a fourth table follows them, from
+# P_SIZE + 12 * P_TABLE_NODES on: the series contact's composite law (``_entrained_film``),
+# P_ENTRAINED_NODES nodes [Q, dQ/ds, C, dC/ds] uniform (P_ENTRAINED_STEP apart) in the signed
+# s = sign(x) sqrt(|x|), x = delta + h_max, node P_ENTRAINED_ORIGIN at s = 0: the law has no
+# onset, so the table reaches into the gap (x < 0) as well (packing._entrained_table).
 # P_FILM_*: h_c = P_FILM_* * (Q + floor)^FILM_EXPONENT [m] (Hamrock-Dowson, docs/model.md 4.2).
 # P_SQUEEZE_*: squeeze-film damping c = P_SQUEEZE_* * (Q + floor)^-FILM_EXPONENT [N s/m]
 # (docs/model.md 4.5 with h_c inserted); P_SQUEEZE_SERIES is the series combination for
@@ -116,9 +125,9 @@ SCENE_FULL = 2
 SCENE_NAMES = {SCENE_SHAFT: "shaft", SCENE_SHAFT_HOUSING: "shaft_housing", SCENE_FULL: "full"}
 FILM_DRY = 0
 FILM_EHL = 1
-#: The film with its entrainment at light load (:func:`_entrained_film`, docs/model.md 4.6):
-#: massless-ball scenes only, one signal at a time (not in lanes). A mode of its own, compiled
-#: apart, so that the film's default path is the same machine code as without it.
+#: The film with its entrainment at light load (:func:`_entrained_film`, read from its table by
+#: :func:`_entrained_table`; docs/model.md 4.6): massless-ball scenes only. A mode of its own,
+#: compiled apart, so that the film's default path is the same machine code as without it.
 FILM_ENTRAINED = 2
 FILM_NAMES = {FILM_DRY: "dry", FILM_EHL: "ehl", FILM_ENTRAINED: "entrained"}
 
@@ -345,6 +354,44 @@ def _hertz_ehl_table(
     q = _film_force(
         x - i,
         p[P_TABLE_STEP_INNER + table],
+        delta_rate,
+        p[base],
+        p[base + 1],
+        p[base + 2],
+        p[base + 3],
+        p[base + 4],
+        p[base + 5],
+        p[base + 6],
+        p[base + 7],
+    )
+    return q if q > 0.0 else 0.0
+
+
+@numba.njit(**_JIT_INLINE)
+def _entrained_table(
+    delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, entrainment, h_max, p
+):
+    """:func:`_entrained_film` (the series contact) read from its table in ``p``.
+
+    The nodes are uniform in the signed s = sign(x) sqrt(|x|), x = delta + h_max, from inside
+    the gap (x < 0, where the entrainment alone carries the load) to the table's top, and hold
+    Q and C with their slopes in s (``packing._entrained_table``); cubic Hermite interpolation
+    as :func:`_hertz_ehl_table`. Outside the table, the Newton solution of
+    :func:`_entrained_film`.
+    """
+    x = delta + h_max
+    s = math.sqrt(x) if x >= 0.0 else -math.sqrt(-x)
+    u = s * p[P_ENTRAINED_INV_STEP] + p[P_ENTRAINED_ORIGIN]
+    nodes = int(p[P_ENTRAINED_NODES])
+    if not (0.0 <= u < nodes - 1):
+        return _entrained_film(
+            delta, delta_rate, k_hertz, damping_time, film, squeeze, floor, entrainment
+        )
+    i = int(u)
+    base = P_SIZE + 12 * int(p[P_TABLE_NODES]) + 4 * i
+    q = _film_force(
+        u - i,
+        p[P_ENTRAINED_STEP],
         delta_rate,
         p[base],
         p[base + 1],

@@ -47,12 +47,16 @@ from generators._kernels import (
     _JIT_INLINE,
     FILM_DRY,
     FILM_EHL,
+    FILM_ENTRAINED,
     FILM_NAMES,
     P_BALL_COUNT,
     P_BALL_SPIN_SPEED,
     P_CAGE_ANGLE0,
     P_CAGE_SPEED,
     P_CONTACT_DAMPING_TIME,
+    P_ENTRAINED_NODES,
+    P_ENTRAINED_ORIGIN,
+    P_ENTRAINMENT_SERIES,
     P_FILM_INNER,
     P_FILM_INNER_MAX,
     P_FILM_INNER_REF,
@@ -100,6 +104,7 @@ from generators._kernels import (
     W_STEP_COS,
     W_STEP_SIN,
     W_SURFACE,
+    _entrained_film,
     _film_force,
     _hertz_ehl,
 )
@@ -139,8 +144,10 @@ N_STATE = 8  # x_s, y_s, x_h, y_h, vx_s, vy_s, vx_h, vy_h (both scenes)
     C_LIMIT,
     C_TABLE_STEP,
     C_TABLE_INV_STEP,
+    C_ORIGIN,
+    C_ENTRAINMENT,
     C_SIZE,
-) = range(28)
+) = range(30)
 
 # sizes of the stack work arrays, in float64 per lane
 _SIZE_KS = 5 * N_STATE * LANES
@@ -202,6 +209,8 @@ def _constants(p, c, nl):
         c[C_LIMIT, b] = p[P_MAX_DISPLACEMENT, b]
         c[C_TABLE_STEP, b] = p[P_TABLE_STEP_SERIES, b]
         c[C_TABLE_INV_STEP, b] = p[P_TABLE_INV_STEP_SERIES, b]
+        c[C_ORIGIN, b] = p[P_ENTRAINED_ORIGIN, b]  # the entrained table (its step: the series')
+        c[C_ENTRAINMENT, b] = p[P_ENTRAINMENT_SERIES, b]
 
 
 @numba.njit(**_JIT_INLINE)
@@ -378,6 +387,45 @@ def _series_film(delta, delta_rate, c, b, tab, nodes):
 
 
 @numba.njit(**_JIT_INLINE)
+def _series_entrained(delta, delta_rate, c, b, tab, nodes):
+    """The series contact's entrained film law of lane b, the table read from ``tab[b]``.
+
+    The same arithmetic as :func:`generators._kernels._entrained_table` (the same bytes), the
+    lane's table one contiguous row as in :func:`_series_film`.
+    """
+    x = delta + c[C_MAX, b]
+    s = math.sqrt(x) if x >= 0.0 else -math.sqrt(-x)
+    u = s * c[C_TABLE_INV_STEP, b] + c[C_ORIGIN, b]
+    if not (0.0 <= u < nodes - 1):
+        return _entrained_film(
+            delta,
+            delta_rate,
+            c[C_K, b],
+            c[C_TAU, b],
+            c[C_FILM, b],
+            c[C_SQUEEZE, b],
+            c[C_FLOOR, b],
+            c[C_ENTRAINMENT, b],
+        )
+    i = int(u)
+    base = 4 * i
+    q = _film_force(
+        u - i,
+        c[C_TABLE_STEP, b],
+        delta_rate,
+        tab[b, base],
+        tab[b, base + 1],
+        tab[b, base + 2],
+        tab[b, base + 3],
+        tab[b, base + 4],
+        tab[b, base + 5],
+        tab[b, base + 6],
+        tab[b, base + 7],
+    )
+    return q if q > 0.0 else 0.0
+
+
+@numba.njit(**_JIT_INLINE)
 def _contact(ehl, j, b, f, tt, c, tab, nodes, z, pc, ps):
     """Contact force of ball j in lane b [N].
 
@@ -386,7 +434,9 @@ def _contact(ehl, j, b, f, tt, c, tab, nodes, z, pc, ps):
     """
     d = f[2, b] * pc + f[3, b] * ps + tt[j, b]
     dd = f[4, b] * pc + f[5, b] * ps + tt[z + j, b]
-    if ehl:
+    if ehl == FILM_ENTRAINED:
+        q = _series_entrained(d, dd, c, b, tab, nodes)
+    elif ehl:
         q = _series_film(d, dd, c, b, tab, nodes)
     else:
         # dry Hertz contact without a branch (docs/model.md 1.2): K d^1.5 + 1.5 tau K
@@ -632,7 +682,14 @@ def _rk4_impl(
     inc = numba.carray(_stack(_SIZE_TRIG), (MAX_ROWS + 2, 2, nl))
     _constants(p, c, nl)
     nodes = 0
-    if ehl:
+    if ehl == FILM_ENTRAINED:  # the fourth table (generators._kernels)
+        nodes = int(p[P_ENTRAINED_NODES, 0])
+        tab = np.empty((nl, 4 * nodes))
+        first = P_SIZE + 12 * int(p[P_TABLE_NODES, 0])
+        for b in range(nl):
+            for k in range(4 * nodes):
+                tab[b, k] = p[first + k, b]
+    elif ehl:
         nodes = int(p[P_TABLE_NODES, 0])
         tab = np.empty((nl, 4 * nodes))
         first = P_SIZE + 4 * TABLE_SERIES * nodes
@@ -755,7 +812,6 @@ def _rk4_entry(scene: int, ehl: int):
 
 #: The scenes the lanes integrate (massless balls).
 LANE_SCENES = (SCENE_SHAFT, SCENE_SHAFT_HOUSING)
-#: The film modes the lanes run (the film's entrainment, ``FILM_ENTRAINED``, runs one signal at
-#: a time: ``batches.lanes_supported``).
-LANE_FILMS = (FILM_DRY, FILM_EHL)
+#: The film modes the lanes run (each one's law as the one-signal kernels', the same bytes).
+LANE_FILMS = (FILM_DRY, FILM_EHL, FILM_ENTRAINED)
 RK4 = {(scene, ehl): _rk4_entry(scene, ehl) for scene in LANE_SCENES for ehl in LANE_FILMS}

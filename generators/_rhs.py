@@ -66,7 +66,7 @@ from generators._kernels import (
     TABLE_INNER,
     TABLE_OUTER,
     TABLE_SERIES,
-    _entrained_film,
+    _entrained_table,
     _gap_squeeze,
     _hertz_dry,
     _hertz_ehl_table,
@@ -178,8 +178,8 @@ def _rhs_inline(scene, ehl, y, p, wav, dydt, loads, scratch):
             if has_waviness:
                 d += scratch[0, j] + scratch[2, j] + scratch[4, j] + scratch[6, j]
                 dd += scratch[1, j] + scratch[3, j] + scratch[5, j] + scratch[7, j]
-            if ehl == FILM_ENTRAINED:  # docs/model.md 4.6: no table, no onset
-                qi = _entrained_film(
+            if ehl == FILM_ENTRAINED:  # docs/model.md 4.6: no onset
+                qi = _entrained_table(
                     d,
                     dd,
                     k_series,
@@ -188,6 +188,8 @@ def _rhs_inline(scene, ehl, y, p, wav, dydt, loads, scratch):
                     squeeze_series,
                     floor,
                     entrainment,
+                    max_inner + max_outer,
+                    p,
                 )
             elif ehl:
                 qi = _hertz_ehl_table(

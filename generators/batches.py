@@ -20,8 +20,8 @@ def lanes_supported(prep: Prepared) -> bool:
     """Whether :func:`simulate_lanes` can integrate this prepared run.
 
     RK4 in the ``shaft`` or ``shaft+housing`` scene with waviness only (no local defects, fewer
-    than ``MAX_ROWS`` table rows, at most ``MAX_BALLS`` balls), no contact-load record and no
-    film entrainment (``Rig.film_entrainment_factor``).
+    than ``MAX_ROWS`` table rows, at most ``MAX_BALLS`` balls) and no contact-load record; any
+    film mode (the film's entrainment too, ``Rig.film_entrainment_factor``).
 
     Parameters
     ----------
@@ -39,7 +39,6 @@ def lanes_supported(prep: Prepared) -> bool:
         and bool(np.all(prep.wav[:, K.W_SURFACE] <= K.SURF_BALL))
         and prep.wav.shape[0] < _lanes.MAX_ROWS
         and prep.geometry.ball_count <= _lanes.MAX_BALLS
-        and prep.p[K.P_ENTRAINMENT_SERIES] == 0.0  # the composite film law: one-signal path
     )
 
 
@@ -109,13 +108,13 @@ def simulate_lanes(
             )
         plan = plan_run(prep)
         layout = tuple(map(tuple, prep.wav[:, [K.W_SURFACE, K.W_BALL]].tolist()))
-        key = (prep.scene_code, prep.ehl, prep.geometry.ball_count, prep.p.size, layout, plan)
+        key = (prep.scene_code, prep.film_mode, prep.geometry.ball_count, prep.p.size, layout, plan)
         groups.setdefault(key, []).append((i, prep, plan))
     results: list = [None] * len(preps)
     lanes = _lanes.LANES
     n_blocks = 0
-    for (code, ehl, *_), members in groups.items():
-        kernel = _lanes.RK4[(code, int(ehl))]
+    for (code, film_mode, *_), members in groups.items():
+        kernel = _lanes.RK4[(code, film_mode)]
         plan = members[0][2]
         # an acceleration is recorded as its velocity and differentiated by the decimation
         which, column = source_column(channel, plan.oversample)

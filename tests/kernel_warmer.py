@@ -46,17 +46,25 @@ def warm(part: int = 0, parts: int = 1) -> dict[str, list]:
                         [prepare(b, op, scene=scene, settings=settings)], "housing_acceleration_y"
                     )
                 )
-    for level in ("shaft+housing", "shaft"):  # the film's entrainment (no lanes, no full)
+    entrained = Rig(film_entrainment_factor=1.0)
+    for level in ("shaft+housing", "shaft"):  # the film's entrainment (massless balls only)
+        scene = Scene(level=level, ehl=True)
         for integrator in ("rk4", "dopri5"):
-            scene = Scene(level=level, ehl=True)
             settings = SimulationSettings(
                 fs=12000, duration=0.002, settle_time=0.0, integrator=integrator
             )
             runs.append(
                 lambda scene=scene, settings=settings: simulate(
-                    b, op, scene=scene, rig=Rig(film_entrainment_factor=1.0), settings=settings
+                    b, op, scene=scene, rig=entrained, settings=settings
                 )
             )
+        settings = SimulationSettings(fs=12000, duration=0.002, settle_time=0.0)
+        runs.append(
+            lambda scene=scene, settings=settings: simulate_lanes(
+                [prepare(b, op, scene=scene, rig=entrained, settings=settings)],
+                "housing_acceleration_y",
+            )
+        )
     for level in ("shaft+housing", "shaft", "full"):
         for ehl in (True, False):
             settings = SimulationSettings(

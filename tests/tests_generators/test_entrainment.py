@@ -18,7 +18,7 @@ from generators import (
     form_waviness,
     simulate,
 )
-from generators.batches import lanes_supported
+from generators.batches import lanes_supported, simulate_lanes
 from generators.contact import (
     entrainment_speed,
     film_thickness,
@@ -106,9 +106,9 @@ def test_the_entrained_film_has_no_onset_and_meets_both_regimes():
         assert (q / k) ** (2.0 / 3.0) - h == pytest.approx(d, abs=1e-15)
 
 
-def test_entrainment_needs_the_film_and_massless_balls_and_runs_outside_lanes():
-    """Refused, by name, in scene full and without the film; its runs leave the lanes and run
-    the kernels' own film mode."""
+def test_entrainment_needs_the_film_and_massless_balls_and_runs_its_own_film_mode():
+    """Refused, by name, in scene full and without the film; its runs take the kernels' own
+    film mode, in the lanes too."""
     g = bearing("6205")
     op = OperatingCondition.from_rpm(1800.0, 500.0)
     rig = Rig(film_entrainment_factor=0.5)
@@ -118,10 +118,77 @@ def test_entrainment_needs_the_film_and_massless_balls_and_runs_outside_lanes():
             prepare(g, op, scene=scene, rig=rig, settings=settings)
     entrained = prepare(g, op, rig=rig, settings=settings)
     plain = prepare(g, op, settings=settings)
-    assert not lanes_supported(entrained) and lanes_supported(plain)
+    assert lanes_supported(entrained) and lanes_supported(plain)
     assert (entrained.film_mode, plain.film_mode) == (K.FILM_ENTRAINED, K.FILM_EHL)
     with pytest.raises(ParameterError, match="film_entrainment_factor"):
         Rig(film_entrainment_factor=1.5)
+
+
+def test_the_entrained_table_reads_the_law_newton_solves():
+    """The kernels read the composite law from a table (``packing._entrained_film_table``):
+    across the gap (to 0.1 mm), the onset region and the Hertz regime (to 30 um of approach),
+    the force with and without a rate is within 1e-8 of the Newton solution (or of 1 N, for
+    the light loads); beyond the table's reach into the gap the kernel is the Newton solution
+    itself."""
+    for factor, rpm in ((1.0, 1800.0), (0.3, 900.0)):
+        prep = prepare(
+            bearing("6205"),
+            OperatingCondition.from_rpm(rpm, 500.0),
+            rig=Rig(film_entrainment_factor=factor),
+            settings=SimulationSettings(fs=12000.0, duration=0.01),
+        )
+        p = prep.p
+        k, tau, film, squeeze, floor, _, h_max, c2 = _film_parameters(factor, rpm)
+        rng = np.random.default_rng(4)
+        deltas = np.concatenate(
+            [
+                -(10.0 ** rng.uniform(-9.0, -4.0, 400)),
+                rng.uniform(-3.0 * h_max, h_max, 400),
+                10.0 ** rng.uniform(-9.0, -4.5, 400),
+            ]
+        )
+        for delta in deltas:
+            for rate in (0.0, 2e-3, -2e-3):
+                law = K._entrained_film(delta, rate, k, tau, film, squeeze, floor, c2)
+                read = K._entrained_table(delta, rate, k, tau, film, squeeze, floor, c2, h_max, p)
+                assert abs(read - law) <= 1e-8 * max(law, 1.0), (delta, rate, read, law)
+        reach = (p[K.P_ENTRAINED_ORIGIN] * p[K.P_ENTRAINED_STEP]) ** 2  # [m] into the gap
+        assert 5e-5 < reach < 1e-3
+        far = -h_max - 1.01 * reach
+        law = K._entrained_film(far, 1e-3, k, tau, film, squeeze, floor, c2)
+        assert K._entrained_table(far, 1e-3, k, tau, film, squeeze, floor, c2, h_max, p) == law
+
+
+@pytest.mark.parametrize("level", ["shaft", "shaft+housing"])
+def test_entrained_runs_in_lanes_are_simulates_and_do_not_depend_on_their_block(level):
+    """Wavy 6205s with the film's entrainment (three speeds and loads, 5 um clearance): the
+    lanes give what :func:`simulate` gives (to 1e-9 of the peak, as the plain film's lanes),
+    and a run's bytes do not depend on its place in a block."""
+    g = bearing("6205", radial_internal_clearance=5e-6)
+    rig = Rig(film_entrainment_factor=1.0)
+    scene = Scene(level=level, ehl=True)
+    settings = SimulationSettings(fs=6400.0, duration=0.05, settle_time=0.02, channels=(CHANNEL,))
+    cases = [
+        (
+            OperatingCondition.from_rpm(900 + 450 * i, 100 + 200 * i),
+            Waviness(surface="inner", order=9, amplitude=5e-7),
+        )
+        for i in range(3)
+    ]
+    preps = [
+        prepare(g, op, wavy, scene=scene, rig=rig, settings=settings, random_state=i)
+        for i, (op, wavy) in enumerate(cases)
+    ]
+    lanes = simulate_lanes(preps, CHANNEL)
+    for i, (op, wavy) in enumerate(cases):
+        ref = simulate(g, op, wavy, scene=scene, rig=rig, settings=settings, random_state=i)
+        ref = ref[CHANNEL]
+        scale = np.max(np.abs(ref))
+        assert scale > 0 and np.max(np.abs(lanes[i] - ref)) <= 1e-9 * scale, i
+    for position in range(3):
+        block = [preps[0], preps[2]]
+        block.insert(position, preps[1])
+        assert np.array_equal(simulate_lanes(block, CHANNEL)[position], lanes[1]), position
 
 
 def test_the_entry_kink_is_what_a_perfect_bearing_rings_with():
