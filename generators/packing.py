@@ -468,7 +468,7 @@ def _entrained_film_table(values: tuple[float, ...]) -> np.ndarray:
 
     lo = np.full(s.shape, -40.0)  # ln Q [ln N], as _kernels._entrained_film's bracket
     hi = np.full(s.shape, 50.0)
-    for _ in range(200):  # the residual rises with Q: bisection to the last bit
+    for _ in range(64):  # the residual rises with Q: bisection to the last bit (90 / 2^64)
         mid = 0.5 * (lo + hi)
         above = residual(mid) > 0.0
         hi = np.where(above, mid, hi)

@@ -212,6 +212,14 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
         doc="squeeze-film damping over docs/model.md 4.4's estimate, drawn per case (default 1)",
     ),
     Key(
+        "model.film_entrainment_factor",
+        "number",
+        0.0,
+        1.0,
+        doc="the film's load at light load, as a share of a flooded contact's "
+        "(docs/model.md 4.6; absent: 0, none; scenes shaft and shaft+housing with ehl only)",
+    ),
+    Key(
         "model.housing_damping_ratio",
         "values",
         1e-4,
@@ -667,6 +675,12 @@ def validate_recipe(recipe: dict) -> dict:
             raise _fail(section, table, "a table is required")
         _walk(table, section, f"{section}.")
     model = r["model"]
+    if model.get("film_entrainment_factor") and (model["scene"] == "full" or not model["ehl"]):
+        raise _fail(
+            "model.film_entrainment_factor",
+            model["film_entrainment_factor"],
+            "needs the film (ehl = true) and massless balls (scene shaft or shaft+housing)",
+        )
     if model.get("error_bound") is not None:
         if model.get("step_s") is not None:
             raise _fail("model.error_bound", model["error_bound"], "give error_bound or step_s")

@@ -239,7 +239,9 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         return prepare_checked(geometry, operating, form, scene, rig, settings, rng, freqs)
 
     try:
-        rig = case_rig(case, geometry)
+        rig = case_rig(
+            case, geometry, film_entrainment_factor=model.get("film_entrainment_factor") or 0.0
+        )
         job.run = prepare_checked(
             geometry, operating, form + tuple(defects), scene, rig, settings, job.rng, freqs
         )
@@ -255,7 +257,7 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
     return job
 
 
-def case_rig(case: Case, geometry: BearingGeometry) -> Rig:
+def case_rig(case: Case, geometry: BearingGeometry, *, film_entrainment_factor: float = 0.0) -> Rig:
     """The rig of a case: the default ``Rig`` with what the recipe drew for it.
 
     ``RIG_KEYS`` columns replace their ``Rig`` fields; ``DAMPING_RATIO_KEYS`` columns set the
@@ -270,6 +272,9 @@ def case_rig(case: Case, geometry: BearingGeometry) -> Rig:
         A drawn case.
     geometry : BearingGeometry
         The case's bearing (with its clearance).
+    film_entrainment_factor : float
+        The recipe's ``model.film_entrainment_factor`` (``Rig.film_entrainment_factor``, 0-1;
+        docs/model.md 4.6), the same for every case.
 
     Returns
     -------
@@ -282,6 +287,8 @@ def case_rig(case: Case, geometry: BearingGeometry) -> Rig:
         for key, field in RIG_KEYS.items()
         if not math.isnan(getattr(case, key))
     }
+    if film_entrainment_factor:
+        drawn["film_entrainment_factor"] = film_entrainment_factor
     if drawn:
         rig = dataclasses.replace(rig, **drawn)
     zeta_h, zeta_s = case.housing_damping_ratio, case.shaft_damping_ratio

@@ -238,3 +238,53 @@ def test_with_entrainment_form_errors_and_slow_waviness_are_no_local_fault():
             x = x + np.random.default_rng(1).normal(0.0, 0.05 * np.std(x), x.size)
             verdicts.append(diagnose_signal(x, fs, op.rpm, g, waviness=False).verdict)
         assert verdicts == ["outer race", "healthy"], (op.rpm, verdicts)
+
+
+ENTRAINED_RECIPE = """
+name = "entrained"
+seed = 6
+bearings = ["6205"]
+[operating]
+rpm = 1797
+load_n = 100
+clearance_m = 5e-6
+[model]
+{model}
+[sensor]
+fs_hz = 12000
+duration_s = 0.3
+settle_s = 0.1
+[[conditions]]
+label = "healthy"
+count = 1
+"""
+
+
+def test_a_recipe_gives_every_case_the_films_entrainment():
+    """``[model] film_entrainment_factor`` gives every case's rig the option (the entrained
+    film mode; the perfect bearing of the test above then rings under a tenth as much); absent,
+    the validated recipe (and its digest) has no such key; refused, by name, out of 0-1, in
+    scene full and without the film."""
+    import tomllib
+
+    from generators.cases import expand_cases
+    from generators.recipe import validate_recipe
+    from generators.synthesis import _setup, generate_cases
+
+    rms = []
+    for model in ("", "film_entrainment_factor = 1.0"):
+        recipe = validate_recipe(tomllib.loads(ENTRAINED_RECIPE.format(model=model)))
+        assert ("film_entrainment_factor" in recipe["model"]) == bool(model)
+        cases = expand_cases(recipe)
+        run = _setup(recipe, cases[0], CHANNEL, {}).run
+        assert run.film_mode == (K.FILM_ENTRAINED if model else K.FILM_EHL)
+        assert (run.p[K.P_ENTRAINMENT_SERIES] > 0.0) == bool(model)
+        rms.append(np.std(generate_cases(recipe, cases)[0]["signal"]))
+    assert rms[1] < 0.1 * rms[0], rms
+    for model in (
+        "film_entrainment_factor = 1.5",
+        'scene = "full"\nfilm_entrainment_factor = 0.5',
+        "ehl = false\nfilm_entrainment_factor = 0.5",
+    ):
+        with pytest.raises(ParameterError, match="model.film_entrainment_factor"):
+            validate_recipe(tomllib.loads(ENTRAINED_RECIPE.format(model=model)))
