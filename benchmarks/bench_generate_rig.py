@@ -5,7 +5,10 @@ races; cwru-rig: 12 and 48 kHz, mfpt-rig: 48.8 and 97.7 kHz; local defects with 
 with its healthy twin) on two workers, timed from the call to the last file; the rate is
 printed with the single-core yardstick of bench_generate.py's host note in mind.
 
-Run: .venv/bin/python benchmarks/bench_generate_rig.py [recipe ...]
+With ``--entrainment E`` every case also carries the film's entrainment at light load (the
+recipe's ``[model] film_entrainment_factor = E``, docs/model.md 4.6): what the option costs.
+
+Run: .venv/bin/python benchmarks/bench_generate_rig.py [recipe ...] [--entrainment E]
 """
 
 import sys
@@ -18,10 +21,18 @@ from cmtool.datasets import generate_dataset
 REPO = Path(__file__).resolve().parents[1]
 
 
-def main(recipes: list[str]) -> None:
+def main(recipes: list[str], entrainment: float = 0.0) -> None:
     for name in recipes or ["cwru-rig", "mfpt-rig"]:
         recipe = REPO / "datasets" / f"{name}.toml"
         with tempfile.TemporaryDirectory() as tmp:
+            if entrainment:
+                if "[model]\n" not in recipe.read_text():
+                    raise SystemExit(f"{recipe}: no [model] table to give the entrainment")
+                text = recipe.read_text().replace(
+                    "[model]\n", f"[model]\nfilm_entrainment_factor = {entrainment}\n", 1
+                )
+                recipe = Path(tmp) / f"{name}.toml"
+                recipe.write_text(text)
             start = time.perf_counter()
             summary = generate_dataset(recipe, Path(tmp) / name, workers=2)
             seconds = time.perf_counter() - start
@@ -33,4 +44,10 @@ def main(recipes: list[str]) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    args = sys.argv[1:]
+    factor = 0.0
+    if "--entrainment" in args:
+        at = args.index("--entrainment")
+        factor = float(args[at + 1])
+        del args[at : at + 2]
+    main(args, factor)
