@@ -814,4 +814,13 @@ def _rk4_entry(scene: int, ehl: int):
 LANE_SCENES = (SCENE_SHAFT, SCENE_SHAFT_HOUSING)
 #: The film modes the lanes run (each one's law as the one-signal kernels', the same bytes).
 LANE_FILMS = (FILM_DRY, FILM_EHL, FILM_ENTRAINED)
-RK4 = {(scene, ehl): _rk4_entry(scene, ehl) for scene in LANE_SCENES for ehl in LANE_FILMS}
+#: The (scene, film) pairs compiled: the film's entrainment in ``shaft+housing`` only, the
+#: scene of the recipes (a lane kernel takes about 80 s of compilation from an empty cache;
+#: ``shaft`` with the entrainment runs one signal at a time).
+LANE_PAIRS = tuple(
+    (scene, film)
+    for scene in LANE_SCENES
+    for film in LANE_FILMS
+    if film != FILM_ENTRAINED or scene == SCENE_SHAFT_HOUSING
+)
+RK4 = {(scene, film): _rk4_entry(scene, film) for scene, film in LANE_PAIRS}

@@ -20,8 +20,9 @@ def lanes_supported(prep: Prepared) -> bool:
     """Whether :func:`simulate_lanes` can integrate this prepared run.
 
     RK4 in the ``shaft`` or ``shaft+housing`` scene with waviness only (no local defects, fewer
-    than ``MAX_ROWS`` table rows, at most ``MAX_BALLS`` balls) and no contact-load record; any
-    film mode (the film's entrainment too, ``Rig.film_entrainment_factor``).
+    than ``MAX_ROWS`` table rows, at most ``MAX_BALLS`` balls) and no contact-load record, in
+    a film mode the lanes compile for the scene (``_lanes.LANE_PAIRS``: the film's entrainment,
+    ``Rig.film_entrainment_factor``, in ``shaft+housing``).
 
     Parameters
     ----------
@@ -39,6 +40,7 @@ def lanes_supported(prep: Prepared) -> bool:
         and bool(np.all(prep.wav[:, K.W_SURFACE] <= K.SURF_BALL))
         and prep.wav.shape[0] < _lanes.MAX_ROWS
         and prep.geometry.ball_count <= _lanes.MAX_BALLS
+        and (prep.scene_code, prep.film_mode) in _lanes.RK4
     )
 
 

@@ -30,15 +30,19 @@ from generators.prepared import prepare
 CHANNEL = "housing_acceleration_y"
 
 
-def _film_parameters(factor: float = 1.0, rpm: float = 1800.0):
-    """The 6205's series-contact film parameters as packed for the kernels (massless balls)."""
-    prep = prepare(
+def _packed(factor: float = 1.0, rpm: float = 1800.0) -> np.ndarray:
+    """The 6205's parameter vector at 500 N as packed for the kernels (massless balls)."""
+    return prepare(
         bearing("6205"),
         OperatingCondition.from_rpm(rpm, 500.0),
         rig=Rig(film_entrainment_factor=factor),
         settings=SimulationSettings(fs=12000.0, duration=0.01),
-    )
-    p = prep.p
+    ).p
+
+
+def _film_parameters(factor: float = 1.0, rpm: float = 1800.0):
+    """The 6205's series-contact film parameters as packed for the kernels (massless balls)."""
+    p = _packed(factor, rpm)
     return (
         p[K.P_K_SERIES],
         p[K.P_CONTACT_DAMPING_TIME],
@@ -108,7 +112,7 @@ def test_the_entrained_film_has_no_onset_and_meets_both_regimes():
 
 def test_entrainment_needs_the_film_and_massless_balls_and_runs_its_own_film_mode():
     """Refused, by name, in scene full and without the film; its runs take the kernels' own
-    film mode, in the lanes too."""
+    film mode, in the lanes too in scene shaft+housing."""
     g = bearing("6205")
     op = OperatingCondition.from_rpm(1800.0, 500.0)
     rig = Rig(film_entrainment_factor=0.5)
@@ -119,6 +123,10 @@ def test_entrainment_needs_the_film_and_massless_balls_and_runs_its_own_film_mod
     entrained = prepare(g, op, rig=rig, settings=settings)
     plain = prepare(g, op, settings=settings)
     assert lanes_supported(entrained) and lanes_supported(plain)
+    # scene shaft with it runs one signal at a time (its lane kernel is not compiled)
+    shaft = Scene(level="shaft")
+    assert not lanes_supported(prepare(g, op, scene=shaft, rig=rig, settings=settings))
+    assert lanes_supported(prepare(g, op, scene=shaft, settings=settings))
     assert (entrained.film_mode, plain.film_mode) == (K.FILM_ENTRAINED, K.FILM_EHL)
     with pytest.raises(ParameterError, match="film_entrainment_factor"):
         Rig(film_entrainment_factor=1.5)
@@ -131,13 +139,7 @@ def test_the_entrained_table_reads_the_law_newton_solves():
     the light loads); beyond the table's reach into the gap the kernel is the Newton solution
     itself."""
     for factor, rpm in ((1.0, 1800.0), (0.3, 900.0)):
-        prep = prepare(
-            bearing("6205"),
-            OperatingCondition.from_rpm(rpm, 500.0),
-            rig=Rig(film_entrainment_factor=factor),
-            settings=SimulationSettings(fs=12000.0, duration=0.01),
-        )
-        p = prep.p
+        p = _packed(factor, rpm)
         k, tau, film, squeeze, floor, _, h_max, c2 = _film_parameters(factor, rpm)
         rng = np.random.default_rng(4)
         deltas = np.concatenate(
@@ -159,14 +161,13 @@ def test_the_entrained_table_reads_the_law_newton_solves():
         assert K._entrained_table(far, 1e-3, k, tau, film, squeeze, floor, c2, h_max, p) == law
 
 
-@pytest.mark.parametrize("level", ["shaft", "shaft+housing"])
-def test_entrained_runs_in_lanes_are_simulates_and_do_not_depend_on_their_block(level):
-    """Wavy 6205s with the film's entrainment (three speeds and loads, 5 um clearance): the
-    lanes give what :func:`simulate` gives (to 1e-9 of the peak, as the plain film's lanes),
-    and a run's bytes do not depend on its place in a block."""
+def test_entrained_runs_in_lanes_are_simulates_and_do_not_depend_on_their_block():
+    """Wavy 6205s with the film's entrainment (three speeds and loads, 5 um clearance) in
+    scene shaft+housing: the lanes give what :func:`simulate` gives (to 1e-9 of the peak, as
+    the plain film's lanes), and a run's bytes do not depend on its place in a block."""
     g = bearing("6205", radial_internal_clearance=5e-6)
     rig = Rig(film_entrainment_factor=1.0)
-    scene = Scene(level=level, ehl=True)
+    scene = Scene(level="shaft+housing", ehl=True)
     settings = SimulationSettings(fs=6400.0, duration=0.05, settle_time=0.02, channels=(CHANNEL,))
     cases = [
         (

@@ -46,15 +46,17 @@ def test_entry_points_cover_every_pair_with_named_codes():
         == {(scene, film) for scene in K.SCENE_NAMES for film in K.FILM_NAMES}
         - {(K.SCENE_FULL, K.FILM_ENTRAINED)}  # the film's entrainment: massless balls only
     )
-    assert set(L.RK4) == {(scene, film) for scene in L.LANE_SCENES for film in L.LANE_FILMS}
-    assert set(L.LANE_FILMS) == set(K.FILM_NAMES)  # the entrainment's table runs in lanes too
+    assert set(L.RK4) == {(scene, film) for scene in L.LANE_SCENES for film in L.LANE_FILMS} - {
+        (K.SCENE_SHAFT, K.FILM_ENTRAINED)  # the entrainment's table: in shaft+housing's lanes
+    }
+    assert set(L.LANE_FILMS) == set(K.FILM_NAMES)
     assert _integrators.RK4[K.SCENE_SHAFT_HOUSING, K.FILM_EHL].__name__ == "_rk4_shaft_housing_ehl"
     names = [
         entry.__name__
         for table in (_integrators.RK4, _integrators.DOPRI5, _integrators.RHS, L.RK4)
         for entry in table.values()
     ]
-    assert len(set(names)) == len(names) == 30
+    assert len(set(names)) == len(names) == 29
 
 
 @pytest.mark.validation
@@ -64,7 +66,7 @@ def test_a_second_process_loads_every_specialisation_from_the_cache(kernel_warme
     code, stdout, stderr = kernel_warmer.result()
     assert code == 0, stderr
     first = json.loads(stdout.strip().splitlines()[-1])
-    assert len(first) == 30 and all(hits + misses == 1 for _, hits, misses in first.values())
+    assert len(first) == 29 and all(hits + misses == 1 for _, hits, misses in first.values())
     second = _child()
     missed = {key: value for key, value in second.items() if value[1:] != [1, 0]}
     assert not missed, missed
