@@ -815,7 +815,7 @@ LANE_SCENES = (SCENE_SHAFT, SCENE_SHAFT_HOUSING)
 #: The film modes the lanes run (each one's law as the one-signal kernels', the same bytes).
 LANE_FILMS = (FILM_DRY, FILM_EHL, FILM_ENTRAINED)
 #: The (scene, film) pairs compiled: the film's entrainment in ``shaft+housing`` only, the
-#: scene of the recipes (a lane kernel takes about 80 s of compilation from an empty cache;
+#: scene of the recipes (a lane kernel takes 30-80 s of compilation from an empty cache;
 #: ``shaft`` with the entrainment runs one signal at a time).
 LANE_PAIRS = tuple(
     (scene, film)
