@@ -31,6 +31,12 @@ import itertools
 
 import numpy as np
 from scipy.ndimage import median_filter
+from sweep_rule_detector import (  # the sweeps' cases (benchmarks/ on the path)
+    BEARINGS,
+    RATES,
+    VERDICT,
+)
+from sweep_waviness_verdicts import CHANNEL, RIGS
 
 from cmtool.diagnose import diagnose_signal
 from features.lattice import inner_race_lattice_offsets
@@ -38,7 +44,6 @@ from features.separation import separate_discrete
 from generators import (
     LocalizedDefect,
     OperatingCondition,
-    Rig,
     SimulationSettings,
     Waviness,
     bearing,
@@ -46,15 +51,8 @@ from generators import (
     simulate,
 )
 
-CHANNEL = "housing_acceleration_y"
 TOP = 20  # lines per record
 PADDING = 8  # zero padding of the halves' periodograms
-RIGS = {
-    "default": Rig(),
-    "light": Rig(housing_mass=0.8, pedestal_stiffness=2e7),
-    "heavy": Rig(housing_mass=6.0, pedestal_stiffness=2e8, shaft_mass=2.5),
-}
-PIT_BEARINGS = ("6205", "6203", "6305", "6002", "6308", "mfpt")
 
 
 def halves_coherence(random_part: np.ndarray, fs: float, band: tuple[float, float]) -> float:
@@ -126,11 +124,11 @@ def main() -> None:
     elif args.cases == "pits":
         grid = list(
             itertools.product(
-                PIT_BEARINGS,
+                BEARINGS,
                 (600, 1200, 1797, 3000),
                 (200.0, 1000.0),
-                (12000.0, 25600.0, 48000.0),
-                ("inner", "outer", "ball"),
+                RATES,
+                VERDICT,
             )
         )
         np.random.default_rng(3).shuffle(grid)
