@@ -208,7 +208,9 @@ def calibrated_confidence(probability: float, calibration: dict | None) -> float
 def combine_verdicts(diagnosis: Diagnosis) -> None:
     """One verdict from the rule evidence and the model's probabilities (log-linear pooling).
 
-    The verdict follows :func:`pool_probabilities`; its confidence is calibrated when the
+    The verdict follows :func:`pool_probabilities`, except where the pool favours a verdict
+    the model has no class for (a model trained on waviness has none for any local fault):
+    there the verdict and its confidence are the rule's. Its confidence is calibrated when the
     model carries a calibration of the pooled verdict (``pooled_calibration``: fitted by
     ``cmtool train`` on its out-of-fold predictions and the rule evidence of the same
     training signals). On a record the model reads as n segments (``segments`` in its
@@ -257,7 +259,11 @@ def combine_verdicts(diagnosis: Diagnosis) -> None:
         )
     calibration = diagnosis.model_verdict.get("pooled_calibration")
     if verdict not in model_p:  # the model has no class for it: the rule's verdict, and its
+        # confidence (the pool, in which the model cannot weigh that fault, may favour a fault
+        # the rule did not detect: until stop 75 that fault was named with the confidence of
+        # the rule's own verdict, healthy)
         basis += f"; the model learnt no {verdict}: the verdict and confidence are the rule's"
+        verdict = rule_label
         confidence = diagnosis.rule_verdict["confidence"]
     else:
         if calibration:

@@ -141,3 +141,33 @@ def test_the_pooled_verdict_takes_the_models_segment_count():
         verdicts[segments] = (diagnosis.verdict, diagnosis.basis)
     assert verdicts[1][0] == "ball" and verdicts[10][0] == "outer race"
     assert "10 segments" in verdicts[10][1] and "segments" not in verdicts[1][1]
+
+
+def test_a_fault_the_model_cannot_weigh_is_named_only_where_the_rule_detects_it():
+    """A model that learnt waviness only has no class for a local fault: each fault gets its
+    probability of healthy, so the pool follows the rule's probabilities, and an outer-race
+    candidate just under the threshold (confidence 0.55, not detected: a wavy ball of the
+    small recipe's seed-2031 draw) leads it. The verdict stays the rule's own, healthy with its
+    confidence, as the basis says; until stop 75 the pooled verdict named the outer race with
+    the confidence of the rule's healthy verdict, 0.32. A fault the rule detects keeps its
+    name and confidence (stop 52)."""
+    candidates = [
+        {"fault": fault, "confidence": value}
+        for fault, value in (("outer race", 0.554), ("inner race", 0.227), ("ball", 0.118))
+    ]
+    wavy_model = {
+        "label": "ball",
+        "probabilities": {"ball": 0.99, "healthy": 0.01},
+        "class_kinds": {"ball": "waviness", "healthy": "none"},
+    }
+    said = "the model learnt no outer race: the verdict and confidence are the rule's"
+    for rule_label, confidence, detected in (("healthy", 0.3226, False), ("outer race", 0.7, True)):
+        diagnosis = SimpleNamespace(
+            candidates=[dict(c, detected=detected and i == 0) for i, c in enumerate(candidates)],
+            rule_verdict={"label": rule_label, "confidence": confidence},
+            model_verdict=wavy_model,
+        )
+        combine_verdicts(diagnosis)
+        assert max(diagnosis.probabilities, key=diagnosis.probabilities.get) == "outer race"
+        assert (diagnosis.verdict, diagnosis.confidence) == (rule_label, confidence)
+        assert said in diagnosis.basis
