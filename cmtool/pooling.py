@@ -262,7 +262,13 @@ def combine_verdicts(diagnosis: Diagnosis) -> None:
         # confidence (the pool, in which the model cannot weigh that fault, may favour a fault
         # the rule did not detect: until stop 75 that fault was named with the confidence of
         # the rule's own verdict, healthy)
-        basis += f"; the model learnt no {verdict}: the verdict and confidence are the rule's"
+        if verdict == rule_label:
+            basis += f"; the model learnt no {verdict}: the verdict and confidence are the rule's"
+        else:
+            basis += (
+                f"; the pool leans to {verdict}, which the model learnt no class for and the "
+                "rule did not detect: the verdict and confidence are the rule's"
+            )
         verdict = rule_label
         confidence = diagnosis.rule_verdict["confidence"]
     else:

@@ -160,7 +160,11 @@ def test_a_fault_the_model_cannot_weigh_is_named_only_where_the_rule_detects_it(
         "probabilities": {"ball": 0.99, "healthy": 0.01},
         "class_kinds": {"ball": "waviness", "healthy": "none"},
     }
-    said = "the model learnt no outer race: the verdict and confidence are the rule's"
+    said = {
+        "healthy": "the pool leans to outer race, which the model learnt no class for and the "
+        "rule did not detect: the verdict and confidence are the rule's",
+        "outer race": "the model learnt no outer race: the verdict and confidence are the rule's",
+    }
     for rule_label, confidence, detected in (("healthy", 0.3226, False), ("outer race", 0.7, True)):
         diagnosis = SimpleNamespace(
             candidates=[dict(c, detected=detected and i == 0) for i, c in enumerate(candidates)],
@@ -170,4 +174,4 @@ def test_a_fault_the_model_cannot_weigh_is_named_only_where_the_rule_detects_it(
         combine_verdicts(diagnosis)
         assert max(diagnosis.probabilities, key=diagnosis.probabilities.get) == "outer race"
         assert (diagnosis.verdict, diagnosis.confidence) == (rule_label, confidence)
-        assert said in diagnosis.basis
+        assert said[rule_label] in diagnosis.basis
