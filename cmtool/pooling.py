@@ -267,7 +267,7 @@ def combine_verdicts(diagnosis: Diagnosis) -> None:
         else:
             basis += (
                 f"; the pool leans to {verdict}, which the model learnt no class for and the "
-                "rule did not detect: the verdict and confidence are the rule's"
+                "rule does not name: the verdict and confidence are the rule's"
             )
         verdict = rule_label
         confidence = diagnosis.rule_verdict["confidence"]

@@ -162,7 +162,7 @@ def test_a_fault_the_model_cannot_weigh_is_named_only_where_the_rule_detects_it(
     }
     said = {
         "healthy": "the pool leans to outer race, which the model learnt no class for and the "
-        "rule did not detect: the verdict and confidence are the rule's",
+        "rule does not name: the verdict and confidence are the rule's",
         "outer race": "the model learnt no outer race: the verdict and confidence are the rule's",
     }
     for rule_label, confidence, detected in (("healthy", 0.3226, False), ("outer race", 0.7, True)):
