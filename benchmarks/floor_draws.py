@@ -1,17 +1,20 @@
 """How much of a check is the separation's instrument floor? The same check under other draws.
 
-``features.separation`` adds a white floor 50 dB under a record's RMS before it looks for lines,
-drawn from a generator seeded by the record's first 64 samples (docs/diagnosis.md, "Verdicts
-the instrument floor decides"). Two checks sit where a change of that draw moves them, and they
-are what stops 74 and 75 measured their unit-invariant floors against. This runs each under
-draws k = 0 .. K - 1 of the floor: the seed's words XOR-ed with k (k = 0: the shipped draw),
-nothing else changed (the records, their noise and the classifiers' seeds are the same).
+``features.separation`` adds a white floor 50 dB under a record's RMS before it looks for
+lines, where the record has no floor of its own (less than ``FLOOR_SKIP_DB`` over it); since
+stop 76 one draw per record length (``FLOOR_SEED``), until then seeded by the record's first 64
+samples (docs/diagnosis.md, "Verdicts the instrument floor decides"). Two checks sat where a
+change of that draw moved them, and they are what stops 74-76 measured their unit-invariant
+floors against. This runs each under draws k = 0 .. K - 1 of the floor: ``FLOOR_SEED`` XOR-ed
+with k (k = 0: the shipped draw), nothing else changed (the records, their noise and the
+classifiers' seeds are the same). Both checks' records are noisy, so since stop 76 they get
+no floor and every draw gives the same figures; a noise-free record's would move.
 
 - ``small DATASET``: ``cmtool train``'s defaults on the dataset (issue 8's target on
   ``datasets/small``: 0.98 of its grouped-CV balanced accuracy,
   tests/tests_cmtool/test_small_target.py), the best candidate's score and errors per draw;
 - ``entry-exit``: tests/tests_features/test_entry_exit.py's case of entry events at 0.2 of
-  the impact in noise at 0.2 of the RMS, its noise seeds 0, 2 and 4, resolved or not per draw
+  the impact in noise at 0.2 of the RMS, its noise seeds 0-9 (at least 8 resolved), per draw
   (built by that test module's own helpers, imported, so that the case is the test's to the
   bit).
 
@@ -28,29 +31,13 @@ import numpy as np
 import features.separation
 
 REPO = Path(__file__).resolve().parents[1]
+SHIPPED_SEED = features.separation.FLOOR_SEED
+SEEDS = range(10)  # the entry-exit test's noise seeds at 0.2 of the impact
 
 
-class _Redrawn:
-    """``numpy`` as ``features.separation`` sees it, its floor's seed XOR-ed with ``k``."""
-
-    def __init__(self, k: int) -> None:
-        self.random = _RedrawnRandom(k)
-
-    def __getattr__(self, name: str):
-        return getattr(np, name)
-
-
-class _RedrawnRandom:
-    def __init__(self, k: int) -> None:
-        self.k = k
-
-    def default_rng(self, seed=None):
-        if isinstance(seed, np.ndarray) and seed.dtype == np.uint32:  # the floor's seed
-            seed = seed ^ np.uint32(self.k)
-        return np.random.default_rng(seed)
-
-    def __getattr__(self, name: str):
-        return getattr(np.random, name)
+def _redraw(k: int) -> None:
+    """The floor's draw ``k`` (0: the shipped one): its seed XOR-ed with ``k``."""
+    features.separation.FLOOR_SEED = SHIPPED_SEED ^ k
 
 
 def small(path: str, draws: int) -> None:
@@ -60,11 +47,11 @@ def small(path: str, draws: int) -> None:
     frame = read_dataset(path)
     scores = []
     for k in range(draws):
-        features.separation.np = _Redrawn(k)
+        _redraw(k)
         try:
             bundle = train(frame, workers=1)
         finally:
-            features.separation.np = np
+            _redraw(0)
         labels, predicted = np.array(bundle["cv_labels"]), np.array(bundle["cv_predictions"])
         best = bundle["best"]
         scores.append(bundle["scores"][best])
@@ -84,19 +71,21 @@ def entry_exit(draws: int) -> None:
 
     passed = 0
     for k in range(draws):
-        features.separation.np = _Redrawn(k)
+        _redraw(k)
         try:
-            reads = [case._spacing(case._impacts([0.2], seed=seed)) for seed in (0, 2, 4)]
+            reads = [case._spacing(case._impacts([0.2], seed=seed)) for seed in SEEDS]
         finally:
-            features.separation.np = np
+            _redraw(0)
         resolved = [r.resolved and abs(r.spacing_s - 1.2e-3) <= 0.03e-3 for r in reads]
-        passed += all(resolved)
-        shown = ", ".join(
-            f"seed {s}: {'resolved' if ok else 'not'} (z {r.entry_z:.2f})"
-            for s, ok, r in zip((0, 2, 4), resolved, reads, strict=True)
+        passed += sum(resolved) >= 8
+        unresolved = [seed for seed, ok in zip(SEEDS, resolved, strict=True) if not ok]
+        print(
+            f"draw {k}: {sum(resolved)} of {len(SEEDS)} resolved (entry z "
+            f"{min(r.entry_z for r in reads):.2f}-{max(r.entry_z for r in reads):.2f}); "
+            f"not: {unresolved}",
+            flush=True,
         )
-        print(f"draw {k}: {shown}", flush=True)
-    print(f"entry events at 0.2 of the impact: the test's three seeds pass in {passed} of {draws}")
+    print(f"entry events at 0.2 of the impact: the test's 8 of 10 in {passed} of {draws} draws")
 
 
 def main() -> None:

@@ -80,6 +80,16 @@ NEIGHBOURS = 2
 #: 48-50 dB under the RMS of a healthy bearing at 600 rpm and 2000 N, and its error bound
 #: allows 1 % (40 dB) per octave band. Nothing this far down is evidence of anything.
 INSTRUMENT_FLOOR_DB = 50.0
+#: The instrument floor is added only where the record's own broadband floor (its spectrum's
+#: median after the periodic fit, read as a white level) lies less than this far above it
+#: [dB]: a record with a floor of its own 20 dB higher (any recording, any simulation in noise)
+#: would change by 1 % of its random part's power at most, and gets none (stops 75-76).
+FLOOR_SKIP_DB = 20.0
+#: Seed of the instrument floor's draw (with the record's length): where it is added, the
+#: same draw for every record of a length, scaled to the record, so that the random part scales
+#: with the record (any unit) and moves smoothly with it (until stop 76 the draw was seeded by
+#: the record's first samples, so a record's unit, or a change in its last bits, chose it).
+FLOOR_SEED = 15242
 #: Lines of the harmonic families closer than this many bins are fitted jointly: their Hann
 #: windows' overlap (the Gram matrix of the fit) is solved exactly. Farther apart it is under
 #: 5e-5 (the Hann side lobes fall as the cube of the distance), and refinement passes take it
@@ -390,6 +400,16 @@ def _harmonic_transforms(
     return transforms
 
 
+def _own_floor_rms(spectrum: np.ndarray, n: int) -> float:
+    """The RMS of white noise whose ``n``-point spectrum has ``spectrum``'s median bin power.
+
+    A white bin's power is exponential with mean n sigma^2, median ln 2 n sigma^2; lines and
+    resonances raise the mean but hardly the median. DC and fs/2 are left out.
+    """
+    inner = np.abs(spectrum[1 : (n + 1) // 2]) ** 2
+    return float(np.sqrt(np.median(inner) / (math.log(2.0) * n)))
+
+
 def separate_discrete(
     x: np.ndarray,
     fs: float,
@@ -405,10 +425,12 @@ def separate_discrete(
     1. the harmonic series of each known ``fundamentals`` (:func:`remove_harmonics`), with
        the series of the last one offset by each ``lattice`` offset that the record holds
        (:func:`remove_periodic`: a wavy inner race's slices of the line lattice);
-    2. a white floor ``INSTRUMENT_FLOOR_DB`` below the record's RMS is added (seeded by the
-       record itself), the floor of a good measurement chain, so that a noise-free simulated
-       signal is judged as a recording of it would be (a measured record has a higher floor
-       already, and the added one changes nothing there);
+    2. a white floor ``INSTRUMENT_FLOOR_DB`` below the record's RMS is added, the floor of a
+       good measurement chain, so that a noise-free simulated signal is judged as a recording
+       of it would be; only where the record's own broadband floor lies less than
+       ``FLOOR_SKIP_DB`` above it (a recording has a higher floor already and gets none), and
+       drawn once per record length (``FLOOR_SEED``) and scaled to the record, so that the
+       random part is the same in any unit of the record;
     3. in the spectrum of the whole record, a bin more than ``line_db`` above the median of its
        +/- ``window_hz`` / 2 neighbourhood is a line: it and ``NEIGHBOURS`` bins each side
        (its leakage) are removed.
@@ -470,12 +492,11 @@ def _line_editing(
     check_positive("window_hz", window_hz, unit="Hz")
     n = x.size
     y, held = remove_periodic(x, fs, fundamentals, lattice, return_held=True)
-    rms = float(np.std(x))
-    if rms > 0.0:
-        seed = np.frombuffer(np.ascontiguousarray(x[:64], dtype=float).tobytes(), np.uint32)
-        floor_rms = rms * 10.0 ** (-INSTRUMENT_FLOOR_DB / 20.0)
-        y = y + np.random.default_rng(seed).normal(0.0, floor_rms, n)
+    floor_rms = float(np.std(x)) * 10.0 ** (-INSTRUMENT_FLOOR_DB / 20.0)
     spec = np.fft.rfft(y - y.mean())
+    if 0.0 < floor_rms and _own_floor_rms(spec, n) < floor_rms * 10.0 ** (FLOOR_SKIP_DB / 20.0):
+        y = y + floor_rms * np.random.default_rng((FLOOR_SEED, n)).standard_normal(n)
+        spec = np.fft.rfft(y - y.mean())
     mag = np.abs(spec)
     bins = max(21, int(round(window_hz * n / fs))) | 1
     floor = ndimage.median_filter(mag, size=bins, mode="nearest")

@@ -287,19 +287,13 @@ def test_diagnose_synthetic_impulses_and_noise(rng):
     assert noise.severity is None and "severity" not in noise.to_dict()
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=AssertionError,
-    reason="issue 18: the separation's instrument floor is drawn from the record's first "
-    "samples, so the record's unit chooses the draw (docs/diagnosis.md, 'Verdicts the "
-    "instrument floor decides': two fixes measured in stops 74 and 75, not shipped)",
-)
 def test_a_diagnosis_is_the_same_in_any_unit_of_the_record():
     """A simulated record (a 9-lobe inner race, 1 um, 1200 rpm, 300 N), noise-free and in
     noise, in m/s^2, in g and in mm/s^2, should give the same verdict, confidence and weighed
-    evidence. It does not: the separation's instrument floor is drawn from the record's first
-    samples, and the noise-free record's margin reads +11.4, +6.6 and +11.8 dB in the three
-    units (benchmarks/floor_units.py). Both fixes measured (stops 74 and 75) pass it."""
+    evidence. Until stop 76 it did not: the separation's instrument floor was drawn from the
+    record's first samples, and the noise-free record's margin read +11.4, +6.6 and +11.8 dB in
+    the three units (benchmarks/floor_units.py; docs/diagnosis.md, "Verdicts the instrument
+    floor decides")."""
     from generators import OperatingCondition, SimulationSettings, Waviness, bearing, simulate
 
     g = bearing("6205", radial_internal_clearance=5e-6)

@@ -76,13 +76,19 @@ def test_two_events_are_timed_and_one_is_not(seed):
 def test_an_entry_barely_clear_of_the_noise_needs_both_halves_of_the_impacts():
     """Entry events at 0.16 of the impact in noise at 0.2 of the RMS stand just clear in the
     average over every impact, not in the odd or the even impacts' (whose noise is larger):
-    no spacing is given for them; at 0.2 of the impact each half places the entry too."""
+    no spacing is given for them. At 0.2 of the impact each half places the entry too, in
+    most records: a level just clear of a threshold is detected with a probability, so at
+    least 8 of 10 noise seeds (until stop 76 three seeds, each resolved, which held by the
+    draw of the separation's instrument floor: benchmarks/floor_draws.py entry-exit)."""
     for seed in (0, 2, 4):
         faint = _spacing(_impacts([0.16], seed=seed))
         assert not faint.resolved and "odd and the even" in faint.reason
         assert faint.entry_z > 6.0  # the average over every impact did show it
-        clear = _spacing(_impacts([0.2], seed=seed))
-        assert clear.resolved and clear.spacing_s == pytest.approx(1.2e-3, abs=0.03e-3)
+    clear = [_spacing(_impacts([0.2], seed=seed)) for seed in range(10)]
+    resolved = [read for read in clear if read.resolved]
+    assert len(resolved) >= 8
+    for read in resolved:
+        assert read.spacing_s == pytest.approx(1.2e-3, abs=0.03e-3)
 
 
 def test_the_entry_is_the_earliest_event_before_the_impact():

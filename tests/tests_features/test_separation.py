@@ -159,6 +159,32 @@ def test_a_noise_free_periodic_signal_leaves_only_the_instrument_floor():
     assert chosen.score_db < chosen.threshold_db
 
 
+def test_the_instrument_floor_goes_only_to_a_record_without_one_and_scales_with_it(
+    monkeypatch, rng
+):
+    """The floor is added where the record has none of its own (a noise-free periodic train)
+    and not to the same train in noise 30 dB over it (its random part does not depend on the
+    floor's seed); either way the random part is the record's in any unit, to rounding (until
+    stop 76 the record's first samples seeded the floor, so its unit drew it), and a record
+    changed in its last digits leaves a random part changed as little."""
+    t = np.arange(12000) / FS
+    periodic = sum(np.cos(2 * np.pi * k * 107.4 * t + k) / k for k in range(1, 40))
+    noisy = periodic + 0.1 * rng.standard_normal(t.size)
+    seed = features.separation.FLOOR_SEED
+    for x, floored in ((periodic, True), (noisy, False)):
+        rest = separate_discrete(x, FS, fundamentals=(107.4,))
+        with monkeypatch.context() as m:
+            m.setattr(features.separation, "FLOOR_SEED", seed + 1)
+            redrawn = separate_discrete(x, FS, fundamentals=(107.4,))
+        assert np.array_equal(redrawn, rest) is not floored
+        if floored:
+            floor = np.std(x) * 10 ** (-features.separation.INSTRUMENT_FLOOR_DB / 20)
+            assert np.std(rest) == pytest.approx(floor, rel=0.1)
+        for scale in (1.0 / 9.80665, 1000.0, 1.0 + 1e-12):
+            scaled = separate_discrete(scale * x, FS, fundamentals=(107.4,))
+            assert np.max(np.abs(scaled / scale - rest)) <= 1e-9 * np.std(rest), scale
+
+
 def test_threshold_from_rayleigh_statistics_and_false_alarms_on_noise():
     # known median, one band, five bins at 1e-4: 20 log10 of sqrt(2 ln 5e4) / 1.177, + 1 dB
     assert detection_threshold_db(1) == pytest.approx(11.934 + 1.0, abs=0.01)
