@@ -247,6 +247,17 @@ def rule_context(
     return rpm, freqs, ctx, warnings
 
 
+def _floor_stated(floor_rms: float) -> str:
+    """The assumptions' line on the separation's instrument floor (docs/diagnosis.md)."""
+    chain = f"a good chain's, {features.separation.INSTRUMENT_FLOOR_DB:g} dB under the RMS"
+    if floor_rms > 0.0:
+        return (
+            f"added: the record has no broadband floor {features.separation.FLOOR_SKIP_DB:g} "
+            f"dB over {chain} (a noise-free simulation?), so that floor was added first"
+        )
+    return f"none added: the record's own broadband floor lies over {chain}"
+
+
 def _slowest_fault_rate(ctx: dict[str, float]) -> float:
     """The slowest of the bearing's fault rates (BPFO, BPFI, 2 x BSF) [Hz]."""
     return min(ctx[key] for key in FAULTS.values())
@@ -610,6 +621,7 @@ def diagnose_signal(
             f"{features.evidence.MIN_CAGE_REVOLUTIONS:g} cage revolutions (this record: "
             f"{x.size / fs * freqs.ftf:.1f})",
             "randomness": RANDOMNESS_ASSUMED,
+            "instrument_floor": _floor_stated(evidence.instrument_floor_rms),
         },
     )
     if scan is not None:

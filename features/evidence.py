@@ -183,6 +183,9 @@ class Evidence:
     lattice_orders : tuple of int
         The series k BPFI + n BPFO the separation found held and fitted (``features.lattice``),
         by their signed k; empty where none was.
+    instrument_floor_rms : float
+        The white floor the separation added to a record without one of its own [U]; 0 where
+        the record had its own (``features.separate_discrete``, step 2).
     """
 
     features: dict[str, float]
@@ -195,6 +198,7 @@ class Evidence:
     combined: dict[str, dict] = field(default_factory=dict)
     families: dict[str, list] = field(default_factory=dict)
     lattice_orders: tuple[int, ...] = ()
+    instrument_floor_rms: float = 0.0
 
 
 def combine_lines(
@@ -307,14 +311,20 @@ def fault_evidence(x: np.ndarray, fs: float, fault_frequencies: Mapping[str, flo
         )
     rates = {k: ctx[k] for k in EVIDENCE_FAULTS}
     lattice = inner_race_lattice_offsets(ctx["bpfo"], ctx["bpfi"])
-    random_part, held = separate_discrete(
-        x, fs, fundamentals=(ctx["shaft"], ctx["bpfo"]), lattice=lattice, return_held=True
+    random_part, held, floor_rms = separate_discrete(
+        x,
+        fs,
+        fundamentals=(ctx["shaft"], ctx["bpfo"]),
+        lattice=lattice,
+        return_held=True,
+        return_floor=True,
     )
     selection = fault_band(random_part, fs, rates, ctx["ftf"])
     orders = tuple(
         k for k, o in zip(inner_race_lattice_orders(), lattice, strict=True) if o in held
     )
-    return replace(best_band_evidence(random_part, fs, ctx, selection), lattice_orders=orders)
+    evidence = best_band_evidence(random_part, fs, ctx, selection)
+    return replace(evidence, lattice_orders=orders, instrument_floor_rms=floor_rms)
 
 
 def best_band_evidence(

@@ -419,7 +419,8 @@ def separate_discrete(
     window_hz: float = LINE_WINDOW_HZ,
     lattice: Sequence[float] = (),
     return_held: bool = False,
-) -> np.ndarray | tuple[np.ndarray, tuple[float, ...]]:
+    return_floor: bool = False,
+) -> np.ndarray | tuple:
     """The random part of a signal: periodic components and discrete spectral lines removed.
 
     1. the harmonic series of each known ``fundamentals`` (:func:`remove_harmonics`), with
@@ -451,8 +452,8 @@ def separate_discrete(
         Candidate offsets [Hz] in [0, f0) of further series of the last fundamental f0
         (``features.lattice.inner_race_lattice_offsets``), each fitted only where the record
         holds it; with none held the result is the same as without.
-    return_held : bool
-        Also return the ``lattice`` offsets held and fitted [Hz].
+    return_held, return_floor : bool
+        Also return the ``lattice`` offsets held and fitted [Hz]; the step 2 floor's RMS [U].
 
     Returns
     -------
@@ -460,6 +461,8 @@ def separate_discrete(
         The random part, same length and unit as ``x`` (mean removed).
     held : tuple of float
         Only with ``return_held=True``.
+    floor_rms : float
+        Only with ``return_floor=True`` (after ``held``): 0 where the record has its own.
 
     Examples
     --------
@@ -472,9 +475,10 @@ def separate_discrete(
     >>> bool(np.std(rest - noise) < 0.3 * np.std(noise))
     True
     """
-    spec, lines, held = _line_editing(x, fs, fundamentals, line_db, window_hz, lattice)
+    spec, lines, held, floor_rms = _line_editing(x, fs, fundamentals, line_db, window_hz, lattice)
     random_part = np.fft.irfft(np.where(lines, 0.0, spec), np.size(x))
-    return (random_part, held) if return_held else random_part
+    extra = ((held,) if return_held else ()) + ((floor_rms,) if return_floor else ())
+    return (random_part, *extra) if extra else random_part
 
 
 def _line_editing(
@@ -484,8 +488,8 @@ def _line_editing(
     line_db: float,
     window_hz: float,
     lattice: Sequence[float] = (),
-) -> tuple[np.ndarray, np.ndarray, tuple[float, ...]]:
-    """:func:`separate_discrete`'s spectrum after steps 1-2, edited bins, lattice offsets held."""
+) -> tuple[np.ndarray, np.ndarray, tuple[float, ...], float]:
+    """:func:`separate_discrete`'s spectrum after steps 1-2, edited bins, offsets held, floor."""
     x = check_signal(x, min_length=64)
     fs = check_fs(fs)
     check_positive("line_db", line_db, unit="dB")
@@ -497,6 +501,8 @@ def _line_editing(
     if 0.0 < floor_rms and _own_floor_rms(spec, n) < floor_rms * 10.0 ** (FLOOR_SKIP_DB / 20.0):
         y = y + floor_rms * np.random.default_rng((FLOOR_SEED, n)).standard_normal(n)
         spec = np.fft.rfft(y - y.mean())
+    else:
+        floor_rms = 0.0
     mag = np.abs(spec)
     bins = max(21, int(round(window_hz * n / fs))) | 1
     floor = ndimage.median_filter(mag, size=bins, mode="nearest")
@@ -505,7 +511,7 @@ def _line_editing(
         lines[1:] |= lines[:-1].copy()
         lines[:-1] |= lines[1:].copy()
     lines[0] = True  # the mean
-    return spec, lines, held
+    return spec, lines, held, floor_rms
 
 
 def discrete_over_random_db(
@@ -555,7 +561,7 @@ def discrete_over_random_db(
     low, high = (float(b) for b in band)
     if not 0.0 <= low < high:
         raise FeatureError(f"band = {band!r}: need 0 <= low < high [Hz]")
-    spec, lines, _ = _line_editing(x, fs, fundamentals, line_db, window_hz)
+    spec, lines, *_ = _line_editing(x, fs, fundamentals, line_db, window_hz)
     f = np.fft.rfftfreq(np.asarray(x).size, 1.0 / fs)
     inside = (f >= low) & (f <= high)
     inside[0] = False

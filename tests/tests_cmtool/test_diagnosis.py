@@ -313,6 +313,23 @@ def test_a_diagnosis_is_the_same_in_any_unit_of_the_record():
             assert evidence == pytest.approx(reads[0][2], abs=1e-6)
 
 
+def test_a_diagnosis_states_whether_it_added_an_instrument_floor():
+    """A noise-free record (a shaft's harmonics) is judged with a good chain's floor added, and
+    its assumptions say so, with the floor in the evidence; a record in noise gets none."""
+    fs, rpm = 12000.0, 1797.0
+    t = np.arange(12000) / fs
+    periodic = sum(np.cos(2 * np.pi * k * rpm / 60 * t + k) / k for k in range(1, 30))
+    noisy = periodic + 0.3 * np.random.default_rng(76).standard_normal(t.size)
+    for x, added in ((periodic, True), (noisy, False)):
+        d = diagnose_signal(x, fs, rpm, "6205", waviness=False)
+        stated = d.assumptions["instrument_floor"]
+        assert stated.startswith("added" if added else "none added"), stated
+        assert "50 dB under the RMS" in stated
+        ctx = {**d.frequencies, "shaft": rpm / 60}
+        floor_rms = features.fault_evidence(x, fs, ctx).instrument_floor_rms
+        assert floor_rms == (pytest.approx(np.std(x) * 10**-2.5) if added else 0.0)
+
+
 def test_a_pits_impacts_show_through_their_randomness_and_the_records_length():
     """What the rule assumes (docs/diagnosis.md, "What the rule needs"): a CWRU-size outer-race
     pit in the load zone, noise at 3 x the RMS. Strictly periodic, it is removed as machine

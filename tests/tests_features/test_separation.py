@@ -177,9 +177,12 @@ def test_the_instrument_floor_goes_only_to_a_record_without_one_and_scales_with_
             m.setattr(features.separation, "FLOOR_SEED", seed + 1)
             redrawn = separate_discrete(x, FS, fundamentals=(107.4,))
         assert np.array_equal(redrawn, rest) is not floored
+        floor = np.std(x) * 10 ** (-features.separation.INSTRUMENT_FLOOR_DB / 20)
         if floored:
-            floor = np.std(x) * 10 ** (-features.separation.INSTRUMENT_FLOOR_DB / 20)
             assert np.std(rest) == pytest.approx(floor, rel=0.1)
+        stated = separate_discrete(x, FS, fundamentals=(107.4,), return_floor=True)
+        np.testing.assert_array_equal(stated[0], rest)
+        assert stated[1] == (pytest.approx(floor, rel=1e-12) if floored else 0.0)
         for scale in (1.0 / 9.80665, 1000.0, 1.0 + 1e-12):
             scaled = separate_discrete(scale * x, FS, fundamentals=(107.4,))
             assert np.max(np.abs(scaled / scale - rest)) <= 1e-9 * np.std(rest), scale
