@@ -42,6 +42,8 @@ def print_diagnosis(diagnosis: Diagnosis) -> None:
             + ", ".join(f"{k:+d}" for k in slices)
             + " (this record holds lines there; a wavy inner race of Z lobes puts its own there)"
         )
+    if a.get("instrument_floor", "").startswith("added"):  # a recording's own floor: no line
+        print(f"  instrument floor {a['instrument_floor']}")
     if "bearing_geometry" in a:
         print(f"  bearing geometry {a['bearing_geometry']}")
     for c in diagnosis.candidates:

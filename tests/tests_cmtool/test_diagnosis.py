@@ -313,9 +313,10 @@ def test_a_diagnosis_is_the_same_in_any_unit_of_the_record():
             assert evidence == pytest.approx(reads[0][2], abs=1e-6)
 
 
-def test_a_diagnosis_states_whether_it_added_an_instrument_floor():
+def test_a_diagnosis_states_whether_it_added_an_instrument_floor(tmp_path, capsys):
     """A noise-free record (a shaft's harmonics) is judged with a good chain's floor added, and
-    its assumptions say so, with the floor in the evidence; a record in noise gets none."""
+    its assumptions say so, with the floor in the evidence, as does the command's text; a
+    record in noise gets none, and the text no line on it."""
     fs, rpm = 12000.0, 1797.0
     t = np.arange(12000) / fs
     periodic = sum(np.cos(2 * np.pi * k * rpm / 60 * t + k) / k for k in range(1, 30))
@@ -328,6 +329,10 @@ def test_a_diagnosis_states_whether_it_added_an_instrument_floor():
         ctx = {**d.frequencies, "shaft": rpm / 60}
         floor_rms = features.fault_evidence(x, fs, ctx).instrument_floor_rms
         assert floor_rms == (pytest.approx(np.std(x) * 10**-2.5) if added else 0.0)
+        np.save(tmp_path / "rec.npy", x)
+        argv = ["diagnose", str(tmp_path / "rec.npy"), "--fs", "12000", "--rpm", "1797"]
+        assert main([*argv, "--bearing", "6205"]) == 0
+        assert ("instrument floor added:" in capsys.readouterr().out) is added
 
 
 def test_a_pits_impacts_show_through_their_randomness_and_the_records_length():
