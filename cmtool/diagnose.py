@@ -38,7 +38,12 @@ from generators import BearingGeometry, characteristic_frequencies
 from generators.kinematics import BearingFrequencies
 from generators.params import check_shaft_speed_rpm
 
-from .diagnosis import DETECTION_DB, Diagnosis  # kept importable from here
+from .diagnosis import (  # kept importable from here
+    DETECTION_DB,
+    Diagnosis,
+    overall_band,
+    overall_velocity,
+)
 from .inputs import checked_geometry, checked_model, checked_rate, checked_record
 from .pooling import (  # the pooled verdict, kept importable from here
     CANONICAL,
@@ -781,56 +786,6 @@ def _against_baseline(
         if near.any() and ours.size and a[near].max() > 0:
             rise = 20 * math.log10(float(ours.max()) / float(a[near].max()))
             diagnosis.waviness["over_baseline_db"] = round(rise, 2)
-
-
-def overall_band(rpm: float) -> tuple[float, float]:
-    """ISO 10816-3's broad band [Hz]: 10-1000 Hz, or 2-1000 Hz for shafts at 600 rpm or less.
-
-    The band the standard's zones are set in; the zones themselves depend on the machine's
-    class and foundation, which a record does not give.
-
-    Parameters
-    ----------
-    rpm : float
-        Shaft speed [rev/min].
-
-    Returns
-    -------
-    low, high : float
-        The band [Hz].
-    """
-    return (2.0 if rpm <= 600.0 else 10.0, 1000.0)
-
-
-def overall_velocity(
-    rms: float, band: tuple[float, float], fs: float, scale: float | None
-) -> dict | None:
-    """The machine's overall vibration: the velocity RMS over :func:`overall_band`.
-
-    Parameters
-    ----------
-    rms : float
-        The velocity RMS over the band [signal unit x s].
-    band : (float, float)
-        The band [Hz] (:func:`overall_band`).
-    fs : float
-        The record's sample rate [Hz] (the band ends at fs / 2 at most).
-    scale : float or None
-        The signal's unit in m/s^2 (None: unknown).
-
-    Returns
-    -------
-    dict or None
-        ``band_hz``, ``rms`` [signal unit x s] and ``rms_mm_s`` [mm/s] (None: unit unknown);
-        None where fs/2 lies below the band's start.
-    """
-    if not math.isfinite(rms):
-        return None
-    return {
-        "band_hz": [band[0], min(band[1], fs / 2)],
-        "rms": rms,
-        "rms_mm_s": None if scale is None else 1e3 * scale * rms,
-    }
 
 
 #: The shortest baseline recording read [samples] (``features.velocity_band_rms``'s least).

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
-__all__ = ["DETECTION_DB", "Diagnosis"]
+__all__ = ["DETECTION_DB", "Diagnosis", "overall_band", "overall_velocity"]
 
 #: The rule's threshold for a line searched over about five bins of one band at a false-alarm
 #: probability of 1e-4 [dB] (the module docstring of ``cmtool.diagnose``); a record's own
@@ -142,3 +143,53 @@ class Diagnosis:
         if self.segment_scan is not None:
             out["segment_scan"] = self.segment_scan
         return out
+
+
+def overall_band(rpm: float) -> tuple[float, float]:
+    """ISO 10816-3's broad band [Hz]: 10-1000 Hz, or 2-1000 Hz for shafts at 600 rpm or less.
+
+    The band the standard's zones are set in; the zones themselves depend on the machine's
+    class and foundation, which a record does not give.
+
+    Parameters
+    ----------
+    rpm : float
+        Shaft speed [rev/min].
+
+    Returns
+    -------
+    low, high : float
+        The band [Hz].
+    """
+    return (2.0 if rpm <= 600.0 else 10.0, 1000.0)
+
+
+def overall_velocity(
+    rms: float, band: tuple[float, float], fs: float, scale: float | None
+) -> dict | None:
+    """The machine's overall vibration: the velocity RMS over :func:`overall_band`.
+
+    Parameters
+    ----------
+    rms : float
+        The velocity RMS over the band [signal unit x s].
+    band : (float, float)
+        The band [Hz] (:func:`overall_band`).
+    fs : float
+        The record's sample rate [Hz] (the band ends at fs / 2 at most).
+    scale : float or None
+        The signal's unit in m/s^2 (None: unknown).
+
+    Returns
+    -------
+    dict or None
+        ``band_hz``, ``rms`` [signal unit x s] and ``rms_mm_s`` [mm/s] (None: unit unknown);
+        None where fs/2 lies below the band's start.
+    """
+    if not math.isfinite(rms):
+        return None
+    return {
+        "band_hz": [band[0], min(band[1], fs / 2)],
+        "rms": rms,
+        "rms_mm_s": None if scale is None else 1e3 * scale * rms,
+    }
