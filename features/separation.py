@@ -82,7 +82,7 @@ NEIGHBOURS = 2
 INSTRUMENT_FLOOR_DB = 50.0
 #: The instrument floor is added only where the record's own broadband floor (its spectrum's
 #: median after the periodic fit, read as a white level) lies less than this far above it
-#: [dB]: a record with a floor of its own 20 dB higher (any recording, any simulation in noise)
+#: [dB]: a record with a floor of its own 20 dB higher (recordings, most simulations in noise)
 #: would change by 1 % of its random part's power at most, and gets none (stops 75-76).
 FLOOR_SKIP_DB = 20.0
 #: Seed of the instrument floor's draw (with the record's length): where it is added, the
