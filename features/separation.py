@@ -400,16 +400,6 @@ def _harmonic_transforms(
     return transforms
 
 
-def _own_floor_rms(spectrum: np.ndarray, n: int) -> float:
-    """The RMS of white noise whose ``n``-point spectrum has ``spectrum``'s median bin power.
-
-    A white bin's power is exponential with mean n sigma^2, median ln 2 n sigma^2; lines and
-    resonances raise the mean but hardly the median. DC and fs/2 are left out.
-    """
-    inner = np.abs(spectrum[1 : (n + 1) // 2]) ** 2
-    return float(np.sqrt(np.median(inner) / (math.log(2.0) * n)))
-
-
 def separate_discrete(
     x: np.ndarray,
     fs: float,
@@ -498,7 +488,10 @@ def _line_editing(
     y, held = remove_periodic(x, fs, fundamentals, lattice, return_held=True)
     floor_rms = float(np.std(x)) * 10.0 ** (-INSTRUMENT_FLOOR_DB / 20.0)
     spec = np.fft.rfft(y - y.mean())
-    if 0.0 < floor_rms and _own_floor_rms(spec, n) < floor_rms * 10.0 ** (FLOOR_SKIP_DB / 20.0):
+    # the record's own floor: its median bin power (lines and resonances hardly move a median)
+    own = np.median(np.abs(spec[1 : (n + 1) // 2]) ** 2)
+    reach = instrument_floor_median(float(np.std(x)), np.ones(n)) * 10.0 ** (FLOOR_SKIP_DB / 20.0)
+    if 0.0 < floor_rms and own < reach**2:
         y = y + floor_rms * np.random.default_rng((FLOOR_SEED, n)).standard_normal(n)
         spec = np.fft.rfft(y - y.mean())
     else:
