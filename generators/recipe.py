@@ -335,6 +335,14 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
         integer=True,
         doc="its Butterworth order (default 8)",
     ),
+    Key(
+        "sensor.electronic_floor_db",
+        "values",
+        -120.0,
+        0.0,
+        "dB",
+        doc="sensor's and recorder's white noise over the sensor output's RMS (none if absent)",
+    ),
     Key("sensor.adc_bits", "values", 2, 32, "bits", integer=True, doc="converter resolution"),
     Key(
         "sensor.adc_headroom_db",
@@ -381,7 +389,7 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
         "dB",
         doc="its varying-compliance lines",
     ),
-    Key("background.floor_db", "values", -80.0, 80.0, "dB", doc="white floor"),
+    Key("background.floor_db", "values", -80.0, 80.0, "dB", doc="white floor before the sensor"),
     Key(
         "background.form_inner_db",
         "values",
@@ -471,6 +479,7 @@ _CHAIN_SENSOR_KEYS = (
     "mode_gain_db",
     "sensor_resonance_hz",
     "sensor_damping",
+    "electronic_floor_db",
     "anti_alias",
     "anti_alias_order",
     "adc_bits",

@@ -552,6 +552,15 @@ def _finish_realistic(
         zeta = _pick(sensor.get("sensor_damping"), rng, 0.03)
         y = sensor_response(y, fs, resonance, zeta)
         chain["sensor_resonance_hz"], chain["sensor_damping"] = resonance, zeta
+    if "electronic_floor_db" in sensor:
+        # the sensor's preamplifier and the recorder's front end: white after the mounted
+        # resonance, low-passed by the anti-alias filter (docs/realism.md 2), from a generator
+        # of its own so that every other draw of the case is the same with the key as without
+        floor_rng = np.random.default_rng([case.seed, 7, 11])
+        floor_db = _pick(sensor["electronic_floor_db"], floor_rng, None)
+        electronic = float(np.sqrt(np.mean(y * y))) * 10.0 ** (floor_db / 20.0)
+        y = y + floor_rng.normal(0.0, electronic, y.size)
+        chain["electronic_floor_db"], chain["electronic_floor_rms"] = floor_db, electronic
     cutoff = _pick(sensor.get("anti_alias"), rng, None)
     if cutoff is not None:
         order = _pick(sensor.get("anti_alias_order"), rng, 8, integer=True)

@@ -106,6 +106,7 @@ def test_chain_keys_are_validated():
     for key, value, match in (
         ("modes", 0, r"sensor.modes = 0"),
         ("anti_alias", 0.6, r"sensor.anti_alias"),
+        ("electronic_floor_db", 10, r"sensor.electronic_floor_db = 10\b.*\[-120, 0\]"),
         ("resonance_hz", 3000, r"resonance_hz is the older"),
     ):
         bad = tomllib.loads(RECIPE)
@@ -190,3 +191,48 @@ def test_the_bearings_own_form_lines_stand_at_its_rates_and_drawn_levels():
         _, lines_only = amplitude_spectrum(diff, row["fs_hz"])
         far = (freqs > 1000.0) & (freqs < 4000.0)
         assert lines_only[far].max() < 0.01 * amp0[far].max()
+
+
+def test_the_electronics_floor_is_white_after_the_sensors_resonance():
+    """``[sensor] electronic_floor_db`` (docs/realism.md 2): the sensor's and the recorder's own
+    noise comes after the mounted resonance, so at 48 kHz above a 2 kHz resonance, where the
+    machine's floor has rolled off, the record is white at the drawn level over the sensor
+    output's RMS (up to the anti-alias filter); where the machine stands well over them, the
+    record is the one without the key, whose every other draw is the same."""
+    from scipy import signal as sp_signal
+
+    text = (
+        RECIPE.replace("fs_hz = 12000", "fs_hz = 48000")
+        .replace("sensor_resonance_hz = { min = 4000, max = 8000 }", "sensor_resonance_hz = 2000")
+        .replace("count = 40", "count = 1")
+        .replace("count = 8", "count = 1")
+        .replace("duration_s = 1.0", "duration_s = 0.5")
+    )
+    drawn = text.replace("anti_alias = 0.42", "electronic_floor_db = [-50]\nanti_alias = 0.42")
+    plain = validate_recipe(tomllib.loads(text))
+    recipe = validate_recipe(tomllib.loads(drawn))
+    (without,) = generate_cases(plain, expand_cases(plain)[:1])  # the healthy case
+    (row,) = generate_cases(recipe, expand_cases(recipe)[:1])
+    assert row["label"] == "healthy"
+    chain, chain_without = json.loads(row["chain"]), json.loads(without["chain"])
+    assert chain.pop("electronic_floor_db") == -50.0 and "electronic_floor_db" not in chain_without
+    floor_rms = chain.pop("electronic_floor_rms")
+    for key in ("adc_full_scale", "clipped_fraction"):  # the floor moves the record's peak
+        chain.pop(key), chain_without.pop(key)
+    assert chain == chain_without
+    fs = 48000.0
+    freqs, psd = sp_signal.welch(np.asarray(row["signal"], float), fs, nperseg=2048)
+    _, psd_without = sp_signal.welch(np.asarray(without["signal"], float), fs, nperseg=2048)
+    high = (freqs > 9000.0) & (freqs < 15000.0)
+    white = 2.0 * floor_rms**2 / fs  # one-sided density of white noise of that RMS
+    # without the electronics the record has rolled off there, 10 dB and more under them
+    assert np.mean(psd_without[high]) < 0.1 * white
+    level_db = 10.0 * np.log10(np.mean(psd[high]) / white)
+    assert -0.5 < level_db < 1.0, level_db  # the machine's residue adds at most 0.4 dB
+    lower, upper = (freqs > 9000.0) & (freqs < 12000.0), (freqs > 12000.0) & (freqs < 15000.0)
+    tilt_db = 10.0 * np.log10(np.mean(psd[upper]) / np.mean(psd[lower]))
+    assert abs(tilt_db) < 0.5, tilt_db  # white: flat (each half's mean within 0.15 dB)
+    # where the machine stands 20 dB and more over them, the record is the one without them
+    loud = psd_without > 100.0 * white
+    assert np.count_nonzero(loud[freqs < 2000.0]) > 20
+    assert abs(np.sum(psd[loud]) / np.sum(psd_without[loud]) - 1.0) < 0.02
