@@ -9,6 +9,8 @@ literature and the rigs' published descriptions:
   modes (modal superposition of an accelerance: each mode a band-pass of unit peak gain times
   its own gain), so that impacts ring at several resonances, as on real machines;
 * :func:`sensor_response`: the accelerometer's mounted resonance (second order, flat below it);
+* :func:`electronic_noise`: the sensor's and the recorder's own white noise, after the
+  resonance;
 * :func:`anti_alias_filter`: the acquisition's causal Butterworth low-pass
   (:func:`butterworth_low_pass`);
 * :func:`digitise`: quantisation to a number of bits over a full scale, clipping beyond it;
@@ -37,6 +39,7 @@ __all__ = [
     "SupportStructure",
     "transfer_path",
     "sensor_response",
+    "electronic_noise",
     "anti_alias_filter",
     "butterworth_low_pass",
     "digitise",
@@ -333,6 +336,36 @@ def sensor_response(x: np.ndarray, fs: float, resonance: float, damping: float) 
         return np.asarray(x, dtype=float).copy()
     w = _prewarped(resonance, fs)
     return _causal(_bilinear_biquad((0.0, w * w), (2.0 * damping * w, w * w), fs), x, fs)
+
+
+def electronic_noise(
+    x: np.ndarray, floor_db: float, rng: np.random.Generator
+) -> tuple[np.ndarray, float]:
+    """The sensor's preamplifier and recorder's front end: white noise after the resonance.
+
+    Its level is relative to the RMS of what they amplify.
+
+    Parameters
+    ----------
+    x : ndarray
+        The sensor's output, one record (any unit).
+    floor_db : float
+        The noise's RMS over the RMS of ``x`` [dB], in [-120, 0] (recipes: -65 to -45,
+        docs/realism.md 2).
+    rng : numpy.random.Generator
+        Source of the noise.
+
+    Returns
+    -------
+    y : ndarray
+        ``x`` plus the noise, in the unit of ``x``.
+    noise_rms : float
+        The noise's RMS, in the unit of ``x``.
+    """
+    check_real("floor_db", floor_db, low=-120.0, high=0.0, unit="dB")
+    x = np.asarray(x, dtype=float)
+    noise_rms = float(np.sqrt(np.mean(x * x))) * 10.0 ** (floor_db / 20.0)
+    return x + rng.normal(0.0, noise_rms, x.size), noise_rms
 
 
 def anti_alias_filter(x: np.ndarray, fs: float, cutoff: float, order: int = 8) -> np.ndarray:

@@ -30,6 +30,7 @@ from .measurement import (
     SupportStructure,
     anti_alias_filter,
     digitise,
+    electronic_noise,
     fault_band_powers,
     machine_background,
     sensor_response,
@@ -558,8 +559,7 @@ def _finish_realistic(
         # of its own so that every other draw of the case is the same with the key as without
         floor_rng = np.random.default_rng([case.seed, 7, 11])
         floor_db = _pick(sensor["electronic_floor_db"], floor_rng, None)
-        electronic = float(np.sqrt(np.mean(y * y))) * 10.0 ** (floor_db / 20.0)
-        y = y + floor_rng.normal(0.0, electronic, y.size)
+        y, electronic = electronic_noise(y, floor_db, floor_rng)
         chain["electronic_floor_db"], chain["electronic_floor_rms"] = floor_db, electronic
     cutoff = _pick(sensor.get("anti_alias"), rng, None)
     if cutoff is not None:

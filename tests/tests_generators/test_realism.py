@@ -23,6 +23,7 @@ from generators.measurement import (
     anti_alias_filter,
     band_power,
     digitise,
+    electronic_noise,
     fault_band,
     fault_band_powers,
     machine_background,
@@ -168,6 +169,22 @@ def test_sensor_anti_alias_and_converter():
     assert np.max(np.abs(y - x)[inside]) <= 1.0 / 16 + 1e-12  # half a step
     with pytest.raises(ParameterError, match="bits"):
         digitise(x, 1, 1.0)
+
+
+def test_the_electronics_noise_is_white_at_its_level_under_the_record():
+    """``electronic_noise``: white noise whatever the record, its RMS ``floor_db`` under the
+    record's (a tone's here); a level outside [-120, 0] dB names the parameter."""
+    t = np.arange(48000) / 48000.0
+    x = 3.0 * np.sin(2 * np.pi * 1000.0 * t)
+    y, noise_rms = electronic_noise(x, -40.0, np.random.default_rng(4))
+    assert noise_rms == pytest.approx(3.0 / math.sqrt(2) * 0.01, rel=1e-9)
+    noise = y - x
+    assert np.std(noise) == pytest.approx(noise_rms, rel=0.02)
+    # white: no lag of its autocorrelation over 0.02 of its power (4 sigma for 48,000 samples)
+    lags = [np.mean(noise[k:] * noise[:-k]) / np.mean(noise * noise) for k in (1, 2, 5)]
+    assert max(abs(r) for r in lags) < 0.02, lags
+    with pytest.raises(ParameterError, match=r"floor_db = 3.*\[-120, 0\] dB"):
+        electronic_noise(x, 3.0, np.random.default_rng(4))
 
 
 def test_machine_background_holds_its_lines_and_coloured_noise():
