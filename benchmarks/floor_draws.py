@@ -28,16 +28,16 @@ from pathlib import Path
 
 import numpy as np
 
-import features.separation
+import features.instrument_floor
 
 REPO = Path(__file__).resolve().parents[1]
-SHIPPED_SEED = features.separation.FLOOR_SEED
+SHIPPED_SEED = features.instrument_floor.FLOOR_SEED
 SEEDS = range(10)  # the entry-exit test's noise seeds at 0.2 of the impact
 
 
 def _redraw(k: int) -> None:
     """The floor's draw ``k`` (0: the shipped one): its seed XOR-ed with ``k``."""
-    features.separation.FLOOR_SEED = SHIPPED_SEED ^ k
+    features.instrument_floor.FLOOR_SEED = SHIPPED_SEED ^ k
 
 
 def small(path: str, draws: int) -> None:

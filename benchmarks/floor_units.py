@@ -2,7 +2,7 @@
 the instrument floor decides").
 
 The separation adds a white floor 50 dB under the record's RMS before it looks for lines
-(``features.separation.INSTRUMENT_FLOOR_DB``). Until stop 76 it was drawn from a generator
+(``features.instrument_floor.INSTRUMENT_FLOOR_DB``). Until stop 76 it was drawn from a generator
 seeded by the record's first 64 samples, so the same record in m/s^2, in g and in mm/s^2 got
 three draws and margins up to 5 dB apart; since then it is one draw per record length, scaled
 to the record, and only where the record has no floor of its own. For five

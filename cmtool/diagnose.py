@@ -254,10 +254,10 @@ def rule_context(
 
 def _floor_stated(floor_rms: float) -> str:
     """The assumptions' line on the separation's instrument floor (docs/diagnosis.md)."""
-    chain = f"a good chain's, {features.separation.INSTRUMENT_FLOOR_DB:g} dB under the RMS"
+    chain = f"a good chain's, {features.instrument_floor.INSTRUMENT_FLOOR_DB:g} dB under the RMS"
     if floor_rms > 0.0:
         return (
-            f"added: the record has no broadband floor {features.separation.FLOOR_SKIP_DB:g} "
+            f"added: the record has no broadband floor {features.instrument_floor.FLOOR_SKIP_DB:g} "
             f"dB over {chain} (a noise-free simulation?), so that floor was added first"
         )
     return f"none added: the record's own broadband floor lies over {chain}"

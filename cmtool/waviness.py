@@ -195,9 +195,9 @@ def _line(f: np.ndarray, a: np.ndarray, line: float, floor: float = 0.0) -> tupl
 def chain_floor(rms: float, n: int) -> float:
     """The median a good measurement chain's white floor has in a record's plain spectrum [U].
 
-    ``features.separation.INSTRUMENT_FLOOR_DB`` under the record's RMS, white, read as
+    ``features.instrument_floor.INSTRUMENT_FLOOR_DB`` under the record's RMS, white, read as
     :func:`features.amplitude_spectrum` reads it (Hann window, peak scaling): a Rayleigh median
-    (``features.separation.instrument_floor_median``) scaled as the spectrum is, 2 / sum w. A
+    (``features.instrument_floor.instrument_floor_median``) scaled as the spectrum is, 2 / sum w. A
     waviness line is read over this floor where the record's own is lower (a noise-free
     simulation has none), as the separation and the 1x-line search read theirs.
 
@@ -222,7 +222,8 @@ def chain_floor(rms: float, n: int) -> float:
     if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 4:
         raise features.FeatureError(f"n = {n!r} is outside the allowed range: integers >= 4")
     window = scipy.signal.get_window("hann", int(n))  # features.amplitude_spectrum's
-    return features.separation.instrument_floor_median(rms, window) * 2.0 / float(window.sum())
+    floor = features.instrument_floor.instrument_floor_median(rms, window)
+    return floor * 2.0 / float(window.sum())
 
 
 def line_false_alarm(f: np.ndarray, line: float, snr_db: float) -> float:

@@ -46,6 +46,12 @@ from .false_alarm import (  # noqa: F401 (moved in stop 56, still exported here)
     plain_line_false_alarm,
     ratio_for_false_alarm,
 )
+from .instrument_floor import (  # noqa: F401 (moved in stop 77, still exported here)
+    FLOOR_SKIP_DB,
+    INSTRUMENT_FLOOR_DB,
+    add_instrument_floor,
+    instrument_floor_median,
+)
 from .lattice import held_offsets
 
 __all__ = [
@@ -72,24 +78,6 @@ LINE_WINDOW_HZ = 20.0
 #: Bins on each side of a line removed with it (its leakage: a tone between two bins puts
 #: 64 % of its amplitude in the nearest bins, 21 % and 13 % two and three bins away).
 NEIGHBOURS = 2
-#: Noise floor of a good measurement chain under the record's RMS [dB]: an accelerometer's
-#: own noise of ~10 ug/sqrt(Hz) over 5 kHz is 0.7 mg RMS, 43-63 dB under the 0.1-1 g of a
-#: machine's bearing housing (a 16-bit converter with its full scale 20 dB over the RMS
-#: reaches 78 dB). A simulation is no more exact than that: at its default step the
-#: integration's alias products (harmonics near the step rate folded into the band) reach
-#: 48-50 dB under the RMS of a healthy bearing at 600 rpm and 2000 N, and its error bound
-#: allows 1 % (40 dB) per octave band. Nothing this far down is evidence of anything.
-INSTRUMENT_FLOOR_DB = 50.0
-#: The instrument floor is added only where the record's own broadband floor (its spectrum's
-#: median after the periodic fit, read as a white level) lies less than this far above it
-#: [dB]: a record with a floor of its own 20 dB higher (recordings, most simulations in noise)
-#: would change by 1 % of its random part's power at most, and gets none (stops 75-76).
-FLOOR_SKIP_DB = 20.0
-#: Seed of the instrument floor's draw (with the record's length): where it is added, the
-#: same draw for every record of a length, scaled to the record, so that the random part scales
-#: with the record (any unit) and moves smoothly with it (until stop 76 the draw was seeded by
-#: the record's first samples, so a record's unit, or a change in its last bits, chose it).
-FLOOR_SEED = 15242
 #: Lines of the harmonic families closer than this many bins are fitted jointly: their Hann
 #: windows' overlap (the Gram matrix of the fit) is solved exactly. Farther apart it is under
 #: 5e-5 (the Hann side lobes fall as the cube of the distance), and refinement passes take it
@@ -111,51 +99,6 @@ SETTLED = 1e-6
 TRANSFORM_CACHE_BYTES = 64 * 2**20
 #: Sample rate over the highest frequency analysed (the analyser convention fs = 2.56 f_max).
 ANALYSER_RATIO = 2.56
-
-
-def instrument_floor_median(rms: float, window: np.ndarray) -> float:
-    """The median a good chain's white floor has in a windowed transform of a record [U].
-
-    White noise ``INSTRUMENT_FLOOR_DB`` under the record's RMS, transformed with ``window``
-    (no normalisation: ``abs(rfft(x * window))``): each bin's magnitude is Rayleigh with
-    E|X|^2 = sigma^2 sum(w^2), so its median is sigma sqrt(ln 2 sum(w^2)). A line read over
-    this where a record's own floor is lower is read as a recording of it would be (the 1x-line
-    search, the race waviness reader; the separation adds the floor itself).
-
-    Parameters
-    ----------
-    rms : float
-        The record's RMS [U], 0 or more.
-    window : array_like, 1-D
-        The window the transform applies (at least 4 samples).
-
-    Returns
-    -------
-    float
-        The floor's median magnitude [U].
-
-    Raises
-    ------
-    FeatureError
-        ``rms`` negative or not finite, or a window under 4 samples, named with the range.
-
-    Examples
-    --------
-    >>> x = np.random.default_rng(0).normal(0.0, 10 ** (-INSTRUMENT_FLOOR_DB / 20), 48000)
-    >>> w = np.hanning(x.size)
-    >>> ratio = np.median(np.abs(np.fft.rfft(x * w))[1:-1]) / instrument_floor_median(1.0, w)
-    >>> bool(abs(ratio - 1) < 0.02)
-    True
-    """
-    if not (isinstance(rms, int | float | np.floating) and math.isfinite(rms) and rms >= 0.0):
-        raise FeatureError(f"rms = {rms!r} is outside the allowed range [0, inf) [U]")
-    window = np.asarray(window, dtype=float)
-    if window.ndim != 1 or window.size < 4:
-        raise FeatureError(
-            f"window of {window.size} samples is outside the allowed range: 1-D, 4 or more"
-        )
-    sigma = float(rms) * 10.0 ** (-INSTRUMENT_FLOOR_DB / 20.0)
-    return sigma * math.sqrt(math.log(2.0) * float(np.sum(window * window)))
 
 
 def remove_harmonics(
@@ -420,8 +363,9 @@ def separate_discrete(
        good measurement chain, so that a noise-free simulated signal is judged as a recording
        of it would be; only where the record's own broadband floor lies less than
        ``FLOOR_SKIP_DB`` above it (a recording has a higher floor already and gets none), and
-       drawn once per record length (``FLOOR_SEED``) and scaled to the record, so that the
-       random part is the same in any unit of the record;
+       drawn once per record length (``features.instrument_floor.FLOOR_SEED``) and scaled to
+       the record, so that the random part is the same in any unit of the record
+       (:func:`features.instrument_floor.add_instrument_floor`);
     3. in the spectrum of the whole record, a bin more than ``line_db`` above the median of its
        +/- ``window_hz`` / 2 neighbourhood is a line: it and ``NEIGHBOURS`` bins each side
        (its leakage) are removed.
@@ -486,16 +430,7 @@ def _line_editing(
     check_positive("window_hz", window_hz, unit="Hz")
     n = x.size
     y, held = remove_periodic(x, fs, fundamentals, lattice, return_held=True)
-    floor_rms = float(np.std(x)) * 10.0 ** (-INSTRUMENT_FLOOR_DB / 20.0)
-    spec = np.fft.rfft(y - y.mean())
-    # the record's own floor: its median bin power (lines and resonances hardly move a median)
-    own = np.median(np.abs(spec[1 : (n + 1) // 2]) ** 2)
-    reach = instrument_floor_median(float(np.std(x)), np.ones(n)) * 10.0 ** (FLOOR_SKIP_DB / 20.0)
-    if 0.0 < floor_rms and own < reach**2:
-        y = y + floor_rms * np.random.default_rng((FLOOR_SEED, n)).standard_normal(n)
-        spec = np.fft.rfft(y - y.mean())
-    else:
-        floor_rms = 0.0
+    y, spec, floor_rms = add_instrument_floor(x, y)
     mag = np.abs(spec)
     bins = max(21, int(round(window_hz * n / fs))) | 1
     floor = ndimage.median_filter(mag, size=bins, mode="nearest")

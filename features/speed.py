@@ -16,7 +16,7 @@ import scipy.fft
 from scipy.signal import czt
 
 from ._validate import FeatureError, check_count, check_fs, check_positive, check_signal
-from .separation import instrument_floor_median
+from .instrument_floor import instrument_floor_median
 from .spectra import peak_offset_bins
 
 __all__ = [
@@ -127,7 +127,7 @@ def shaft_rate_from_spectrum(
     within 20 % of ``given_hz`` and the spectrum two bins either side is 6 dB lower (a line,
     not the skirt of a stronger one); bins within three of a harmonic of 50 or 60 Hz (mains)
     are not searched. The median is taken no lower than that of a good measurement chain's
-    white floor, ``features.separation.INSTRUMENT_FLOOR_DB`` under the record's RMS (the
+    white floor, ``features.instrument_floor.INSTRUMENT_FLOOR_DB`` under the record's RMS (the
     floor the separation adds): a noise-free simulated record has no floor of its own, and
     content 130-160 dB under its RMS (rounding, far leakage) was taken for the shaft's line,
     which then moved every fault rate. Its frequency is the peak's, interpolated; the

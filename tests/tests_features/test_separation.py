@@ -56,7 +56,7 @@ def test_remove_harmonics_takes_out_exactly_periodic_parts_even_close_ones(rng):
     single = sum(np.sin(2 * np.pi * k * ball_pass * t) for k in range(1, 30))
     assert np.std(remove_harmonics(single, FS, (ball_pass,))) < 1e-6 * np.std(single)
     rest = separate_discrete(periodic, FS, fundamentals=(shaft, ball_pass))
-    floor = 10 ** (-features.separation.INSTRUMENT_FLOOR_DB / 20)
+    floor = 10 ** (-features.instrument_floor.INSTRUMENT_FLOOR_DB / 20)
     assert np.std(rest) < 1.05 * floor * np.std(periodic)  # the instrument floor, nothing more
 
 
@@ -153,7 +153,7 @@ def test_a_noise_free_periodic_signal_leaves_only_the_instrument_floor():
     t = np.arange(24000) / FS
     x = sum(np.cos(2 * np.pi * k * 107.4 * t) / k for k in range(1, 40))
     rest = separate_discrete(x, FS, fundamentals=(107.4,))
-    floor = np.std(x) * 10 ** (-features.separation.INSTRUMENT_FLOOR_DB / 20)
+    floor = np.std(x) * 10 ** (-features.instrument_floor.INSTRUMENT_FLOOR_DB / 20)
     assert np.std(rest) == pytest.approx(floor, rel=0.1)
     chosen = select_band(rest, FS, {"bpfo": 107.4, "bpfi": 162.2})
     assert chosen.score_db < chosen.threshold_db
@@ -170,14 +170,14 @@ def test_the_instrument_floor_goes_only_to_a_record_without_one_and_scales_with_
     t = np.arange(12000) / FS
     periodic = sum(np.cos(2 * np.pi * k * 107.4 * t + k) / k for k in range(1, 40))
     noisy = periodic + 0.1 * rng.standard_normal(t.size)
-    seed = features.separation.FLOOR_SEED
+    seed = features.instrument_floor.FLOOR_SEED
     for x, floored in ((periodic, True), (noisy, False)):
         rest = separate_discrete(x, FS, fundamentals=(107.4,))
         with monkeypatch.context() as m:
-            m.setattr(features.separation, "FLOOR_SEED", seed + 1)
+            m.setattr(features.instrument_floor, "FLOOR_SEED", seed + 1)
             redrawn = separate_discrete(x, FS, fundamentals=(107.4,))
         assert np.array_equal(redrawn, rest) is not floored
-        floor = np.std(x) * 10 ** (-features.separation.INSTRUMENT_FLOOR_DB / 20)
+        floor = np.std(x) * 10 ** (-features.instrument_floor.INSTRUMENT_FLOOR_DB / 20)
         if floored:
             assert np.std(rest) == pytest.approx(floor, rel=0.1)
         stated = separate_discrete(x, FS, fundamentals=(107.4,), return_floor=True)

@@ -48,7 +48,7 @@ def test_a_noise_free_records_faint_line_is_no_shaft_line():
     measurement chain's, INSTRUMENT_FLOOR_DB under its RMS: a line 80 dB under a strong
     ball-pass train is not the shaft's (against its own median it stood far over 12 dB);
     40 dB under, it is. The record's length is a fast FFT's and an awkward one (chirp-z)."""
-    from features.separation import INSTRUMENT_FLOOR_DB
+    from features.instrument_floor import INSTRUMENT_FLOOR_DB
 
     for n in (12000, 12007):
         t = np.arange(n) / FS
