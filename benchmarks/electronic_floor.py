@@ -19,6 +19,7 @@ Run (about 1 minute for the CWRU rig and 3 for the MFPT rig on two cores):
 """
 
 import argparse
+import re
 import tempfile
 import tomllib
 from collections import Counter
@@ -40,14 +41,6 @@ def _without_key(text: str) -> str:
     if len(kept) == len(text.splitlines()):
         raise SystemExit("the recipe has no [sensor] electronic_floor_db line to compare without")
     return "\n".join(kept) + "\n"
-
-
-def _with_seed(text: str, seed: int) -> str:
-    """The recipe's text with its top-level ``seed`` replaced."""
-    lines = text.splitlines()
-    at = next(i for i, line in enumerate(lines) if line.startswith("seed ="))
-    lines[at] = f"seed = {seed}"
-    return "\n".join(lines) + "\n"
 
 
 def _rule(frame) -> dict[int, tuple[str, str, bool]]:
@@ -78,7 +71,7 @@ def _band_rise_db(without, with_key) -> np.ndarray:
 
 
 def main(recipe: Path, seed: int, workers: int) -> None:
-    text = _with_seed(recipe.read_text(), seed)
+    text = re.sub(r"(?m)^seed = \d+", f"seed = {seed}", recipe.read_text())  # as cage_slip.py
     tomllib.loads(text)  # a readable recipe before anything is generated
     with tempfile.TemporaryDirectory() as tmp:
         frames = {}
