@@ -341,7 +341,8 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
         -120.0,
         0.0,
         "dB",
-        doc="sensor's and recorder's white noise over the sensor output's RMS (none if absent)",
+        doc="sensor's and recorder's white noise over the sensor output's RMS (none if absent;"
+        " not in fault_snr_db, which is measured before the sensor)",
     ),
     Key("sensor.adc_bits", "values", 2, 32, "bits", integer=True, doc="converter resolution"),
     Key(
