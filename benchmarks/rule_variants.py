@@ -42,7 +42,7 @@ Modes:
 
 ``band-floor DATASET [DATASET ...]``
     As ``ball-odd``, the rule as shipped (every candidate band starting at 3 x the fastest
-    fault rate, the highest envelope line weighed: ``features.separation.fault_band``) against
+    fault rate, the highest envelope line weighed: ``features.band_selection.fault_band``) against
     the tree whose bands may start at 0 Hz, the cage rate in both (docs/diagnosis.md, "Bands
     from 0 Hz": measured in stop 42 without the cage rate, shipped in stop 44, B15).
 
@@ -105,6 +105,7 @@ from scipy import ndimage
 from scipy.sparse import linalg as sparse_linalg
 
 import features
+import features.band_selection as band_selection
 import features.evidence as evidence
 import features.separation as separation
 from cmtool.datasets import read_dataset
@@ -278,7 +279,7 @@ def ball_odd(paths: list[str], variants=None) -> None:
 
 
 _SHIPPED_EVIDENCE = evidence.fault_evidence
-_SHIPPED_CANDIDATE_BANDS = separation.candidate_bands
+_SHIPPED_CANDIDATE_BANDS = band_selection.candidate_bands
 
 
 def _shifted_candidate_bands(
@@ -293,7 +294,7 @@ def _shifted_candidate_bands(
         max_frequency=max_frequency,
         min_frequency=min_frequency,
     )
-    top = fs / separation.ANALYSER_RATIO if max_frequency is None else max_frequency
+    top = fs / band_selection.ANALYSER_RATIO if max_frequency is None else max_frequency
     splits = {1}
     for k in range(1, int(nlevel) + 1):
         splits |= {2**k, 3 * 2 ** (k - 1)}
@@ -311,13 +312,13 @@ def _shifted_candidate_bands(
 def _with_shifted_bands(x, fs, fault_frequencies):
     """The shipped evidence over the tree with half-shifted bands: a resonance on a band edge
     then gets a band centred on it (every thread of a variant sets the same tree)."""
-    separation.candidate_bands = _shifted_candidate_bands
+    band_selection.candidate_bands = _shifted_candidate_bands
     return _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
 
 
 def _with_shipped_bands(x, fs, fault_frequencies):
     """The shipped evidence, the shipped tree put back."""
-    separation.candidate_bands = _SHIPPED_CANDIDATE_BANDS
+    band_selection.candidate_bands = _SHIPPED_CANDIDATE_BANDS
     return _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
 
 
@@ -339,19 +340,19 @@ def _with_odd_ball_lines(x, fs, fault_frequencies):
     return result
 
 
-_SHIPPED_BAND_SPECTRUM = separation._band_envelope_spectrum
+_SHIPPED_BAND_SPECTRUM = band_selection._band_envelope_spectrum
 _SHIPPED_ENVELOPE = evidence.envelope
 
 
 def _squared_band_envelope_spectrum(spec, df, low, high):
-    """``separation._band_envelope_spectrum`` of the squared envelope |z|^2."""
+    """``band_selection._band_envelope_spectrum`` of the squared envelope |z|^2."""
     i0, i1 = int(math.ceil(low / df)), int(math.floor(high / df))
     m = i1 - i0 + 1
-    weights = separation._windows.tukey(m, 0.25) if m > 2 else np.ones(m)
+    weights = band_selection._windows.tukey(m, 0.25) if m > 2 else np.ones(m)
     z = np.fft.ifft(spec[i0 : i1 + 1] * weights)
     env = np.abs(z) ** 2
     env = env - env.mean()
-    amp = np.abs(np.fft.rfft(env * separation._windows.hanning(m)))
+    amp = np.abs(np.fft.rfft(env * band_selection._windows.hanning(m)))
     return np.arange(amp.size) * df, amp
 
 
@@ -361,10 +362,10 @@ def _with_squared_envelope(x, fs, fault_frequencies, squared: bool):
     Each variant sets the modules' functions the same way in every thread (the variants run
     one after the other)."""
     if squared:
-        separation._band_envelope_spectrum = _squared_band_envelope_spectrum
+        band_selection._band_envelope_spectrum = _squared_band_envelope_spectrum
         evidence.envelope = lambda y, f, **o: _SHIPPED_ENVELOPE(y, f, method="squared", **o)
     else:
-        separation._band_envelope_spectrum = _SHIPPED_BAND_SPECTRUM
+        band_selection._band_envelope_spectrum = _SHIPPED_BAND_SPECTRUM
         evidence.envelope = _SHIPPED_ENVELOPE
     return _SHIPPED_EVIDENCE(x, fs, fault_frequencies)
 
@@ -420,7 +421,7 @@ def _with_cage_lines(x, fs, fault_frequencies, comb_as_test: bool):
     return result
 
 
-_SHIPPED_FAULT_BAND = separation.fault_band
+_SHIPPED_FAULT_BAND = band_selection.fault_band
 
 #: Columns of the selection's scores that speak for each fault (the ball's cage rate too).
 _OWN_RATES = {"bpfo": ("bpfo",), "bpfi": ("bpfi",), "two_bsf": ("two_bsf", "ftf")}
@@ -650,5 +651,5 @@ if __name__ == "__main__":
         )
     else:
         sys.exit(__doc__)
-    evidence.fault_band, evidence.CAGE_HARMONICS = separation.fault_band, (1, 2)
+    evidence.fault_band, evidence.CAGE_HARMONICS = band_selection.fault_band, (1, 2)
     evidence.separate_discrete = _SHIPPED_SEPARATE

@@ -5,7 +5,7 @@ The rule-based detector always runs:
 1. discrete/random separation (``features.separate_discrete``): the periodic part of the
    signal (a loaded bearing's varying compliance, shaft harmonics, mains, gears) is removed; a
    local fault's impacts, whose timing jitters (slip), stay;
-2. band selection (``features.separation.fault_band``): of the kurtogram tree's bands at
+2. band selection (``features.band_selection.fault_band``): of the kurtogram tree's bands at
    least ``features.table.MIN_BAND_FACTOR`` times the fastest fault rate wide and starting at
    3 x it, the one whose envelope spectrum shows a fault rate or the cage rate (a ball pit
    strikes in bursts, once per cage turn) highest above its floor;

@@ -5,6 +5,7 @@ fault frequencies as plain numbers: this package does not import the bearing phy
 """
 
 from ._validate import FeatureError
+from .band_selection import BandSelection, candidate_bands, select_band
 from .bands import (
     BAND_METRIC_COLUMNS,
     band_amplitude,
@@ -25,11 +26,8 @@ from .lattice import held_offsets, inner_race_lattice_offsets, inner_race_lattic
 from .separation import (
     FALSE_ALARM,
     LINE_DB,
-    BandSelection,
-    candidate_bands,
     detection_threshold_db,
     discrete_over_random_db,
-    select_band,
     separate_discrete,
 )
 from .severity import EntryExit, ar_prediction_error, entry_exit_spacing

@@ -24,8 +24,9 @@ from scipy import fft as sp_fft
 
 from . import _windows
 from ._validate import FeatureError, check_band, check_count, check_fs, check_positive, check_signal
+from .band_selection import fault_band
 from .lattice import inner_race_lattice_offsets
-from .separation import fault_band, separate_discrete
+from .separation import separate_discrete
 from .spectra import amplitude_spectrum
 
 __all__ = ["KurtogramResult", "kurtogram", "envelope", "envelope_spectrum", "prewhiten"]
@@ -179,7 +180,7 @@ def envelope_spectrum(
         diagnose`` uses (periodic parts and discrete lines removed by
         :func:`features.separate_discrete`, then :func:`features.select_band` for the rates
         ``bpfo``, ``bpfi``, ``two_bsf`` given and the cage rate, bands at least 3 x the
-        fastest rate wide and from 3 x it up: ``features.separation.fault_band``; the cage
+        fastest rate wide and from 3 x it up: ``features.band_selection.fault_band``; the cage
         rate is ``ftf`` or, without it, shaft x BPFO / (BPFO + BPFI));
         ``None`` without: the band of largest spectral kurtosis (:func:`kurtogram`).
     method : {"hilbert", "squared"}

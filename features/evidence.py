@@ -2,7 +2,7 @@
 
 The random part of the signal (:func:`features.separate_discrete`, the shaft's and the ball
 pass's harmonics removed), demodulated in the band where a fault rate shows most clearly
-(:func:`features.select_band` through :func:`features.separation.fault_band`: the fault
+(:func:`features.select_band` through :func:`features.band_selection.fault_band`: the fault
 rates and the cage rate, in bands from 3 x the fastest fault rate up); then for each fault
 (``bpfo``, ``bpfi``, ``two_bsf``):
 
@@ -51,16 +51,13 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ._validate import FeatureError, check_fs, check_positive, check_signal
+from .band_selection import ANALYSER_RATIO, BAND_FLOOR_FACTOR, BandSelection, fault_band
 from .envelope import envelope
 from .lattice import inner_race_lattice_offsets, inner_race_lattice_orders
 from .separation import (
-    ANALYSER_RATIO,
-    BAND_FLOOR_FACTOR,
     FALSE_ALARM,
     FLOOR_BINS,
-    BandSelection,
     detection_threshold_db,
-    fault_band,
     line_false_alarm,
     ratio_for_false_alarm,
     separate_discrete,
@@ -348,7 +345,7 @@ def best_band_evidence(
     ctx : mapping of str to float
         ``bpfo``, ``bpfi``, ``two_bsf``, ``shaft`` and ``ftf`` [Hz].
     selection : BandSelection
-        The candidate bands and their scores (:func:`features.separation.fault_band`).
+        The candidate bands and their scores (:func:`features.band_selection.fault_band`).
 
     Returns
     -------

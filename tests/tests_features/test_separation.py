@@ -341,13 +341,13 @@ def test_select_band_scores_a_rate_only_from_its_floor(rng):
     assert np.all(np.isneginf(floored.scores_db[low, 3]))
     assert np.all(np.isfinite(floored.scores_db[:, :3]))
     assert np.array_equal(floored.scores_db[~low], free.scores_db[~low])
-    # the command's choice (features.separation.fault_band): the cage rate from 3 x the
+    # the command's choice (features.band_selection.fault_band): the cage rate from 3 x the
     # fastest rate and, since B15, every band from there too; on the whole tree it is the
     # floored selection above
     faults = {k: rates[k] for k in rates if k != "ftf"}
-    whole = features.separation.fault_band(x, FS, faults, FTF, min_frequency=0.0)
+    whole = features.band_selection.fault_band(x, FS, faults, FTF, min_frequency=0.0)
     assert whole.band == floored.band and whole.rates[-1] == "ftf"
-    chosen = features.separation.fault_band(x, FS, faults, FTF)
+    chosen = features.band_selection.fault_band(x, FS, faults, FTF)
     assert all(lo >= floor for lo, _ in chosen.bands) and len(chosen.bands) < len(free.bands)
     assert chosen.rate == "ftf" and chosen.band[0] <= 3000.0 <= chosen.band[1]
     with pytest.raises(features.FeatureError, match="floors names 'cage'"):
@@ -390,7 +390,7 @@ def test_the_cage_rate_finds_a_ball_pits_bursts(monkeypatch):
 
     assert balls(records) >= 9
     assert balls(noise) == 0
-    shipped = features.separation.fault_band
+    shipped = features.band_selection.fault_band
     monkeypatch.setattr(
         features.evidence, "fault_band", lambda x, fs, r, cage=None, **o: shipped(x, fs, r, **o)
     )
@@ -404,7 +404,7 @@ def test_every_bands_line_ratio_at_once_is_each_bands_own_to_the_bit(rng):
     (stop 63): the same ratios, bins searched and floor bins, to the bit, as measuring each
     band alone, in bands long enough to hold the line's floor and in bands too short for it
     (a short record's narrowest bands), for rates from 2 Hz to near a band's top."""
-    from features.separation import _band_envelope_spectrum, _ratio_db, _ratio_db_bands
+    from features.band_selection import _band_envelope_spectrum, _ratio_db, _ratio_db_bands
 
     for n, fs in ((12000, FS), (2400, FS), (48000, 48000.0)):
         x = _impacts(BPFI, n, rng, jitter=0.01) + 0.3 * rng.standard_normal(n)
