@@ -54,6 +54,21 @@ def _digest(frame) -> str:
     return digest.hexdigest()[:16]
 
 
+def feature_table(name: str, frame, feature_set: str) -> np.ndarray:
+    """A dataset's feature table, from ``CACHE`` where it holds one for these signals and these
+    columns (the key has both: until stop 78 it had the signals only, so a table cached before
+    a feature set gained columns was read after it)."""
+    CACHE.mkdir(parents=True, exist_ok=True)
+    ext = FeatureExtractor(feature_set=feature_set, n_jobs=2).fit(frame)
+    columns = hashlib.sha1("\n".join(ext.feature_names_out_).encode()).hexdigest()[:8]
+    cached = CACHE / f"{name}-{feature_set}-{_digest(frame)}-{columns}.npy"
+    if cached.is_file():
+        return np.load(cached)
+    table = ext.transform(frame)
+    np.save(cached, table)
+    return table
+
+
 def main(paths: list[str], class_weight: str | None, all_classifiers: bool) -> None:
     frames = {Path(p).name: read_dataset(p) for p in paths}
     sets = (classifier.DEFAULT_FEATURE_SET,) if all_classifiers else FEATURE_SETS
@@ -68,13 +83,7 @@ def main(paths: list[str], class_weight: str | None, all_classifiers: bool) -> N
                 parts = [tables[part, name] for part in feature_set.split("+")]
                 tables[feature_set, name] = np.hstack(parts)
                 continue
-            cached = CACHE / f"{name}-{feature_set}-{_digest(frame)}.npy"
-            if cached.is_file():
-                tables[feature_set, name] = np.load(cached)
-                continue
-            ext = FeatureExtractor(feature_set=feature_set, n_jobs=2).fit(frame)
-            tables[feature_set, name] = ext.transform(frame)
-            np.save(cached, tables[feature_set, name])
+            tables[feature_set, name] = feature_table(name, frame, feature_set)
         print(f"features {feature_set}: {time.perf_counter() - start:.0f} s")
     keep = {
         name: ~(frame["fault_snr_db"].to_numpy() < MIN_FAULT_SNR_DB)

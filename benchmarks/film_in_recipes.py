@@ -29,7 +29,6 @@ Run: .venv/bin/python benchmarks/film_in_recipes.py FOLDER
 """
 
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -46,8 +45,8 @@ from cross_domain import (  # noqa: E402
     CACHE,
     LABELS,
     MIN_FAULT_SNR_DB,
-    _digest,
     extra_trees_score,
+    feature_table,
 )
 
 NAMES = ("cwru-rig-ehl", "cwru-rig-dry", "mfpt-rig-ehl", "mfpt-rig-dry", "cwru777-ehl")
@@ -55,13 +54,7 @@ NAMES += ("cwru777-dry",)
 
 
 def _table(name, frame, feature_set):
-    cached = CACHE / f"{name}-{feature_set}-{_digest(frame)}.npy"
-    if not cached.is_file():
-        start = time.perf_counter()
-        table = FeatureExtractor(feature_set=feature_set, n_jobs=2).fit(frame).transform(frame)
-        np.save(cached, table)
-        print(f"features {name} {feature_set}: {time.perf_counter() - start:.0f} s", flush=True)
-    return np.load(cached)
+    return feature_table(name, frame, feature_set)
 
 
 def main(folder: Path) -> None:

@@ -24,24 +24,17 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from cross_domain import CACHE, MIN_FAULT_SNR_DB, _digest, print_cell
+from cross_domain import CACHE, MIN_FAULT_SNR_DB, feature_table, print_cell
 
 from cmtool import classifier
 from cmtool.datasets import read_dataset
-from features import FeatureExtractor
 
 
 def _table(path: str):
     frame = read_dataset(path)
     keep = ~(frame["fault_snr_db"].to_numpy() < MIN_FAULT_SNR_DB)
     CACHE.mkdir(parents=True, exist_ok=True)
-    cached = CACHE / f"{Path(path).name}-{classifier.DEFAULT_FEATURE_SET}-{_digest(frame)}.npy"
-    if cached.is_file():
-        table = np.load(cached)
-    else:
-        ext = FeatureExtractor(feature_set=classifier.DEFAULT_FEATURE_SET, n_jobs=2).fit(frame)
-        table = ext.transform(frame)
-        np.save(cached, table)
+    table = feature_table(Path(path).name, frame, classifier.DEFAULT_FEATURE_SET)
     return table[keep], frame["label"].to_numpy()[keep]
 
 

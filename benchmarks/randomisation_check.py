@@ -30,13 +30,12 @@ import numpy as np
 
 from cmtool import classifier
 from cmtool.datasets import read_dataset
-from features import FeatureExtractor
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from cross_domain import (  # noqa: E402
     CACHE,
     MIN_FAULT_SNR_DB,
-    _digest,
+    feature_table,
     print_cell,
 )
 
@@ -44,14 +43,8 @@ DIRECTIONS = (("cwru-rig", "mfpt-rig"), ("mfpt-rig", "cwru777"), ("cwru-rig", "c
 
 
 def _table(name, frame):
-    parts = []
-    for feature_set in classifier.DEFAULT_FEATURE_SET.split("+"):
-        cached = CACHE / f"{name}-{feature_set}-{_digest(frame)}.npy"
-        if not cached.is_file():
-            extractor = FeatureExtractor(feature_set=feature_set, n_jobs=2).fit(frame)
-            np.save(cached, extractor.transform(frame))
-        parts.append(np.load(cached))
-    return np.hstack(parts)
+    parts = classifier.DEFAULT_FEATURE_SET.split("+")
+    return np.hstack([feature_table(name, frame, part) for part in parts])
 
 
 def main(folder: Path, base: str, drawn: str) -> None:
