@@ -29,6 +29,7 @@ from . import __version__
 from .csv_layout import CsvLayout, csv_layout, time_unit_size, timestamp_seconds, unit_in_name
 from .excel_files import read_excel_table
 from .file_variables import rate_and_speed
+from .last_file import keep_last_read
 from .tdms_files import read_tdms
 from .time_axis import spliced_time_axis, time_axis_rate
 
@@ -482,6 +483,7 @@ def _csv_sidecar(path: Path) -> dict[str, Any] | None:
     return info
 
 
+@keep_last_read
 def _mat_variables(path: Path) -> dict[str, Any]:
     """A MAT-file's variables: versions 4-7 by scipy, 7.3 (HDF5) by :mod:`.matlab_hdf5`."""
     from scipy import io as sio
@@ -553,6 +555,7 @@ def _one_channel(
     return squeezed.ravel()
 
 
+@keep_last_read
 def _read_csv_table(path: Path) -> tuple[pd.DataFrame, CsvLayout]:
     """A CSV recording's table of numbers, read in the dialect :func:`csv_layout` finds."""
     try:
@@ -668,7 +671,8 @@ def read_recording(
         ) from error
     if x.size < 16:
         raise RecordingError(f"{path}: only {x.size} samples")
-    return np.ascontiguousarray(x, dtype=float), meta
+    # a copy: the file's parse is kept for its next channel (cmtool.last_file)
+    return np.array(x, dtype=float, order="C"), meta
 
 
 def _read_samples(

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from .csv_layout import unit_in_name
+from .last_file import keep_last_read
 
 __all__ = ["read_tdms"]
 
@@ -29,6 +30,29 @@ class _Collect(logging.Handler):
 
     def emit(self, record: logging.LogRecord) -> None:
         self.said.append(record.getMessage())
+
+
+@keep_last_read
+def _tdms_file(path: Path) -> tuple[Any, tuple[str, ...]]:
+    """The parsed file and what npTDMS logged reading it (a cut file's last segment)."""
+    from nptdms import TdmsFile
+    from nptdms.log import log_manager
+
+    from .io import RecordingError
+
+    said: list[str] = []  # npTDMS logs a cut file's last segment: said in the diagnosis
+    collect = _Collect(said)
+    parent, console = logging.getLogger("nptdms"), log_manager.console_handler
+    level, console.level = console.level, logging.CRITICAL + 1  # not printed as well
+    parent.addHandler(collect)
+    try:
+        tdms = TdmsFile.read(path)
+    except Exception as err:  # noqa: BLE001 - npTDMS's errors for a cut or foreign file
+        raise RecordingError(f"{path}: not a readable TDMS file ({err})") from None
+    finally:
+        parent.removeHandler(collect)
+        console.level = level
+    return tdms, tuple(said)
 
 
 def read_tdms(
@@ -60,23 +84,9 @@ def read_tdms(
         The file cannot be read, holds no channel of data, or has none of the name or
         number asked for (the message lists them).
     """
-    from nptdms import TdmsFile
-    from nptdms.log import log_manager
-
     from .io import RecordingError
 
-    said: list[str] = []  # npTDMS logs a cut file's last segment: said in the diagnosis
-    collect = _Collect(said)
-    parent, console = logging.getLogger("nptdms"), log_manager.console_handler
-    level, console.level = console.level, logging.CRITICAL + 1  # not printed as well
-    parent.addHandler(collect)
-    try:
-        tdms = TdmsFile.read(path)
-    except Exception as err:  # noqa: BLE001 - npTDMS's errors for a cut or foreign file
-        raise RecordingError(f"{path}: not a readable TDMS file ({err})") from None
-    finally:
-        parent.removeHandler(collect)
-        console.level = level
+    tdms, said = _tdms_file(Path(path))
     if said:
         meta["warnings"] = [f"{Path(path).name}: {message}" for message in said]
     found = {f"{group.name}/{ch.name}": ch for group in tdms.groups() for ch in group.channels()}

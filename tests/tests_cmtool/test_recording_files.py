@@ -689,3 +689,61 @@ def test_a_time_column_that_gives_no_rate_leaves_it_to_fs(tmp_path, capsys):
         assert "holds no sample rate; give --fs" in err and "is no time axis" in err
         assert main([*argv, "--fs", "12000"]) == 0
         assert said in json.loads(capsys.readouterr().out)["warnings"]
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".mat", ".tdms"])
+def test_a_recordings_second_channel_is_read_from_the_parse_kept(tmp_path, monkeypatch, suffix):
+    """--tacho reads the vibration's channel and then the tachometer's from the same file: the
+    file is parsed once (cmtool.last_file; until stop 78 it was parsed twice), the samples
+    handed out are copies (changing one leaves the next read as the file is), and a file
+    rewritten is parsed again."""
+    import nptdms
+    import scipy.io
+    from nptdms import ChannelObject, TdmsWriter
+
+    import cmtool.io
+
+    parses = []
+
+    def counted(module, name):
+        original = getattr(module, name)
+
+        def wrapper(*args, **kwargs):
+            parses.append(name)
+            return original(*args, **kwargs)
+
+        monkeypatch.setattr(module, name, wrapper)
+
+    counted(cmtool.io.pd, "read_csv")
+    counted(scipy.io, "loadmat")
+    counted(nptdms.TdmsFile, "read")
+    tacho = np.where((30.0 * T) % 1.0 < 0.05, 5.0, 0.0)
+
+    def write(path, x):
+        if suffix == ".csv":
+            path.write_text("acc,key\n" + "\n".join(f"{a:.17g},{b:.17g}" for a, b in zip(x, tacho, strict=True)))
+        elif suffix == ".mat":
+            scipy.io.savemat(path, {"X001_DE_time": x, "X001_FE_time": tacho})
+        else:
+            with TdmsWriter(path) as writer:
+                writer.write_segment(
+                    [ChannelObject("V", "acc", x), ChannelObject("V", "key", tacho)]
+                )
+
+    path = tmp_path / f"rec{suffix}"
+    write(path, X)
+    second = {"variable": "X001_FE_time"} if suffix == ".mat" else {"channel": 1}
+    first, _ = read_recording(path, **({"variable": "X001_DE_time"} if suffix == ".mat" else {}))
+    key, _ = read_recording(path, **second)
+    np.testing.assert_array_equal(first, X)
+    np.testing.assert_array_equal(key, tacho)
+    assert len(parses) == 1, parses
+    first[:] = 0.0  # a caller's change to its samples
+    again, _ = read_recording(path, **({"variable": "X001_DE_time"} if suffix == ".mat" else {}))
+    np.testing.assert_array_equal(again, X)
+    write(path, 2.0 * X)  # the file rewritten: parsed again
+    changed, _ = read_recording(
+        path, **({"variable": "X001_DE_time"} if suffix == ".mat" else {})
+    )
+    np.testing.assert_array_equal(changed, 2.0 * X)
+    assert len(parses) == 2, parses
