@@ -721,7 +721,8 @@ def test_a_recordings_second_channel_is_read_from_the_parse_kept(tmp_path, monke
 
     def write(path, x):
         if suffix == ".csv":
-            path.write_text("acc,key\n" + "\n".join(f"{a:.17g},{b:.17g}" for a, b in zip(x, tacho, strict=True)))
+            rows = (f"{a:.17g},{b:.17g}" for a, b in zip(x, tacho, strict=True))
+            path.write_text("acc,key\n" + "\n".join(rows))
         elif suffix == ".mat":
             scipy.io.savemat(path, {"X001_DE_time": x, "X001_FE_time": tacho})
         else:
