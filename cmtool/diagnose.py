@@ -629,6 +629,13 @@ def diagnose_signal(
             "instrument_floor": _floor_stated(evidence.instrument_floor_rms),
         },
     )
+    if verdict == "healthy" and confidence < 0.5:  # under the threshold, yet near it
+        diagnosis.basis += (
+            f"; borderline: {top['fault']} stands {-margin:.1f} dB under the detection "
+            "threshold, where a population like the confidence's calibration (45 % healthy) "
+            f"is more often faulty than not (healthy's probability {confidence:.2f}): a "
+            "longer record, another load or a trend decides"
+        )
     if scan is not None:
         diagnosis.segment_scan = scan
         diagnosis.assumptions["segment_scan"] = (
