@@ -14,13 +14,14 @@ model to call quiet machines faulty, and scores a detector on what no detector c
 
 The classes are weighed as ``cmtool train`` weighs them (``cmtool.classifier.CLASS_WEIGHT``);
 ``--class-weight none`` compares the unweighted forest, and ``--classifiers`` runs every
-candidate of ``cmtool train`` on the default feature set instead of the forest on every set.
+candidate of ``cmtool train`` on the default feature set instead of the forest on every set,
+``--classifier NAME`` one of them on every set (``extra_trees``: the rig recipes' model).
 
 Run (after generating the datasets; feature tables are cached in CACHE):
     cmtool generate datasets/cwru-rig.toml --out data/cwru-rig --workers 2
     cmtool generate datasets/mfpt-rig.toml --out data/mfpt-rig --workers 2
     .venv/bin/python benchmarks/cross_domain.py data/cwru-rig data/mfpt-rig
-    [--class-weight none] [--classifiers]
+    [--class-weight none] [--classifiers | --classifier extra_trees]
 """
 
 import argparse
@@ -69,7 +70,9 @@ def feature_table(name: str, frame, feature_set: str) -> np.ndarray:
     return table
 
 
-def main(paths: list[str], class_weight: str | None, all_classifiers: bool) -> None:
+def main(
+    paths: list[str], class_weight: str | None, all_classifiers: bool, model: str | None = None
+) -> None:
     frames = {Path(p).name: read_dataset(p) for p in paths}
     sets = (classifier.DEFAULT_FEATURE_SET,) if all_classifiers else FEATURE_SETS
     tables: dict[tuple[str, str], np.ndarray] = {}
@@ -104,6 +107,8 @@ def main(paths: list[str], class_weight: str | None, all_classifiers: bool) -> N
     labels = sorted(set.union(*(set(f["label"]) for f in frames.values())))
     if all_classifiers:
         models = classifier.candidate_classifiers(0, class_weight)
+    elif model is not None:  # one of cmtool train's candidates on every feature set
+        models = {model: classifier.candidate_classifiers(0, class_weight)[model]}
     else:
         models = {
             "random_forest": RandomForestClassifier(
@@ -125,7 +130,7 @@ def main(paths: list[str], class_weight: str | None, all_classifiers: bool) -> N
                 pairs = zip(labels, recall, strict=True)
                 print("  recall " + ", ".join(f"{k} {r:.2f}" for k, r in pairs))
             cells = " | ".join(f"{s:.3f}" for s in scores)
-            row = feature_set if not all_classifiers else f"{feature_set}, {name}"
+            row = feature_set if not (all_classifiers or model) else f"{feature_set}, {name}"
             print(f"| {row} | {cells} | {np.mean(scores):.3f} |")
 
 
@@ -169,6 +174,11 @@ if __name__ == "__main__":
     parser.add_argument(
         "--classifiers", action="store_true", help="every cmtool train candidate, default set"
     )
+    parser.add_argument(
+        "--classifier",
+        choices=sorted(classifier.candidate_classifiers()),
+        help="every feature set with this cmtool train candidate instead of the forest",
+    )
     args = parser.parse_args()
     weight = None if args.class_weight == "none" else args.class_weight
-    main(args.datasets, weight, args.classifiers)
+    main(args.datasets, weight, args.classifiers, args.classifier)
