@@ -15,6 +15,11 @@ rates and the cage rate, in bands from 3 x the fastest fault rate up); then for 
   rate; outer race: none, 0);
 * ``evidence_<fault>_best_band_db`` [dB]: the clearest line of this rate over every candidate
   band;
+* ``evidence_<fault>_weighed_db`` [dB]: the fault's weighed evidence (``evidence_db`` of
+  :attr:`Evidence.combined`, below) over the detection threshold, what the rule's verdict on
+  that fault rests on: its line family with the lines another fault accounts for left out
+  (since stop 78: on the MFPT bearing a ball pit's 2 x BSF - FTF line lies 1.1 % under BPFI,
+  inside BPFI's slip window, and raises ``evidence_bpfi_h1_snr``; docs/realism.md 6);
 
 and ``evidence_margin_db`` [dB], the chosen band's best line over the detection threshold for
 that many bands and bins (:func:`features.detection_threshold_db`). Every feature is a ratio at
@@ -39,7 +44,8 @@ probability on the dB scale of the detection threshold
 (:func:`features.separation.ratio_for_false_alarm`), so that a fault is detected when
 ``evidence_db`` reaches it, at the same false-alarm probability per fault. A line that lies
 on a stronger detected fault's harmonics or their sidebands counts for that fault only
-(:func:`explain_shared_lines`); the row's line ratios are as found.
+(:func:`explain_shared_lines`); the row's line ratios are as found, its ``weighed_db``
+after that.
 """
 
 from __future__ import annotations
@@ -101,6 +107,7 @@ EVIDENCE_NAMES = tuple(
             *(f"evidence_{fault}_h{k}_snr" for k in (1, 2, 3)),
             f"evidence_{fault}_sideband_snr",
             f"evidence_{fault}_best_band_db",
+            f"evidence_{fault}_weighed_db",
         )
     ]
     + ["evidence_margin_db"]
@@ -435,6 +442,8 @@ def _evidence_in_band(
         floor,
         bands_weighed,
     )
+    for fault in EVIDENCE_FAULTS:  # what the verdict rests on, shared lines explained
+        out[f"evidence_{fault}_weighed_db"] = combined[fault]["evidence_db"] - threshold
     return Evidence(out, selection, threshold, lines, random_part, ef, ea, combined, found_all)
 
 

@@ -208,3 +208,43 @@ def test_fault_evidence_names_a_rate_it_cannot_weigh(name, value, said):
     with pytest.raises(FeatureError, match=r"fault_frequencies\[" + said):
         fault_evidence(x, 12000.0, {**RATES, name: value})
     assert fault_evidence(x, 12000.0, {**RATES, "bpfi": 1562.0}).threshold_db > 0
+
+
+def test_the_weighed_evidence_columns_explain_a_ball_line_in_the_inner_races_window():
+    """``evidence_<fault>_weighed_db`` is each fault's weighed evidence over the threshold (what
+    the rule's verdict rests on). On the MFPT bearing at 25 Hz a ball pit's lower cage sideband,
+    2 x BSF - FTF = 117.6 Hz, lies 1.1 % under BPFI (118.9 Hz), inside BPFI's slip window: the
+    raw BPFI line of a ball pit stands high, its weighed evidence does not (the line counts for
+    the ball), which is what lets a model tell this ball pit from an inner race (stop 78)."""
+    from scipy import signal as sp_signal
+
+    ctx = {  # the MFPT bearing at 25 Hz (generators.characteristic_frequencies)
+        "shaft": 25.0,
+        "ftf": 10.140562,
+        "bpfo": 81.124498,
+        "bpfi": 118.875502,
+        "two_bsf": 127.727933,
+    }
+    fs, n = 48828.0, 2 * 48828
+    rng = np.random.default_rng(78)
+    times = np.arange(0.0, n / fs, 1.0 / ctx["two_bsf"])
+    times = times + rng.normal(0.0, 0.005 / ctx["two_bsf"], times.size)  # slip
+    impacts = np.zeros(n)
+    index = np.clip(np.round(times * fs).astype(int), 0, n - 1)
+    # the pit strikes hard only while its ball crosses the load zone: once per cage turn
+    impacts[index] = (1.0 + np.cos(2.0 * np.pi * ctx["ftf"] * times)) ** 2
+    x = sp_signal.lfilter(*sp_signal.iirpeak(6000.0, 20.0, fs), impacts)
+    x = x / x.std() + 0.5 * rng.standard_normal(n)
+    e = fault_evidence(x, fs, ctx)
+    for fault in ("bpfo", "bpfi", "two_bsf"):
+        weighed = e.combined[fault]["evidence_db"] - e.threshold_db
+        assert e.features[f"evidence_{fault}_weighed_db"] == pytest.approx(weighed)
+    # the ball's lower cage sideband stands in the inner race's window, well over its floor
+    assert e.features["evidence_bpfi_h1_snr"] > 10.0
+    assert e.lines["bpfi"][0][1] == pytest.approx(ctx["two_bsf"] - ctx["ftf"], abs=0.6)
+    # weighed, it is the ball's: detected, the inner race far under it and under the threshold
+    assert e.features["evidence_two_bsf_weighed_db"] > 0.0
+    assert e.features["evidence_bpfi_weighed_db"] < 0.0
+    assert (
+        e.features["evidence_two_bsf_weighed_db"] - e.features["evidence_bpfi_weighed_db"] > 10.0
+    )
