@@ -4,8 +4,11 @@ Decided before any look at recordings (issue 17): for every pair of datasets (A,
 from different rig recipes (other bearing, speed, sample rates, structural modes, sensor,
 background), a classifier is trained on A and scored on B, per feature set. The feature set
 with the best mean balanced accuracy over the ordered pairs becomes ``cmtool train``'s default.
-The classifier is the one ``cmtool train`` keeps most often (a random forest after a scaler);
-its choice is not tuned here. A union set (``evidence+scale-free``) is the columns of its parts.
+The classifier is the one ``cmtool train`` keeps for them: the one their recipes name in
+``[training] classifier`` (extra trees after a scaler for the rig recipes), else a random forest
+(until stop 79 the forest was the check's classifier for every dataset; ``--classifier
+random_forest`` gives its figures). Its choice is not tuned here. A union set
+(``evidence+scale-free``) is the columns of its parts.
 
 Faulty signals whose fault SNR (where their impacts ring) is below ``MIN_FAULT_SNR_DB`` are
 left out on both sides, as ``cmtool train`` leaves them out by default: a label that says a
@@ -13,15 +16,15 @@ fault is there when nothing in the signal can show it (a pit outside the load zo
 model to call quiet machines faulty, and scores a detector on what no detector can see.
 
 The classes are weighed as ``cmtool train`` weighs them (``cmtool.classifier.CLASS_WEIGHT``);
-``--class-weight none`` compares the unweighted forest, and ``--classifiers`` runs every
-candidate of ``cmtool train`` on the default feature set instead of the forest on every set,
-``--classifier NAME`` one of them on every set (``extra_trees``: the rig recipes' model).
+``--class-weight none`` compares it unweighted, and ``--classifiers`` runs every
+candidate of ``cmtool train`` on the default feature set, ``--classifier NAME`` one of them on
+every set in place of the recipe's.
 
 Run (after generating the datasets; feature tables are cached in CACHE):
     cmtool generate datasets/cwru-rig.toml --out data/cwru-rig --workers 2
     cmtool generate datasets/mfpt-rig.toml --out data/mfpt-rig --workers 2
     .venv/bin/python benchmarks/cross_domain.py data/cwru-rig data/mfpt-rig
-    [--class-weight none] [--classifiers | --classifier extra_trees]
+    [--class-weight none] [--classifiers | --classifier random_forest]
 """
 
 import argparse
@@ -31,7 +34,6 @@ from itertools import permutations
 from pathlib import Path
 
 import numpy as np
-from sklearn.ensemble import RandomForestClassifier
 from sklearn.metrics import balanced_accuracy_score, confusion_matrix, recall_score
 from sklearn.pipeline import make_pipeline
 from sklearn.preprocessing import StandardScaler
@@ -68,6 +70,22 @@ def feature_table(name: str, frame, feature_set: str) -> np.ndarray:
     table = ext.transform(frame)
     np.save(cached, table)
     return table
+
+
+def recipes_classifier(folders: list[Path]) -> str:
+    """The classifier ``cmtool train`` keeps for these datasets: the one their recipes name in
+    ``[training] classifier``, the same for all (``random_forest``, the check's classifier until
+    stop 79, where none names one); a ``SystemExit`` where they name different ones."""
+    named = {
+        classifier.recipe_classifier(recipe.read_text()) if recipe.is_file() else None
+        for recipe in (folder / "recipe.toml" for folder in folders)
+    }
+    if len(named) > 1:
+        raise SystemExit(
+            f"the recipes name different classifiers {sorted(map(str, named))}: "
+            "choose one with --classifier"
+        )
+    return named.pop() or "random_forest"
 
 
 def main(
@@ -107,21 +125,16 @@ def main(
     labels = sorted(set.union(*(set(f["label"]) for f in frames.values())))
     if all_classifiers:
         models = classifier.candidate_classifiers(0, class_weight)
-    elif model is not None:  # one of cmtool train's candidates on every feature set
+    else:  # one of cmtool train's candidates on every feature set
+        model = model or recipes_classifier([Path(p) for p in paths])
         models = {model: classifier.candidate_classifiers(0, class_weight)[model]}
-    else:
-        models = {
-            "random_forest": RandomForestClassifier(
-                n_estimators=300, random_state=0, class_weight=class_weight
-            )
-        }
     for feature_set in sets:
         for name, estimator in models.items():
             scores = []
             for a, b in permutations(frames, 2):
-                model = make_pipeline(StandardScaler(), estimator)
-                model.fit(tables[feature_set, a][keep[a]], frames[a]["label"].to_numpy()[keep[a]])
-                predicted = model.predict(tables[feature_set, b][keep[b]])
+                fitted = make_pipeline(StandardScaler(), estimator)
+                fitted.fit(tables[feature_set, a][keep[a]], frames[a]["label"].to_numpy()[keep[a]])
+                predicted = fitted.predict(tables[feature_set, b][keep[b]])
                 truth = frames[b]["label"].to_numpy()[keep[b]]
                 scores.append(balanced_accuracy_score(truth, predicted))
                 recall = recall_score(truth, predicted, labels=labels, average=None)
@@ -130,8 +143,7 @@ def main(
                 pairs = zip(labels, recall, strict=True)
                 print("  recall " + ", ".join(f"{k} {r:.2f}" for k, r in pairs))
             cells = " | ".join(f"{s:.3f}" for s in scores)
-            row = feature_set if not (all_classifiers or model) else f"{feature_set}, {name}"
-            print(f"| {row} | {cells} | {np.mean(scores):.3f} |")
+            print(f"| {feature_set}, {name} | {cells} | {np.mean(scores):.3f} |")
 
 
 #: The classes in the order recall is reported.
@@ -177,7 +189,8 @@ if __name__ == "__main__":
     parser.add_argument(
         "--classifier",
         choices=sorted(classifier.candidate_classifiers()),
-        help="every feature set with this cmtool train candidate instead of the forest",
+        help="every feature set with this cmtool train candidate instead of the one the "
+        "datasets' recipes name",
     )
     args = parser.parse_args()
     weight = None if args.class_weight == "none" else args.class_weight

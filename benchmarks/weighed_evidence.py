@@ -11,13 +11,13 @@ it as an inner race.
 For every ordered pair of the datasets given, a classifier is trained on one and scored on the
 other, on ``cmtool train``'s default feature set as shipped and with the three columns dropped
 (the same table), faults under ``MIN_FAULT_SNR_DB`` left out on both sides. The classifier is
-``benchmarks/cross_domain.py``'s random forest, or with ``--classifier NAME`` one of ``cmtool
-train``'s candidates (``extra_trees``: the rig recipes' model, on which the columns were
-judged).
+``benchmarks/cross_domain.py``'s: the one the datasets' recipes name (extra trees for the rig
+recipes, on which the columns were judged), or with ``--classifier NAME`` another of ``cmtool
+train``'s candidates (``random_forest``: this script's default until stop 79).
 
 Run (after generating the datasets, as in ``benchmarks/cross_domain.py``):
     .venv/bin/python benchmarks/weighed_evidence.py data/cwru-rig data/mfpt-rig [data/universal]
-    [--classifier extra_trees]
+    [--classifier random_forest]
 """
 
 import argparse
@@ -26,7 +26,6 @@ from itertools import permutations
 from pathlib import Path
 
 import numpy as np
-from sklearn.ensemble import RandomForestClassifier
 from sklearn.metrics import balanced_accuracy_score, confusion_matrix, recall_score
 from sklearn.pipeline import make_pipeline
 from sklearn.preprocessing import StandardScaler
@@ -36,7 +35,7 @@ from cmtool.datasets import read_dataset
 from features import FeatureExtractor
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from cross_domain import LABELS, MIN_FAULT_SNR_DB, feature_table  # noqa: E402
+from cross_domain import LABELS, MIN_FAULT_SNR_DB, feature_table, recipes_classifier  # noqa: E402
 
 WEIGHED = tuple(f"evidence_{fault}_weighed_db" for fault in ("bpfo", "bpfi", "two_bsf"))
 
@@ -44,6 +43,7 @@ WEIGHED = tuple(f"evidence_{fault}_weighed_db" for fault in ("bpfo", "bpfi", "tw
 def main(paths: list[str], model_name: str | None = None) -> None:
     frames = {Path(p).name: read_dataset(p) for p in paths}
     feature_set = classifier.DEFAULT_FEATURE_SET
+    model_name = model_name or recipes_classifier([Path(p) for p in paths])
     tables, keep = {}, {}
     for name, frame in frames.items():
         tables[name] = feature_table(name, frame, feature_set)
@@ -55,13 +55,7 @@ def main(paths: list[str], model_name: str | None = None) -> None:
     for title, columns in (("without the weighed evidence", without), ("shipped", None)):
         scores = []
         for a, b in permutations(frames, 2):
-            estimator = (
-                RandomForestClassifier(
-                    n_estimators=300, random_state=0, class_weight=classifier.CLASS_WEIGHT
-                )
-                if model_name is None
-                else classifier.candidate_classifiers(0)[model_name]
-            )
+            estimator = classifier.candidate_classifiers(0)[model_name]
             model = make_pipeline(StandardScaler(), estimator)
             train, test = tables[a][keep[a]], tables[b][keep[b]]
             if columns is not None:
@@ -87,7 +81,7 @@ if __name__ == "__main__":
     parser.add_argument(
         "--classifier",
         choices=sorted(classifier.candidate_classifiers()),
-        help="this cmtool train candidate instead of the forest (extra_trees: the rig recipes')",
+        help="this cmtool train candidate instead of the one the datasets' recipes name",
     )
     args = parser.parse_args()
     main(args.datasets, args.classifier)
