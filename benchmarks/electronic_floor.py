@@ -50,7 +50,10 @@ def _rule(frame) -> dict[int, tuple[str, str, bool]]:
         if row.label != "healthy" and not row.fault_snr_db >= MIN_FAULT_SNR_DB:
             continue
         d = diagnose_signal(
-            np.asarray(row.signal, float), float(row.fs_hz), float(row.rpm), row.bearing,
+            np.asarray(row.signal, float),
+            float(row.fs_hz),
+            float(row.rpm),
+            row.bearing,
             waviness=False,
         )
         out[i] = (row.label, d.verdict, d.assumptions["instrument_floor"].startswith("added"))

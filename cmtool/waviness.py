@@ -184,9 +184,7 @@ def _line(f: np.ndarray, a: np.ndarray, line: float, floor: float = 0.0) -> tupl
     The SNR is over the local floor, or over ``floor`` where that is higher.
     """
     df = f[1] - f[0]
-    snr, peak, local = features.line_snr(
-        f, a, line, half_width=_half_width(df, line), guard=_GUARD
-    )
+    snr, peak, local = features.line_snr(f, a, line, half_width=_half_width(df, line), guard=_GUARD)
     if floor > local:
         snr = 20.0 * math.log10(max(peak, 1e-300) / floor)
     return snr, peak

@@ -770,8 +770,10 @@ def recipe_content_warnings(recipe: dict) -> list[str]:
     for i, c in enumerate(recipe["conditions"]):
         if c.get("surface") == "ball" and c.get("defect") == "waviness":
             spec = c["order"]
-            orders = spec["grid"] if "grid" in spec else range(
-                math.ceil(spec["range"][0]), math.floor(spec["range"][1]) + 1
+            orders = (
+                spec["grid"]
+                if "grid" in spec
+                else range(math.ceil(spec["range"][0]), math.floor(spec["range"][1]) + 1)
             )
             message = odd_ball_waviness((int(k) for k in orders), recipe["model"]["scene"])
             if message is not None:

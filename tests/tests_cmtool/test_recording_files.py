@@ -743,8 +743,6 @@ def test_a_recordings_second_channel_is_read_from_the_parse_kept(tmp_path, monke
     again, _ = read_recording(path, **({"variable": "X001_DE_time"} if suffix == ".mat" else {}))
     np.testing.assert_array_equal(again, X)
     write(path, 2.0 * X)  # the file rewritten: parsed again
-    changed, _ = read_recording(
-        path, **({"variable": "X001_DE_time"} if suffix == ".mat" else {})
-    )
+    changed, _ = read_recording(path, **({"variable": "X001_DE_time"} if suffix == ".mat" else {}))
     np.testing.assert_array_equal(changed, 2.0 * X)
     assert len(parses) == 2, parses

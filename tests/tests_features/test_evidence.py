@@ -245,6 +245,4 @@ def test_the_weighed_evidence_columns_explain_a_ball_line_in_the_inner_races_win
     # weighed, it is the ball's: detected, the inner race far under it and under the threshold
     assert e.features["evidence_two_bsf_weighed_db"] > 0.0
     assert e.features["evidence_bpfi_weighed_db"] < 0.0
-    assert (
-        e.features["evidence_two_bsf_weighed_db"] - e.features["evidence_bpfi_weighed_db"] > 10.0
-    )
+    assert e.features["evidence_two_bsf_weighed_db"] - e.features["evidence_bpfi_weighed_db"] > 10.0
