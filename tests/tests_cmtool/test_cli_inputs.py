@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+from impact_trains import ringing_impact_train
 
 from cmtool.cli import main
 
@@ -1241,7 +1242,6 @@ def test_the_speed_from_a_tacho_channel(tmp_path, capsys):
     """An outer-race train at 1750 rpm recorded with its key-phasor; --rpm says 1797 (a
     nameplate's 2.7 % off). With --tacho the fault rates come from the pulses, the speed
     is stated and --rpm's is warned of; the tacho never stands in for the vibration."""
-    from scipy import signal as sp_signal
 
     from generators import bearing, characteristic_frequencies
 
@@ -1249,11 +1249,7 @@ def test_the_speed_from_a_tacho_channel(tmp_path, capsys):
     t = np.arange(n) / fs
     bpfo = characteristic_frequencies(bearing("6205"), rpm / 60).bpfo
     rng = np.random.default_rng(5)
-    times = np.arange(0.0, n / fs, 1 / bpfo)
-    times = times + rng.normal(0.0, 0.01 / bpfo, times.size)
-    impacts = np.zeros(n)
-    impacts[np.clip((times * fs).astype(int), 0, n - 1)] = 1.0
-    x = sp_signal.lfilter(*sp_signal.iirpeak(3000.0, 15.0, fs), impacts)
+    x = ringing_impact_train(bpfo, fs, n, rng)
     x = x + 0.05 * rng.standard_normal(n)
     tacho = np.where((rpm / 60 * t) % 1.0 < 0.05, 5.0, 0.0)
     path = tmp_path / "rec.csv"

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+from impact_trains import ringing_impact_train
 
 import features
 from cmtool.classifier import (
@@ -1694,7 +1695,6 @@ def test_the_speed_can_come_from_the_spectrums_1x_line(tmp_path, capsys):
     (3.7 % off: its lines lie outside the search) and found from the 1x line; the assumptions
     say which speed was given, which was used and why; without a line the speed given is used
     and the output says so."""
-    from scipy import signal as sp_signal
 
     from generators import bearing, characteristic_frequencies
 
@@ -1702,11 +1702,7 @@ def test_the_speed_can_come_from_the_spectrums_1x_line(tmp_path, capsys):
     t = np.arange(n) / fs
     rng = np.random.default_rng(11)
     bpfo = characteristic_frequencies(bearing("6205"), 1730 / 60).bpfo
-    times = np.arange(0.0, n / fs, 1 / bpfo)
-    times = times + rng.normal(0.0, 0.01 / bpfo, times.size)  # slip: 1 % jitter
-    impacts = np.zeros(n)
-    impacts[np.clip((times * fs).astype(int), 0, n - 1)] = 1.0
-    x = sp_signal.lfilter(*sp_signal.iirpeak(3000.0, 15.0, fs), impacts)
+    x = ringing_impact_train(bpfo, fs, n, rng)  # slip: 1 % jitter
     x = x + 0.05 * rng.standard_normal(n) + 0.2 * np.sin(2 * np.pi * 1730 / 60 * t)
     given = diagnose_signal(x, fs, 1797.0, "6205", waviness=False, speed_source="given")
     assert given.verdict != "outer race", given.candidates
@@ -1754,7 +1750,6 @@ def test_auto_takes_the_lines_speed_only_where_the_speed_given_is_over_one_perce
     ``SPEED_CORRECTION`` (1 %) of it, the line's beyond (a speed 1.25-1.75 % off cost a third
     of the inner-race pits on simulated records, 2 % off most), with a warning that says
     which."""
-    from scipy import signal as sp_signal
 
     from cmtool.diagnose import SPEED_CORRECTION
     from generators import bearing, characteristic_frequencies
@@ -1764,13 +1759,9 @@ def test_auto_takes_the_lines_speed_only_where_the_speed_given_is_over_one_perce
     t = np.arange(n) / fs
     rng = np.random.default_rng(12)
     bpfi = characteristic_frequencies(bearing("6205"), 1730 / 60).bpfi
-    times = np.arange(0.0, n / fs, 1 / bpfi)
-    times = times + rng.normal(0.0, 0.01 / bpfi, times.size)
-    impacts = np.zeros(n)
-    impacts[np.clip((times * fs).astype(int), 0, n - 1)] = 1.0 + 0.5 * np.cos(
-        2 * np.pi * 1730 / 60 * times  # the load zone's modulation at the shaft rate
+    x = ringing_impact_train(  # the load zone's modulation at the shaft rate
+        bpfi, fs, n, rng, strength=lambda times: 1.0 + 0.5 * np.cos(2 * np.pi * 1730 / 60 * times)
     )
-    x = sp_signal.lfilter(*sp_signal.iirpeak(3000.0, 15.0, fs), impacts)
     x = x + 0.05 * rng.standard_normal(n) + 0.2 * np.sin(2 * np.pi * 1730 / 60 * t)
     # 3.7 % off: the speed given misses the inner race, auto takes the line's and finds it
     given = diagnose_signal(x, fs, 1797.0, "6205", waviness=False, speed_source="given")
@@ -1866,18 +1857,13 @@ def test_a_healthy_verdict_near_the_threshold_says_it_is_borderline(tmp_path, ca
     candidate and how far under it stands, in the JSON and the text; a clearly healthy one and
     a fault do not (stop 78; before, "healthy (confidence 0.32)" stood unexplained). An outer-
     race train in white noise, raised through the threshold in small steps."""
-    from scipy import signal as sp_signal
 
     from generators import bearing, characteristic_frequencies
 
     fs, n, rpm = 12000.0, 12000, 1797.0
     bpfo = characteristic_frequencies(bearing("6205"), rpm / 60).bpfo
     rng = np.random.default_rng(78)
-    times = np.arange(0.0, n / fs, 1 / bpfo)
-    times = times + rng.normal(0.0, 0.01 / bpfo, times.size)
-    impacts = np.zeros(n)
-    impacts[np.clip((times * fs).astype(int), 0, n - 1)] = 1.0
-    ring = sp_signal.lfilter(*sp_signal.iirpeak(3000.0, 15.0, fs), impacts)
+    ring = ringing_impact_train(bpfo, fs, n, rng)
     noise = np.random.default_rng(79).standard_normal(n)
     seen = {"borderline": 0, "healthy": 0, "fault": 0}
     for level in np.arange(0.20, 0.30, 0.005):

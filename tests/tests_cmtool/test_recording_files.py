@@ -13,6 +13,7 @@ import json
 
 import numpy as np
 import pytest
+from impact_trains import ringing_impact_train
 
 from cmtool.cli import main
 from cmtool.io import RecordingError, read_recording
@@ -98,16 +99,12 @@ def test_a_time_column_with_gaps_or_a_jump_back_is_read_at_its_rate_and_said(tmp
 
 def test_a_decimal_comma_recording_gets_the_verdict_of_its_numbers(tmp_path, capsys):
     """The same record as .npy and as a spreadsheet's decimal-comma CSV: the same diagnosis."""
-    from scipy import signal as sp_signal
 
     from generators import bearing, characteristic_frequencies
 
     bpfo = characteristic_frequencies(bearing("6205"), 1797 / 60).bpfo
     rng = np.random.default_rng(5)
-    impacts = np.zeros(N)
-    times = np.arange(0.0, 1.0, 1 / bpfo) + rng.normal(0.0, 0.01 / bpfo, int(np.ceil(bpfo)))
-    impacts[np.clip((times * FS).astype(int), 0, N - 1)] = 1.0
-    x = sp_signal.lfilter(*sp_signal.iirpeak(3000.0, 15.0, FS), impacts)
+    x = ringing_impact_train(bpfo, FS, N, rng)
     x = np.round(x + 0.05 * rng.standard_normal(N), 6)
     np.save(tmp_path / "rec.npy", x)
     text = "Zeit [s];Beschleunigung [g]\n" + "\n".join(
