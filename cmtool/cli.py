@@ -32,6 +32,7 @@ from .commands.simulate import (
     parse_defect,
     parse_waviness,
 )
+from .vibration_zones import MACHINE_CLASSES, parse_zone_limits
 
 logger = logging.getLogger("cmtool")
 
@@ -55,6 +56,14 @@ def _positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"{value} is outside the allowed range [1, inf)")
     return value
+
+
+def _zone_limits(text: str) -> tuple[float, float, float]:
+    """An argparse type: zone boundaries A/B, B/C, C/D [mm/s] (``parse_zone_limits``)."""
+    try:
+        return parse_zone_limits(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 class _Parser(argparse.ArgumentParser):
@@ -374,6 +383,24 @@ def build_parser() -> argparse.ArgumentParser:
         "velocity's (a velocity transducer's record, diagnosed by its derivative) (default: "
         "the file's where it says: g in CWRU and MFPT files, m/s^2 in cmtool's, a CSV's "
         "units row or bracketed unit)",
+    )
+    zones = p.add_mutually_exclusive_group()
+    zones.add_argument(
+        "--machine-class",
+        default=None,
+        choices=tuple(MACHINE_CLASSES),
+        help="the machine's class for the overall velocity's evaluation zone A-D: ISO 10816-3 "
+        "group 1 (over 300 kW) or 2 (15-300 kW) on rigid or flexible support, or ISO 10816-1 "
+        "class I-IV (class-I: small machines up to 15 kW) (default: no zone; a folder's "
+        "manifest may give one per recording, column machine_class)",
+    )
+    zones.add_argument(
+        "--zone-limits",
+        default=None,
+        type=_zone_limits,
+        metavar="AB,BC,CD",
+        help="the zone boundaries A/B, B/C, C/D a site uses [mm/s RMS], e.g. 1.4,2.8,4.5, "
+        "instead of a class",
     )
     p.add_argument(
         "--workers",

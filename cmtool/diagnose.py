@@ -28,6 +28,7 @@ adds its verdict.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -64,6 +65,7 @@ from .quality import (  # the record's checks, kept importable from here
     clipped_share,
 )
 from .severity import spall_size
+from .vibration_zones import vibration_zone
 
 __all__ = [
     "diagnose_signal",
@@ -416,6 +418,7 @@ def diagnose_signal(
     unit: str | None = None,
     speed_source: str = "auto",
     severity: bool = True,
+    machine_class: str | Sequence[float] | None = None,
 ) -> Diagnosis:
     """Diagnose one signal.
 
@@ -456,6 +459,10 @@ def diagnose_signal(
         bands are then also given in mm/s (``velocity_bands_mm_s``). A velocity record is
         diagnosed by its derivative (``features.acceleration_from_velocity``), the baseline
         too (in the same unit).
+    machine_class : str or sequence of float, optional
+        A machine class of ``cmtool.vibration_zones.MACHINE_CLASSES`` (``"group2-rigid"``,
+        ...) or a site's zone boundaries A/B, B/C, C/D [mm/s RMS]: the overall velocity's
+        evaluation zone is then given (``overall_velocity["zone"]``), where the unit is known.
     speed_source : {"given", "spectrum", "auto"}
         Where the fault rates' shaft speed comes from: ``rpm`` as given; the spectrum's 1x
         line found within 5 % of it (``features.shaft_rate_from_spectrum``; the speed given,
@@ -488,6 +495,8 @@ def diagnose_signal(
         raise ValueError(
             f"speed_source = {speed_source!r} is not one of {', '.join(SPEED_SOURCES)}"
         )
+    if machine_class is not None:
+        vibration_zone(0.0, machine_class)  # a bad class or bad limits, before the work
     rpm, freqs, ctx, warnings = rule_context(x, fs, rpm, geometry)
     rpm_given = rpm
     speed = features.shaft_rate_from_spectrum(x, fs, rpm / 60.0)
@@ -659,6 +668,14 @@ def diagnose_signal(
     diagnosis.warnings += check_drift(x, fs, min(broad[0], 0.5 * rpm / 60.0))
     bands = features.velocity_band_rms(x, fs, {**features.ISO_15242_BANDS, "overall": broad})
     diagnosis.overall_velocity = overall_velocity(bands.pop("overall"), broad, fs, scale)
+    if machine_class is not None and diagnosis.overall_velocity is not None:
+        if diagnosis.overall_velocity["rms_mm_s"] is None:
+            diagnosis.warnings.append(
+                "no vibration zone: the overall velocity needs the record's unit (--unit)"
+            )
+        else:
+            zone = vibration_zone(diagnosis.overall_velocity["rms_mm_s"], machine_class)
+            diagnosis.overall_velocity["zone"] = zone
     diagnosis.velocity_bands = {k: float(v) for k, v in bands.items() if math.isfinite(v)}
     if len(diagnosis.velocity_bands) < len(bands):  # a band starting above fs/2 has no value
         missing = [k for k in bands if k not in diagnosis.velocity_bands]

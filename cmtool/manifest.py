@@ -13,7 +13,8 @@ relative to the folder, that ``cmtool diagnose FOLDER`` compares the recording w
 ``mm/s``, ``m/s`` or ``in/s``; for velocities in mm/s), and for a
 recording with a tachometer channel ``tacho_channel`` (its column or number: the speed from
 its pulses), ``pulses_per_rev`` (default 1) and ``order_track`` (true: resample to constant
-speed first; default false). A row
+speed first; default false), and ``machine_class`` (the overall velocity's zone: a class of
+``cmtool.vibration_zones.MACHINE_CLASSES`` or a site's boundaries, ``1.4/2.8/4.5`` mm/s). A row
 that cannot be used is an error naming the manifest, its line, the column, the value and
 what is allowed, before any recording is read. Columns are separated by commas, or by
 semicolons or tabs as a spreadsheet saves CSV where the decimal mark is a comma (its rates and
@@ -37,6 +38,7 @@ from generators import BEARINGS, BearingGeometry
 from .csv_layout import text_encoding
 from .diagnose import CANONICAL, VIBRATION_UNITS
 from .io import RecordingError, geometry_from_spec
+from .vibration_zones import MACHINE_CLASSES, parse_zone_limits
 
 __all__ = ["MANIFEST_BEARINGS", "MANIFEST_UNITS", "ManifestEntry", "read_manifest"]
 
@@ -89,6 +91,10 @@ class ManifestEntry:
     order_track : bool
         Resample the record to constant shaft speed first (``order_track``: true or false,
         default false; needs ``tacho_channel``).
+    machine_class : str or tuple of float or None
+        The machine's class for the overall velocity's zone (``machine_class``: a key of
+        ``cmtool.vibration_zones.MACHINE_CLASSES``, or a site's boundaries A/B, B/C, C/D in
+        mm/s written ``1.4/2.8/4.5``).
     """
 
     file: str
@@ -107,6 +113,7 @@ class ManifestEntry:
     tacho: str | None = None
     pulses_per_rev: int = 1
     order_track: bool = False
+    machine_class: str | tuple[float, float, float] | None = None
 
     @property
     def bearing_or_geometry(self) -> str | BearingGeometry:
@@ -348,6 +355,16 @@ def read_manifest(
             )
         if _FLAGS[track] and tacho is None:
             raise RecordingError(f"{where}: order_track needs tacho_channel")
+        machine_class = _text(row.get("machine_class"))
+        if machine_class is not None and machine_class not in MACHINE_CLASSES:
+            try:
+                machine_class = parse_zone_limits(machine_class)
+            except ValueError:
+                raise RecordingError(
+                    f"{where}: machine_class = {machine_class!r} is not one of "
+                    f"{', '.join(MACHINE_CLASSES)}, nor three zone boundaries in mm/s "
+                    "(A/B, B/C, C/D increasing from above 0, e.g. 1.4/2.8/4.5), or empty"
+                ) from None
         baseline = _text(row.get("baseline"))
         if baseline is not None:
             baseline = _in_folder(folder, baseline)[1]
@@ -371,6 +388,7 @@ def read_manifest(
                 tacho=tacho,
                 pulses_per_rev=int(pulses) if pulses is not None else 1,
                 order_track=_FLAGS[track],
+                machine_class=machine_class,
             )
         )
     return entries

@@ -9,6 +9,7 @@ import numpy as np
 from .diagnose import explained_lines
 from .diagnosis import Diagnosis
 from .io import atomic_write, json_text
+from .vibration_zones import zone_text
 
 __all__ = ["model_verdict_text", "write_report"]
 
@@ -208,6 +209,8 @@ def write_report(
             name = f"overall (ISO 10816-3, {low:g}-{high:g} Hz)"
             lines.append(f"| {name} | {overall['rms']:.4g} | {mm_s} | - |")
         lines.append("")
+        if overall and overall.get("zone"):
+            lines += [f"Vibration zone {zone_text(overall['zone'])}.", ""]
     if theirs := (diagnosis.baseline or {}).get("baseline_fault_margin_db"):
         lines += [
             "## Against the baseline",

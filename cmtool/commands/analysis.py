@@ -196,11 +196,13 @@ def _diagnose_one(
     warnings: list[str] | None = None,
     tacho: bool = False,
     load_n: float | None = None,
+    machine_class=None,
 ):
     """One recording's diagnosis, its assumptions completed (clipping refused first).
 
     ``file``: the name the output shows; ``source``: the path clipping errors name;
-    ``tacho``: the speed is a tachometer's (``--speed-source`` then defaults to given).
+    ``tacho``: the speed is a tachometer's (``--speed-source`` then defaults to given);
+    ``machine_class``: the manifest's, else ``--machine-class`` or ``--zone-limits``.
     """
     from ..diagnose import check_clipping, diagnose_signal
 
@@ -217,6 +219,9 @@ def _diagnose_one(
         load_n=args.load if load_n is None else load_n,
         unit=unit,
         speed_source=args.speed_source or ("given" if tacho else "auto"),
+        machine_class=machine_class
+        or getattr(args, "machine_class", None)
+        or getattr(args, "zone_limits", None),
     )
     diagnosis.warnings = list(warnings or []) + diagnosis.warnings
     diagnosis.assumptions["channel"] = channel
@@ -268,6 +273,7 @@ VERDICT_COLUMNS = (
     "velocity_high",
     "velocity_overall",
     "velocity_unit",
+    "zone",
     "velocity_low_change_db",
     "velocity_medium_change_db",
     "velocity_high_change_db",
@@ -445,6 +451,7 @@ def _folder_row(task) -> tuple[dict, dict]:
             baseline_fs=baseline_fs,
             warnings=said,
             tacho=measured is not None,
+            machine_class=entry.machine_class,
         )
         if measured is not None:
             diagnosis.assumptions["speed_measured"] = measured
@@ -477,6 +484,7 @@ def _folder_row(task) -> tuple[dict, dict]:
     overall = diagnosis.overall_velocity or {}
     row["velocity_overall"] = overall.get("rms_mm_s" if diagnosis.velocity_bands_mm_s else "rms")
     row["velocity_unit"] = "mm/s" if diagnosis.velocity_bands_mm_s else "signal unit x s"
+    row["zone"] = (overall.get("zone") or {}).get("zone")  # A-D where a class was given
     for band, change in (diagnosis.baseline or {}).get("velocity_bands_change_db", {}).items():
         row[f"velocity_{band}_change_db"] = change
     for fault, margin in (diagnosis.baseline or {}).get("baseline_fault_margin_db", {}).items():

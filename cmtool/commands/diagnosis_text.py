@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from ..diagnose import Diagnosis, explained_lines
 from ..report import model_verdict_text
+from ..vibration_zones import zone_text
 from ..waviness import comparison_text
 
 
@@ -87,6 +88,8 @@ def print_diagnosis(diagnosis: Diagnosis) -> None:
             else f"{overall['rms']:.3g} (signal unit x s)"
         )
         print(f"  overall velocity RMS (ISO 10816-3 band, {low:g}-{high:g} Hz): {value}")
+        if zone := overall.get("zone"):
+            print(f"  vibration zone {zone_text(zone)}")
     if diagnosis.waviness:
         w = diagnosis.waviness
         over = w.get("over_baseline_db")
