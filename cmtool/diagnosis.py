@@ -66,7 +66,8 @@ class Diagnosis:
         (``velocity_bands_iso15242_mm_s``).
     overall_velocity : dict or None
         RMS velocity in ISO 10816-3's broad band (``band_hz``, ``rms`` [signal unit x s],
-        ``rms_mm_s`` [mm/s] or None) (``overall_velocity_iso10816``).
+        ``rms_mm_s`` [mm/s] or None, and with a machine class its evaluation ``zone``,
+        ``cmtool.vibration_zones.vibration_zone``) (``overall_velocity_iso10816``).
     baseline : dict or None
         The velocity bands against a healthy baseline recording and their change [dB].
     severity : dict or None

@@ -362,6 +362,7 @@ def plot_trend(
     title: str,
     band_unit: str,
     spall_mm: tuple[Sequence[float], Sequence[float], Sequence[float]] | None = None,
+    zone_limits_mm_s: tuple[float, float, float] | None = None,
 ) -> Path:
     """A machine's trend: faults' evidence, velocity bands, a spall's length where sized.
 
@@ -382,6 +383,9 @@ def plot_trend(
     spall_mm : (sequence, sequence, sequence) of float, optional
         Per recording the spall's length and its interval's ends [mm] (NaN where none was
         sized, ``Diagnosis.severity``): a third panel when any was.
+    zone_limits_mm_s : (float, float, float), optional
+        The overall velocity's zone boundaries A/B, B/C, C/D [mm/s]
+        (``cmtool.vibration_zones``), drawn on the bands' panel when ``band_unit`` is mm/s.
 
     Returns
     -------
@@ -404,6 +408,13 @@ def plot_trend(
     for band, values in bands.items():
         name = "overall (ISO 10816-3)" if band == "overall" else f"{band} (ISO 15242)"
         bottom.plot(times, values, marker="s", label=name, ls="--" if band == "overall" else "-")
+    if zone_limits_mm_s is not None and band_unit == "mm/s":
+        for (name, value), color in zip(
+            zip(("A/B", "B/C", "C/D"), zone_limits_mm_s, strict=True),
+            ("olive", "goldenrod", "firebrick"),
+            strict=True,
+        ):
+            bottom.axhline(value, color=color, ls="-.", lw=1.0, label=f"zone {name} {value:g} mm/s")
     bottom.set_yscale("log")
     bottom.set_ylabel(f"velocity RMS [{band_unit}]")
     bottom.legend(loc="best", fontsize=8)

@@ -274,6 +274,7 @@ VERDICT_COLUMNS = (
     "velocity_overall",
     "velocity_unit",
     "zone",
+    "zone_limits_mm_s",
     "velocity_low_change_db",
     "velocity_medium_change_db",
     "velocity_high_change_db",
@@ -484,7 +485,9 @@ def _folder_row(task) -> tuple[dict, dict]:
     overall = diagnosis.overall_velocity or {}
     row["velocity_overall"] = overall.get("rms_mm_s" if diagnosis.velocity_bands_mm_s else "rms")
     row["velocity_unit"] = "mm/s" if diagnosis.velocity_bands_mm_s else "signal unit x s"
-    row["zone"] = (overall.get("zone") or {}).get("zone")  # A-D where a class was given
+    zone = overall.get("zone") or {}  # where a class was given: A-D and its boundaries
+    row["zone"] = zone.get("zone")
+    row["zone_limits_mm_s"] = "/".join(f"{v:g}" for v in zone.get("limits_mm_s", ())) or None
     for band, change in (diagnosis.baseline or {}).get("velocity_bands_change_db", {}).items():
         row[f"velocity_{band}_change_db"] = change
     for fault, margin in (diagnosis.baseline or {}).get("baseline_fault_margin_db", {}).items():
@@ -557,9 +560,21 @@ def _plot_trends(table, out: Path) -> list[Path]:
                 title=f"trend{' of ' + machine if machine else ''}: {len(part)} recordings",
                 band_unit=str(part["velocity_unit"].iloc[0]),
                 spall_mm=tuple(part[f"spall_{k}_mm"].astype(float) for k in SPALL_COLUMNS),
+                zone_limits_mm_s=_shared_zone_limits(part),
             )
         )
     return paths
+
+
+def _shared_zone_limits(part) -> tuple[float, float, float] | None:
+    """The zone boundaries [mm/s] every recording of a machine's trend was judged by.
+
+    None where some recording has none (no class given, or no unit) or they differ.
+    """
+    limits = part["zone_limits_mm_s"].dropna().unique()
+    if len(limits) != 1 or part["zone_limits_mm_s"].isna().any():
+        return None
+    return tuple(float(v) for v in str(limits[0]).split("/"))  # type: ignore[return-value]
 
 
 def _report_folder(file: str) -> str:

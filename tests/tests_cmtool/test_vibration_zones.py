@@ -121,3 +121,50 @@ def test_a_manifest_gives_each_machine_its_class_and_verdicts_csv_its_zone(tmp_p
     assert main(["diagnose", str(tmp_path)]) != 0
     err = capsys.readouterr().err
     assert "machine_class = 'group9' is not one of" in err and "line 3" in err, err
+
+
+def test_a_machines_trend_draws_the_zone_boundaries_it_was_judged_by(tmp_path, monkeypatch, capsys):
+    """Three dated recordings of one pump, 1, 2 and 5 mm/s, its class in the manifest: zones
+    A, B and D in verdicts.csv, and trend.png's velocity panel draws the class's three
+    boundaries (ISO 10816-3 group 2, rigid: 1.4, 2.8, 4.5 mm/s); a pump whose recordings were
+    judged by different boundaries gets none drawn."""
+    import cmtool.plots as plots
+
+    drawn = {}
+
+    def keep(fig, path):  # the zone lines of the velocity panel, then the figure closed
+        if path.name == "trend.png":
+            velocity = fig.axes[1]
+            drawn["trend"] = sorted(
+                line.get_ydata()[0]
+                for line in velocity.lines
+                if line.get_label().startswith("zone")
+            )
+        plots.plt.close(fig)
+        return path
+
+    monkeypatch.setattr(plots, "save_figure", keep)
+    for name, v in (("a.npy", 1.0), ("b.npy", 2.0), ("c.npy", 5.0)):
+        np.save(tmp_path / name, _record(v))
+    rows = {
+        "file": ["a.npy", "b.npy", "c.npy"],
+        "sampling_rate_hz": [FS] * 3,
+        "shaft_rpm": [1797] * 3,
+        "bearing": ["6205"] * 3,
+        "unit": ["m/s^2"] * 3,
+        "machine": ["pump"] * 3,
+        "time": ["2026-01-01", "2026-02-01", "2026-03-01"],
+        "machine_class": ["group2-rigid"] * 3,
+    }
+    pd.DataFrame(rows).to_csv(tmp_path / "MANIFEST.csv", index=False)
+    out = tmp_path / "out"
+    assert main(["diagnose", str(tmp_path), "--report", str(out)]) == 0
+    capsys.readouterr()
+    table = pd.read_csv(out / "verdicts.csv")
+    assert table["zone"].tolist() == ["A", "B", "D"]
+    assert set(table["zone_limits_mm_s"]) == {"1.4/2.8/4.5"}
+    assert drawn.pop("trend") == [1.4, 2.8, 4.5]
+    rows["machine_class"] = ["group2-rigid", "class-I", "group2-rigid"]
+    pd.DataFrame(rows).to_csv(tmp_path / "MANIFEST.csv", index=False)
+    assert main(["diagnose", str(tmp_path), "--report", str(out)]) == 0
+    assert drawn.pop("trend") == []
