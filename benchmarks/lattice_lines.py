@@ -28,6 +28,7 @@ import numpy as np
 from sweep_waviness_verdicts import CHANNEL, RIGS  # the sweep's cases (benchmarks/ on the path)
 
 import cmtool.diagnose as diagnose
+import cmtool.rule as rule
 from features.evidence import combine_lines, slip_line
 from features.separation import FALSE_ALARM, line_false_alarm
 from generators import (
@@ -74,7 +75,8 @@ def with_lattice(races: tuple[str, ...]):
 def main() -> None:
     g = bearing("6205")
     for form, races in FORMS.items():
-        diagnose.rule_candidates = with_lattice(races)
+        # where diagnose_signal and where the segment scan (cmtool.rule) look it up
+        diagnose.rule_candidates = rule.rule_candidates = with_lattice(races)
         noise = np.random.default_rng(18)
         wavy = Counter()
         for (_, rig), rpm, fs in itertools.product(
@@ -100,7 +102,7 @@ def main() -> None:
                 x = x + noise.normal(0.0, 0.05 * np.std(x), x.size)
                 verdicts[diagnose.diagnose_signal(x, 12000.0, rpm, g).verdict] += 1
             print(f"  {surface}-race pits on the wavy bearing: {dict(verdicts)}")
-    diagnose.rule_candidates = SHIPPED_CANDIDATES
+    diagnose.rule_candidates = rule.rule_candidates = SHIPPED_CANDIDATES
 
 
 if __name__ == "__main__":

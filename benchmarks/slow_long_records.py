@@ -1,7 +1,7 @@
 """The segment scan on long records of slow machines: segments of 20 or 40 fault periods.
 
 A record whose whole envelope spectrum shows no fault is scanned in segments of
-``max(SCAN_SEGMENT_S, N / slowest fault rate)`` (``cmtool.diagnose.segment_scan``). On a
+``max(SCAN_SEGMENT_S, N / slowest fault rate)`` (``cmtool.rule.segment_scan``). On a
 machine whose slowest fault rate is under 40 Hz a 1 s segment holds fewer than
 ``TRUSTED_RATE_PERIODS``, where stop 58 measured more false alarms on short records. This
 diagnoses every record of a dataset whole (healthy signals and faults at fault SNR >= -10
@@ -21,6 +21,7 @@ import numpy as np
 import pandas as pd
 
 import cmtool.diagnose as D
+import cmtool.rule as R
 from cmtool.datasets import read_dataset
 from cmtool.pooling import CANONICAL
 
@@ -29,8 +30,9 @@ SHIPPED_SCAN = D.segment_scan
 
 
 def _segment_periods_name() -> str:
-    """The constant that sets the scan's segment length in periods."""
-    return "SCAN_SEGMENT_PERIODS" if hasattr(D, "SCAN_SEGMENT_PERIODS") else "MIN_RATE_PERIODS"
+    """The constant that sets the scan's segment length in periods, set in ``cmtool.rule``
+    where ``segment_scan`` reads it (in ``cmtool.diagnose`` until stop 79)."""
+    return "SCAN_SEGMENT_PERIODS" if hasattr(R, "SCAN_SEGMENT_PERIODS") else "MIN_RATE_PERIODS"
 
 
 VARIANTS = {"no scan": None, "20 periods": 20, "40 periods": 40}
@@ -40,14 +42,14 @@ def _verdicts(record: dict) -> list:
     x = np.asarray(record["signal"], float)
     out = [record["id"], CANONICAL[record["label"]], record["rpm"]]
     name = _segment_periods_name()
-    shipped = getattr(D, name)
+    shipped = getattr(R, name)
     for periods in VARIANTS.values():
         D.segment_scan = (lambda *a: None) if periods is None else SHIPPED_SCAN
-        setattr(D, name, shipped if periods is None else periods)
+        setattr(R, name, shipped if periods is None else periods)
         d = D.diagnose_signal(x, record["fs_hz"], record["rpm"], record["bearing"], waviness=False)
         scan = d.segment_scan
         out += [d.verdict, 0 if scan is None else scan["segments"]]
-    setattr(D, name, shipped)
+    setattr(R, name, shipped)
     D.segment_scan = SHIPPED_SCAN
     return out
 

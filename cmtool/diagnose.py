@@ -22,7 +22,8 @@ exceeds k times the median with probability 5 N exp(-(1.177 k)^2 / 2);
 ``features.detection_threshold_db(N)`` keeps that at 1e-4 per fault and record (12 dB for one
 band, ``DETECTION_DB``; 13.2 dB for the 36 bands of a 12 kHz record of a 6205). The
 confidence is a logistic in the margin above it (3 dB scale). A trained model, when given,
-adds its verdict.
+adds its verdict. The rule's own steps (what a record needs, the candidates, the segment
+scan) and their constants are in ``cmtool.rule``, re-exported here.
 """
 
 from __future__ import annotations
@@ -35,9 +36,8 @@ from typing import Any
 import numpy as np
 
 import features
-from generators import BearingGeometry, characteristic_frequencies
+from generators import BearingGeometry
 from generators.kinematics import BearingFrequencies
-from generators.params import check_shaft_speed_rpm
 
 from .diagnosis import (  # kept importable from here
     DETECTION_DB,
@@ -63,6 +63,21 @@ from .quality import (  # the record's checks, kept importable from here
     check_drift,
     check_signal_quality,
     clipped_share,
+)
+from .rule import (  # the rule's steps, kept importable from here
+    CONFIDENCE_OFFSET_DB,
+    CONFIDENCE_SCALE_DB,
+    FAULT_NAMES,
+    FAULTS,
+    MIN_RATE_PERIODS,
+    SCAN_SEGMENT_PERIODS,
+    SCAN_SEGMENT_S,
+    TRUSTED_RATE_PERIODS,
+    logistic,
+    rule_candidates,
+    rule_context,
+    segment_scan,
+    slowest_fault_rate,
 )
 from .severity import spall_size
 from .vibration_zones import vibration_zone
@@ -92,6 +107,11 @@ __all__ = [
     "check_clipping",
     "clipped_share",
     "CLIPPING_ERROR_SHARE",
+    "FAULT_NAMES",
+    "MIN_RATE_PERIODS",
+    "TRUSTED_RATE_PERIODS",
+    "CONFIDENCE_SCALE_DB",
+    "CONFIDENCE_OFFSET_DB",
 ]
 
 # Confidences calibrated on simulation only (benchmarks/calibrate_confidence.py: logistic fits
@@ -108,38 +128,13 @@ __all__ = [
 # SNR came to be measured where the fault stands out and its machine noise through the
 # bearing's structure (docs/realism.md 3, 4): verdict ECE on the held-out set 0.048 with the
 # stop 35 constants (lines 2.36, 0.07; fault verdicts 3.46, -7.86; healthy 6.55, -0.86), 0.034
-# with these.
-#: Each fault line's confidence, 1 / (1 + exp(-(margin - offset) / scale)) with the margin of
-#: the fault's weighed evidence over the detection threshold [dB]: the probability that the
-#: signal has this fault
-CONFIDENCE_SCALE_DB = 2.34
-CONFIDENCE_OFFSET_DB = -0.51
+# with these. (The lines' own scale and offset, CONFIDENCE_SCALE_DB and CONFIDENCE_OFFSET_DB,
+# are set in cmtool.rule, where rule_candidates reads them.)
 #: The verdict's confidence (scale, offset) [dB] in the top candidate's margin: P(the fault
 #: called is the fault) for fault verdicts, 1 - P(a fault | the margin) for healthy ones
 FAULT_CONFIDENCE = (2.14, -1.89)
 HEALTHY_CONFIDENCE = (4.28, -3.18)
 SLIP_SEARCH = features.evidence.SLIP_SEARCH
-#: Shortest record [periods of the slowest fault rate]: its envelope spectrum's bins are then
-#: 5 % of that rate apart, as far as the rates of a bearing lie from each other at the least.
-MIN_RATE_PERIODS = 20
-#: Records shorter than this many periods of the slowest fault rate are diagnosed with a
-#: warning. Measured in stop 58 on rig-recipe draws cut short: the rule called 3.5 % of the
-#: simulated healthy bearings faulty at 20 periods and 1.25 % at 30 (400 records each), 0 and
-#: 1 in 100 at 35-50 periods (two draws), 2 in 600 whole 1 s records (81-107 periods); it
-#: found 0-6 % of the inner-race pits at 20 periods, 16-52 % at 30, 65-86 % in 1 s
-#: (docs/diagnosis.md, "Records of few periods").
-TRUSTED_RATE_PERIODS = 40
-#: Segments a long record is scanned in when the whole shows no fault [s]: the length of the
-#: recipes' signals the rule was measured on (at least ``SCAN_SEGMENT_PERIODS`` of the slowest
-#: fault rate). A fault struck in some seconds only (a ball pit whose spin axis drifts) shows
-#: there at full strength, where the whole record's envelope spectrum dilutes its lines.
-SCAN_SEGMENT_S = 1.0
-#: Fewest periods of the slowest fault rate a segment of the scan holds (a machine whose
-#: slowest rate is under 40 Hz gets segments longer than ``SCAN_SEGMENT_S``): measured in stop
-#: 59 on 8 s records of the CWRU rig's recipe at 250-550 rpm, segments of 20 periods called
-#: healthy bearings faulty where segments of 40 did not (docs/diagnosis.md, "Long records of
-#: slow machines").
-SCAN_SEGMENT_PERIODS = TRUSTED_RATE_PERIODS
 #: A 1x line this far from the speed given (fraction) gets a warning: judged in stop 60 on
 #: fresh simulated draws against a bar written first: a speed 0.5 % off called 3 % of the MFPT
 #: rig's healthy bearings faulty (1 % off: 2-4 %; 2 % off cost most inner-race pits on the
@@ -155,9 +150,6 @@ SPEED_SOURCES = ("given", "spectrum", "auto")
 #: found the races as often as the right speed did (docs/diagnosis.md, "The speed the rates
 #: come from"; 2 % until stop 61).
 SPEED_CORRECTION = 0.01
-#: verdict name -> characteristic frequency used as its evidence
-FAULTS = {"outer race": "bpfo", "inner race": "bpfi", "ball": "two_bsf"}
-FAULT_NAMES = {key: name for name, key in FAULTS.items()}
 
 
 #: What the rule assumes of a local fault's impacts (docs/diagnosis.md, "What the rule needs"):
@@ -170,90 +162,6 @@ RANDOMNESS_ASSUMED = (
 )
 
 
-def rule_context(
-    x: np.ndarray, fs: float, rpm: float, geometry: BearingGeometry
-) -> tuple[float, BearingFrequencies, dict[str, float], list[str]]:
-    """What the rule detector needs before it weighs a signal, or why it cannot.
-
-    Parameters
-    ----------
-    x : ndarray
-        The signal.
-    fs : float
-        Sample rate [Hz].
-    rpm : float
-        Shaft speed [rev/min].
-    geometry : BearingGeometry
-        The bearing.
-
-    Returns
-    -------
-    rpm : float
-        The speed, checked [rev/min].
-    freqs : BearingFrequencies
-        The bearing's characteristic frequencies at that speed [Hz].
-    ctx : dict of str to float
-        ``shaft``, ``ftf``, ``bpfo``, ``bpfi`` and ``two_bsf`` [Hz]: ``fault_evidence``'s
-        rates.
-    warnings : list of str
-        What makes the answer less certain (the signal's quality, the speed, the record).
-
-    Raises
-    ------
-    ValueError
-        When ``fs`` is too low for envelope analysis of these rates, or the record too short
-        to tell them apart.
-    """
-    warnings = check_signal_quality(x)
-    rpm = check_shaft_speed_rpm("rpm", rpm)
-    if geometry.limiting_speed_rpm is not None and rpm > geometry.limiting_speed_rpm:
-        warnings.append(
-            f"{rpm:g} rpm is above the catalogue limiting speed of the {geometry.name} "
-            f"({geometry.limiting_speed_rpm:g} rpm): check --rpm and --bearing"
-        )
-    freqs = characteristic_frequencies(geometry, rpm / 60.0)
-    ctx = {
-        "shaft": freqs.shaft,
-        "ftf": freqs.ftf,
-        "bpfo": freqs.bpfo,
-        "bpfi": freqs.bpfi,
-        "two_bsf": freqs.two_bsf,
-    }
-    fastest = max(ctx["bpfo"], ctx["bpfi"], ctx["two_bsf"])
-    # the demodulation band (3 x the fastest rate wide) must fit under the analyser span
-    # fs / 2.56, with the rates' third harmonics inside it
-    needed = features.separation.ANALYSER_RATIO * features.table.MIN_BAND_FACTOR * fastest
-    if fs < needed:
-        raise ValueError(
-            f"fs = {fs:g} Hz is too low to diagnose this bearing at {rpm:g} rpm: envelope "
-            f"analysis of fault rates up to {fastest:.1f} Hz needs fs >= {needed:.0f} Hz"
-        )
-    slowest = _slowest_fault_rate(ctx)
-    shortest = MIN_RATE_PERIODS / slowest
-    if x.size / fs < shortest:
-        raise ValueError(
-            f"the record is {x.size / fs:.3g} s long ({x.size} samples at {fs:g} Hz); telling "
-            f"the fault rates apart needs at least {MIN_RATE_PERIODS} periods of the slowest "
-            f"({slowest:.1f} Hz): {shortest:.3g} s, {int(math.ceil(shortest * fs))} samples"
-        )
-    periods = x.size / fs * slowest
-    if periods < TRUSTED_RATE_PERIODS:
-        warnings.append(
-            f"record of {x.size / fs:.2f} s holds {periods:.0f} periods of the slowest fault "
-            f"rate ({slowest:.1f} Hz), fewer than {TRUSTED_RATE_PERIODS}: on simulated records "
-            "of 20-30 periods the rule called 1-4 healthy bearings in 100 faulty and missed "
-            "most faults (docs/diagnosis.md, 'Records of few periods'); record longer"
-        )
-    if not features.evidence.cage_lines_weighed(x.size / fs, freqs.ftf):
-        warnings.append(
-            f"record of {x.size / fs:.2f} s holds {x.size / fs * freqs.ftf:.1f} cage "
-            f"revolutions, fewer than {features.evidence.MIN_CAGE_REVOLUTIONS:g}: the ball's "
-            "cage-rate lines are not weighed (a ball pit is judged on its 2 x BSF lines and "
-            "their sidebands alone)"
-        )
-    return rpm, freqs, ctx, warnings
-
-
 def _floor_stated(floor_rms: float) -> str:
     """The assumptions' line on the separation's instrument floor (docs/diagnosis.md)."""
     chain = f"a good chain's, {features.instrument_floor.INSTRUMENT_FLOOR_DB:g} dB under the RMS"
@@ -263,144 +171,6 @@ def _floor_stated(floor_rms: float) -> str:
             f"dB over {chain} (a noise-free simulation?), so that floor was added first"
         )
     return f"none added: the record's own broadband floor lies over {chain}"
-
-
-def _slowest_fault_rate(ctx: dict[str, float]) -> float:
-    """The slowest of the bearing's fault rates (BPFO, BPFI, 2 x BSF) [Hz]."""
-    return min(ctx[key] for key in FAULTS.values())
-
-
-def segment_scan(x: np.ndarray, fs: float, ctx: dict[str, float]) -> dict | None:
-    """The rule's evidence in each segment of a long record (``SCAN_SEGMENT_S``).
-
-    Each segment is weighed as a record of its own (:func:`rule_candidates`) against the
-    threshold for a false alarm of ``features.FALSE_ALARM / segments`` (Bonferroni: a fault
-    counts in at most that share of healthy records over all the segments together).
-
-    Parameters
-    ----------
-    x : ndarray
-        The record [any unit].
-    fs : float
-        Its sample rate [Hz].
-    ctx : dict of str to float
-        The bearing's rates [Hz] (``rule_context``), ``ftf`` included.
-
-    Returns
-    -------
-    dict or None
-        None for a record shorter than two segments. Else ``segments``, ``segment_s`` [s],
-        ``margins_db`` (each fault's weighed evidence over the segment's threshold, segment by
-        segment [dB]: above 0 detected there) and ``found``: None, or the fault of the segment
-        where a detected fault stands furthest over that threshold, with the segment's place
-        [s], band [Hz], threshold and margin [dB] and the fault's false-alarm probability in
-        the segment; with a fault found, ``candidates`` (that segment's,
-        :func:`rule_candidates` on its threshold) and ``envelope`` (its envelope spectrum:
-        frequencies [Hz], amplitudes), for the verdict and the plots.
-    """
-    seconds = max(SCAN_SEGMENT_S, SCAN_SEGMENT_PERIODS / _slowest_fault_rate(ctx))
-    n = int(round(seconds * fs))
-    count = x.size // n
-    if count < 2:
-        return None
-    out: dict = {"segments": count, "segment_s": round(n / fs, 6), "found": None}
-    margins: dict[str, list[float]] = {}
-    best = None
-    for i in range(count):
-        evidence = features.fault_evidence(x[i * n : (i + 1) * n], fs, ctx)
-        selection = evidence.selection
-        threshold = features.detection_threshold_db(
-            len(selection.bands),
-            features.FALSE_ALARM / count,
-            selection.searched_bins,
-            selection.floor_bins,
-        )
-        candidates = rule_candidates(evidence, ctx, threshold)
-        for c in candidates:
-            margins.setdefault(c["fault"], []).append(round(c["evidence_db"] - threshold, 2))
-        margin = candidates[0]["evidence_db"] - threshold
-        if candidates[0]["detected"] and (best is None or margin > best[0]):
-            best = (margin, i, threshold, candidates, evidence)
-    out["margins_db"] = margins
-    if best is not None:
-        margin, i, threshold, candidates, evidence = best
-        out["found"] = {
-            "fault": candidates[0]["fault"],
-            "segment": i,
-            "start_s": round(i * n / fs, 6),
-            "end_s": round((i + 1) * n / fs, 6),
-            "false_alarm_probability": candidates[0]["false_alarm_probability"],
-            "band_hz": [round(b, 2) for b in evidence.selection.band],
-            "threshold_db": round(threshold, 2),
-            "margin_db": round(margin, 2),
-        }
-        out["candidates"] = candidates
-        out["envelope"] = (evidence.envelope_frequencies, evidence.envelope_amplitude)
-    return out
-
-
-def rule_candidates(
-    evidence: features.Evidence, ctx: dict[str, float], threshold_db: float | None = None
-) -> list[dict]:
-    """The rule detector's candidates, one per fault, ranked by their weighed evidence.
-
-    Parameters
-    ----------
-    evidence : features.Evidence
-        ``features.fault_evidence`` of the signal.
-    ctx : dict of str to float
-        The bearing's rates [Hz]: ``bpfo``, ``bpfi`` and ``two_bsf`` at least.
-    threshold_db : float, optional
-        Detection threshold [dB] (default the evidence's own: a false alarm of
-        ``features.FALSE_ALARM`` per fault).
-
-    Returns
-    -------
-    list of dict
-        Per fault: its rate and the line found [Hz], the envelope lines [dB], the weighed
-        evidence [dB] and its false-alarm probability, the lines weighed, whether it is
-        detected (evidence at the threshold or above), the lines a stronger fault explains
-        and its confidence; the strongest first (ties by the fundamental).
-    """
-    threshold = evidence.threshold_db if threshold_db is None else threshold_db
-    candidates = []
-    for name, key in FAULTS.items():
-        snr = [r for r, _ in evidence.lines[key]]
-        weighed = evidence.combined[key]
-        harmonics = int(sum(s >= DETECTION_DB / 2 for s in snr))
-        margin = weighed["evidence_db"] - threshold
-        sidebands = evidence.features[f"evidence_{key}_sideband_snr"]
-        candidates.append(
-            {
-                "fault": name,
-                "frequency_hz": round(ctx[key], 3),
-                "found_hz": round(evidence.lines[key][0][1], 3),
-                "envelope_snr_db": [round(s, 2) for s in snr],
-                "harmonics_above_6db": harmonics,
-                "sideband_snr_db": round(sidebands, 2) if key in ("bpfi", "two_bsf") else None,
-                "evidence_db": round(weighed["evidence_db"], 2),
-                "false_alarm_probability": float(f"{weighed['false_alarm']:.3g}"),
-                "lines_weighed": [
-                    {"line": n, "snr_db": r, "false_alarm_probability": float(f"{p:.3g}")}
-                    for n, r, p in weighed["lines"]
-                ],
-                "detected": bool(weighed["evidence_db"] >= threshold),
-                # lines on a stronger detected fault's series
-                # (features.evidence.explain_shared_lines): counted as absent in this fault's
-                # weighing
-                "explained": [
-                    {"line": line, "by": FAULT_NAMES[other], "harmonic": k}
-                    for line, other, k in weighed.get("explained", [])
-                ],
-                "confidence": round(
-                    _logistic(margin, CONFIDENCE_SCALE_DB, CONFIDENCE_OFFSET_DB), 4
-                ),
-            }
-        )
-    # ranked by the weighed evidence of each fault's line family (fundamental, harmonics,
-    # sidebands), ties by the fundamental
-    candidates.sort(key=lambda c: (c["evidence_db"], c["envelope_snr_db"][0]), reverse=True)
-    return candidates
 
 
 def diagnose_signal(
@@ -581,10 +351,10 @@ def diagnose_signal(
     scan = None if top["detected"] else segment_scan(x, fs, {**ctx, "ftf": freqs.ftf})
     weighed_against = threshold  # the verdict's threshold: the segment's if the scan found it
     if top["detected"]:
-        verdict, confidence = top["fault"], round(_logistic(margin, *FAULT_CONFIDENCE), 4)
+        verdict, confidence = top["fault"], round(logistic(margin, *FAULT_CONFIDENCE), 4)
     elif scan is not None and scan["found"]:
         verdict = scan["found"]["fault"]
-        confidence = round(_logistic(scan["found"]["margin_db"], *FAULT_CONFIDENCE), 4)
+        confidence = round(logistic(scan["found"]["margin_db"], *FAULT_CONFIDENCE), 4)
         spectra = features.Spectra(
             plain_f, plain_a, *scan.pop("envelope"), tuple(scan["found"]["band_hz"]), None
         )
@@ -592,7 +362,7 @@ def diagnose_signal(
         weighed_against = scan["found"]["threshold_db"]
     else:
         verdict = "healthy"
-        confidence = round(1.0 - _logistic(margin, *HEALTHY_CONFIDENCE), 4)
+        confidence = round(1.0 - logistic(margin, *HEALTHY_CONFIDENCE), 4)
     diagnosis = Diagnosis(
         verdict=verdict,
         confidence=confidence,
@@ -610,7 +380,7 @@ def diagnose_signal(
             "fs_hz": float(fs),
             "record_s": round(x.size / fs, 6),
             "samples": int(x.size),
-            "slowest_rate_periods": round(x.size / fs * _slowest_fault_rate(ctx), 1),
+            "slowest_rate_periods": round(x.size / fs * slowest_fault_rate(ctx), 1),
             **({"record_total_s": round(whole / fs, 6)} if whole > x.size else {}),
             "band_hz": [round(b, 2) for b in spectra.band],
             "lattice_slices": list(evidence.lattice_orders),
@@ -824,11 +594,6 @@ VIBRATION_UNITS = {**ACCELERATION_UNITS, **VELOCITY_UNITS}
 #: The longest record diagnosed whole (87 s at 48 kHz, 350 s at 12 kHz); a longer one is
 #: diagnosed on its first part, and a warning says so (this many samples: 1.1 GB, 23 s).
 MAX_RECORD_SAMPLES = 2**22
-
-
-def _logistic(margin: float, scale: float, offset: float) -> float:
-    """1 / (1 + exp(-(margin - offset) / scale)), margin and offset in dB."""
-    return 1.0 / (1.0 + math.exp(-(margin - offset) / scale))
 
 
 def explained_lines(candidate: dict) -> str:

@@ -1,4 +1,4 @@
-"""A long record whose fault is struck in some seconds only (cmtool.diagnose.segment_scan,
+"""A long record whose fault is struck in some seconds only (cmtool.rule.segment_scan,
 stop 55): when the whole record's envelope shows no fault, each segment is weighed against
 the threshold for FALSE_ALARM / segments (docs/diagnosis.md, "Faults struck in some seconds
 only")."""
