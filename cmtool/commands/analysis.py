@@ -498,17 +498,24 @@ def _folder_row(task) -> tuple[dict, dict]:
 
 
 def _index_text(table, trends: list[Path], out: Path) -> str:
-    """``index.md`` of a folder's diagnoses: a row and a report link per recording, the trends."""
-    lines = [
-        f"# Diagnoses: {len(table)} recordings",
-        "",
-        "| recording | machine | time | verdict | confidence | margin [dB] | report |",
-        "|---|---|---|---|---|---|---|",
-    ]
+    """``index.md`` of a folder's diagnoses: a row and a report link per recording, the trends.
+
+    A ``zone`` column (the overall velocity's, A-D) where any recording was given a class.
+    """
     import pandas as pd
 
     def given(value) -> bool:
         return value is not None and not (pd.api.types.is_scalar(value) and pd.isna(value))
+
+    zoned = any(given(z) for z in table["zone"])
+    head = ["recording", "machine", "time", "verdict", "confidence", "margin [dB]"]
+    head += ["zone", "report"] if zoned else ["report"]
+    lines = [
+        f"# Diagnoses: {len(table)} recordings",
+        "",
+        "| " + " | ".join(head) + " |",
+        "|" + "---|" * len(head),
+    ]
 
     for row in table.to_dict("records"):
         folder = _report_folder(row["file"])
@@ -520,6 +527,7 @@ def _index_text(table, trends: list[Path], out: Path) -> str:
             f"not diagnosed: {row['error']}" if failed else row["verdict"],
             f"{row['confidence']:.2f}" if given(row["confidence"]) else "",
             f"{row['margin_db']:+.1f}" if given(row["margin_db"]) else "",
+            *([row["zone"] if given(row["zone"]) else ""] if zoned else []),
             "" if failed else f"[report]({folder}/report.md)",
         ]
         lines.append("| " + " | ".join(str(c).replace("|", "/") for c in cells) + " |")

@@ -116,6 +116,9 @@ def test_a_manifest_gives_each_machine_its_class_and_verdicts_csv_its_zone(tmp_p
         "b.npy": "B",  # the site's 1-3
         "c.npy": "D",  # --machine-class class-I: over 4.5
     }
+    index = (out / "index.md").read_text().splitlines()
+    assert "| zone | report |" in index[2]  # the index's column, where a class was given
+    assert [line.split(" | ")[-2] for line in index[4:7]] == ["B", "B", "D"]
     rows["machine_class"] = ["group2-rigid", "group9", ""]
     pd.DataFrame(rows).to_csv(tmp_path / "MANIFEST.csv", index=False)
     assert main(["diagnose", str(tmp_path)]) != 0
