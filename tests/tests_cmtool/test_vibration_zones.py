@@ -24,6 +24,24 @@ def _record(velocity_rms_mm_s: float, seconds: float = 2.0) -> np.ndarray:
     return amplitude * np.sin(2 * np.pi * 50.0 * t) + 1e-3 * amplitude * noise
 
 
+def _route(folder, velocities_mm_s: dict, **columns) -> dict:
+    """Recordings of the given velocities in ``folder`` and its MANIFEST.csv with ``columns``
+    added; returns the manifest's columns (to write again changed)."""
+    for name, v in velocities_mm_s.items():
+        np.save(folder / name, _record(v))
+    n = len(velocities_mm_s)
+    rows = {
+        "file": list(velocities_mm_s),
+        "sampling_rate_hz": [FS] * n,
+        "shaft_rpm": [1797] * n,
+        "bearing": ["6205"] * n,
+        "unit": ["m/s^2"] * n,
+        **columns,
+    }
+    pd.DataFrame(rows).to_csv(folder / "MANIFEST.csv", index=False)
+    return rows
+
+
 def test_each_class_has_increasing_boundaries_and_a_boundary_is_the_lower_zone():
     for name, (described, limits) in MACHINE_CLASSES.items():
         assert 0 < limits[0] < limits[1] < limits[2], name
@@ -95,17 +113,8 @@ def test_a_manifest_gives_each_machine_its_class_and_verdicts_csv_its_zone(tmp_p
     """A route of three machines: one by class, one by a site's limits, one with none (then
     --machine-class stands in); verdicts.csv has each one's zone. A value that is neither is
     refused with its line and column."""
-    for name, v in (("a.npy", 2.0), ("b.npy", 2.0), ("c.npy", 5.0)):
-        np.save(tmp_path / name, _record(v))
-    rows = {
-        "file": ["a.npy", "b.npy", "c.npy"],
-        "sampling_rate_hz": [FS] * 3,
-        "shaft_rpm": [1797] * 3,
-        "bearing": ["6205"] * 3,
-        "unit": ["m/s^2"] * 3,
-        "machine_class": ["group2-rigid", "1/3/5", ""],
-    }
-    pd.DataFrame(rows).to_csv(tmp_path / "MANIFEST.csv", index=False)
+    velocities = {"a.npy": 2.0, "b.npy": 2.0, "c.npy": 5.0}
+    rows = _route(tmp_path, velocities, machine_class=["group2-rigid", "1/3/5", ""])
     out = tmp_path / "out"
     argv = ["diagnose", str(tmp_path), "--report", str(out), "--machine-class", "class-I"]
     assert main(argv) == 0
@@ -147,19 +156,13 @@ def test_a_machines_trend_draws_the_zone_boundaries_it_was_judged_by(tmp_path, m
         return path
 
     monkeypatch.setattr(plots, "save_figure", keep)
-    for name, v in (("a.npy", 1.0), ("b.npy", 2.0), ("c.npy", 5.0)):
-        np.save(tmp_path / name, _record(v))
-    rows = {
-        "file": ["a.npy", "b.npy", "c.npy"],
-        "sampling_rate_hz": [FS] * 3,
-        "shaft_rpm": [1797] * 3,
-        "bearing": ["6205"] * 3,
-        "unit": ["m/s^2"] * 3,
-        "machine": ["pump"] * 3,
-        "time": ["2026-01-01", "2026-02-01", "2026-03-01"],
-        "machine_class": ["group2-rigid"] * 3,
-    }
-    pd.DataFrame(rows).to_csv(tmp_path / "MANIFEST.csv", index=False)
+    rows = _route(
+        tmp_path,
+        {"a.npy": 1.0, "b.npy": 2.0, "c.npy": 5.0},
+        machine=["pump"] * 3,
+        time=["2026-01-01", "2026-02-01", "2026-03-01"],
+        machine_class=["group2-rigid"] * 3,
+    )
     out = tmp_path / "out"
     assert main(["diagnose", str(tmp_path), "--report", str(out)]) == 0
     capsys.readouterr()
