@@ -258,16 +258,45 @@ def test_benchmark_scripts_use_names_that_exist():
 
 
 def test_benchmark_scripts_patch_functions_where_they_are_looked_up():
-    """A script that swaps a function for a variant must set it on a module that defines it
-    or calls it by that name: a name a module only re-exports (``features.separation.
-    candidate_bands`` since the band selection moved to ``features.band_selection``, stop
-    78) is looked up by nobody there, so setting it silently measures the shipped code."""
+    """A script that swaps a function or a constant for a variant must set it on a module
+    that defines it or reads it by that name: a name a module only re-exports
+    (``features.separation.candidate_bands`` since the band selection moved to
+    ``features.band_selection``, stop 78; ``cmtool.diagnose.SCAN_SEGMENT_PERIODS`` since the
+    rule's steps moved to ``cmtool.rule``, stop 79) is looked up by nobody there, so setting
+    it silently measures the shipped code. Assignments ``M.NAME = ...`` and ``setattr(M,
+    "NAME", ...)`` with the name written out are checked."""
     import importlib
     import inspect
 
     def names_used(module) -> set[str]:
         tree = ast.parse(Path(inspect.getsourcefile(module)).read_text())
         return {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)}
+
+    def names_assigned(module) -> set[str]:  # its own module-level constants
+        tree = ast.parse(Path(inspect.getsourcefile(module)).read_text())
+        targets = [
+            t
+            for n in tree.body
+            for t in (n.targets if isinstance(n, ast.Assign) else [getattr(n, "target", None)])
+        ]
+        return {t.id for t in targets if isinstance(t, ast.Name)}
+
+    def set_names(tree):  # (line, local module name, attribute) of every set
+        for node in ast.walk(tree):
+            for target in node.targets if isinstance(node, ast.Assign) else []:
+                for leaf in target.elts if isinstance(target, ast.Tuple) else [target]:
+                    if isinstance(leaf, ast.Attribute) and isinstance(leaf.value, ast.Name):
+                        yield node.lineno, leaf.value.id, leaf.attr
+            if (
+                isinstance(node, ast.Call)
+                and isinstance(node.func, ast.Name)
+                and node.func.id == "setattr"
+                and len(node.args) == 3
+                and isinstance(node.args[0], ast.Name)
+                and isinstance(node.args[1], ast.Constant)
+                and isinstance(node.args[1].value, str)
+            ):
+                yield node.lineno, node.args[0].id, node.args[1].value
 
     wrong = []
     for path in sorted((REPO / "benchmarks").glob("*.py")):
@@ -279,21 +308,19 @@ def test_benchmark_scripts_patch_functions_where_they_are_looked_up():
             for alias in node.names
             if alias.name.split(".")[0] in PACKAGES and alias.asname
         }
-        for node in ast.walk(tree):
-            for target in node.targets if isinstance(node, ast.Assign) else []:
-                for leaf in target.elts if isinstance(target, ast.Tuple) else [target]:
-                    if not (
-                        isinstance(leaf, ast.Attribute)
-                        and isinstance(leaf.value, ast.Name)
-                        and leaf.value.id in local
-                    ):
-                        continue
-                    module = importlib.import_module(local[leaf.value.id])
-                    value = getattr(module, leaf.attr, None)
-                    if not (inspect.isfunction(value) or inspect.isclass(value)):
-                        continue
-                    if value.__module__ != module.__name__ and leaf.attr not in names_used(module):
-                        wrong.append(f"{path.name}:{node.lineno}: {module.__name__}.{leaf.attr}")
+        for line, name, attr in set_names(tree):
+            if name not in local:
+                continue
+            module = importlib.import_module(local[name])
+            value = getattr(module, attr, None)
+            if inspect.isfunction(value) or inspect.isclass(value):
+                defined_here = value.__module__ == module.__name__
+            elif inspect.ismodule(value) or value is None:
+                continue
+            else:  # a constant: assigned at the module's top level, or only imported there
+                defined_here = attr in names_assigned(module)
+            if not defined_here and attr not in names_used(module):
+                wrong.append(f"{path.name}:{line}: {module.__name__}.{attr}")
     assert not wrong, wrong
 
 
