@@ -30,6 +30,7 @@ from generators import (
 
 from .io import write_signal
 from .plots import plot_confusion, plot_spectrum, waviness_markers
+from .vibration_zones import zone_text
 
 __all__ = ["run_demo", "SMALL_RECIPE"]
 
@@ -221,7 +222,10 @@ def run_demo(out: Path, *, recipe: Path = SMALL_RECIPE, workers: int = 1) -> int
     summary.append(("report", report))
     if SHARED_RECORDING.is_file():
         x, meta = read_recording(SHARED_RECORDING)
-        diagnosis = diagnose_signal(x, 12000.0, meta["rpm"], geometry, unit=meta.get("unit"))
+        # the rig's 2 hp (1.5 kW) motor is a small machine: ISO 10816-1 class I (../shared/rigs.md)
+        diagnosis = diagnose_signal(
+            x, 12000.0, meta["rpm"], geometry, unit=meta.get("unit"), machine_class="class-I"
+        )
         report = write_report(
             diagnosis, out / "diagnosis_cwru_ir007", x=x, fs=12000.0, title=SHARED_RECORDING.name
         )
@@ -230,6 +234,9 @@ def run_demo(out: Path, *, recipe: Path = SMALL_RECIPE, workers: int = 1) -> int
             f"verdict {diagnosis.verdict} (confidence {diagnosis.confidence:.2f}); fault size "
             f"{_size(diagnosis)}"
         )
+        zone = diagnosis.overall_velocity.get("zone")
+        if zone is not None:
+            print(f"    its vibration zone: {zone_text(zone)}")
         summary.append(("report", report))
     else:
         print("  ../shared/data is absent: no measured recording diagnosed")

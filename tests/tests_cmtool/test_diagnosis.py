@@ -622,6 +622,16 @@ def test_demo_runs_end_to_end(tmp_path, capsys, monkeypatch, small_dataset, smal
         report = json.loads((tmp_path / name / "diagnosis.json").read_text())
         assert set(report["velocity_bands_iso15242_mm_s"]) == {"low", "medium", "high"}
         assert report["overall_velocity_iso10816"]["rms_mm_s"] > 0
+    # the measured CWRU record, where ../shared is beside the checkout, is judged in ISO
+    # 10816-1 class I (the rig's 2 hp motor): its zone in the output and its report's JSON
+    from cmtool.demo import SHARED_RECORDING
+
+    if SHARED_RECORDING.is_file():
+        report = json.loads((tmp_path / "diagnosis_cwru_ir007" / "diagnosis.json").read_text())
+        zone = report["overall_velocity_iso10816"]["zone"]
+        assert zone["machine_class"] == "class-I" and zone["zone"] in "ABCD"
+        (zone_line,) = [line for line in out.splitlines() if "its vibration zone:" in line]
+        assert zone_line.strip().startswith(f"its vibration zone: {zone['zone']} (")
 
 
 def test_simulated_healthy_bearings_are_healthy_and_slipping_pits_are_found(small):
