@@ -29,27 +29,20 @@ COLUMNS = ["id", "signal", "fs_hz", "rpm", "bearing", "label", "fault_snr_db"]
 SHIPPED_SCAN = D.segment_scan
 
 
-def _segment_periods_name() -> str:
-    """The constant that sets the scan's segment length in periods, set in ``cmtool.rule``
-    where ``segment_scan`` reads it (in ``cmtool.diagnose`` until stop 79)."""
-    return "SCAN_SEGMENT_PERIODS" if hasattr(R, "SCAN_SEGMENT_PERIODS") else "MIN_RATE_PERIODS"
-
-
 VARIANTS = {"no scan": None, "20 periods": 20, "40 periods": 40}
 
 
 def _verdicts(record: dict) -> list:
     x = np.asarray(record["signal"], float)
     out = [record["id"], CANONICAL[record["label"]], record["rpm"]]
-    name = _segment_periods_name()
-    shipped = getattr(R, name)
+    shipped = R.SCAN_SEGMENT_PERIODS  # set where ``segment_scan`` reads it (cmtool.rule)
     for periods in VARIANTS.values():
         D.segment_scan = (lambda *a: None) if periods is None else SHIPPED_SCAN
-        setattr(R, name, shipped if periods is None else periods)
+        R.SCAN_SEGMENT_PERIODS = shipped if periods is None else periods
         d = D.diagnose_signal(x, record["fs_hz"], record["rpm"], record["bearing"], waviness=False)
         scan = d.segment_scan
         out += [d.verdict, 0 if scan is None else scan["segments"]]
-    setattr(R, name, shipped)
+    R.SCAN_SEGMENT_PERIODS = shipped
     D.segment_scan = SHIPPED_SCAN
     return out
 
