@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from generators import BearingGeometry, Material, ParameterError, bearing, static_load_distribution
@@ -122,13 +122,19 @@ def test_extra_approach_acts_as_negative_clearance():
     angle=st.floats(min_value=-math.pi, max_value=math.pi),
     cage=st.floats(min_value=0.0, max_value=2 * math.pi),
 )
+# a preloaded bearing under a few newtons: each ball carries about 37 N, and the balance is
+# as exact as those forces allow (2.3e-6 N here; found by a run of the suite in stop 80)
+@example(fr=6.83192027630359, pd=-5e-6, angle=-2.9244917726301782, cage=5.1730905733914545)
 def test_force_balance(fr, pd, angle, cage):
+    """The balls' loads balance the radial load, to 1e-7 of the largest force in play: the
+    load or a ball's (the solver's own residual bound, generators.static)."""
     g = bearing("6205", radial_internal_clearance=pd)
     s = static_load_distribution(g, fr, load_angle=angle, cage_angle=cage)
     fx = s.ball_loads @ np.cos(s.ball_angles)
     fy = s.ball_loads @ np.sin(s.ball_angles)
-    assert fx == pytest.approx(fr * math.cos(angle), abs=1e-7 * fr + 1e-9)
-    assert fy == pytest.approx(fr * math.sin(angle), abs=1e-7 * fr + 1e-9)
+    tolerance = 1e-7 * max(fr, float(s.ball_loads.max())) + 1e-9
+    assert fx == pytest.approx(fr * math.cos(angle), abs=tolerance)
+    assert fy == pytest.approx(fr * math.sin(angle), abs=tolerance)
 
 
 def test_bad_load():
