@@ -15,6 +15,10 @@ from hypothesis import settings as hypothesis_settings
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
 
+SHARED_DATA = REPO.parent / "shared" / "data"
+#: Thread pools (OpenBLAS, OpenMP) capped at this session's share of the cores.
+_THREAD_LIMITS: list = []
+
 #: Under CI (``.ci/run`` runs with CI=true) the property tests draw the same examples in every
 #: run, so that a landing is judged on the code and not on a draw; elsewhere they keep drawing
 #: new ones (stop 80: a random draw of test_force_balance failed a suite run, on a tolerance of
@@ -22,9 +26,6 @@ REPO = pathlib.Path(__file__).resolve().parents[1]
 hypothesis_settings.register_profile("ci", derandomize=True)
 if os.environ.get("CI"):
     hypothesis_settings.load_profile("ci")
-SHARED_DATA = REPO.parent / "shared" / "data"
-#: Thread pools (OpenBLAS, OpenMP) capped at this session's share of the cores.
-_THREAD_LIMITS: list = []
 
 
 def pytest_configure(config: pytest.Config) -> None:
