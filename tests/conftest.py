@@ -14,7 +14,6 @@ import pytest
 from hypothesis import settings as hypothesis_settings
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
-
 SHARED_DATA = REPO.parent / "shared" / "data"
 #: Thread pools (OpenBLAS, OpenMP) capped at this session's share of the cores.
 _THREAD_LIMITS: list = []
