@@ -5,12 +5,14 @@ races; cwru-rig: 12 and 48 kHz, mfpt-rig: 48.8 and 97.7 kHz; local defects with 
 with its healthy twin) on two workers, timed from the call to the last file; the rate is
 printed with the single-core yardstick of bench_generate.py's host note in mind.
 
-With ``--entrainment E`` every case also carries the film's entrainment at light load (the
-recipe's ``[model] film_entrainment_factor = E``, docs/model.md 4.6): what the option costs.
+With ``--entrainment E`` every case carries the film's entrainment at light load E (the
+recipe's ``[model] film_entrainment_factor = E`` in place of what it draws, docs/model.md 4.6;
+``--entrainment 0``: none): what the option costs.
 
 Run: .venv/bin/python benchmarks/bench_generate_rig.py [recipe ...] [--entrainment E]
 """
 
+import re
 import sys
 import tempfile
 import time
@@ -21,16 +23,23 @@ from cmtool.datasets import generate_dataset
 REPO = Path(__file__).resolve().parents[1]
 
 
-def main(recipes: list[str], entrainment: float = 0.0) -> None:
+def main(recipes: list[str], entrainment: float | None = None) -> None:
     for name in recipes or ["cwru-rig", "mfpt-rig"]:
         recipe = REPO / "datasets" / f"{name}.toml"
         with tempfile.TemporaryDirectory() as tmp:
-            if entrainment:
+            if entrainment is not None:
                 if "[model]\n" not in recipe.read_text():
                     raise SystemExit(f"{recipe}: no [model] table to give the entrainment")
-                text = recipe.read_text().replace(
-                    "[model]\n", f"[model]\nfilm_entrainment_factor = {entrainment}\n", 1
+                text, given = re.subn(  # a recipe that draws it gets the value instead
+                    r"^film_entrainment_factor\s*=.*$",
+                    f"film_entrainment_factor = {entrainment}",
+                    recipe.read_text(),
+                    flags=re.M,
                 )
+                if not given:
+                    text = text.replace(
+                        "[model]\n", f"[model]\nfilm_entrainment_factor = {entrainment}\n", 1
+                    )
                 recipe = Path(tmp) / f"{name}.toml"
                 recipe.write_text(text)
             start = time.perf_counter()
@@ -45,7 +54,7 @@ def main(recipes: list[str], entrainment: float = 0.0) -> None:
 
 if __name__ == "__main__":
     args = sys.argv[1:]
-    factor = 0.0
+    factor = None
     if "--entrainment" in args:
         at = args.index("--entrainment")
         factor = float(args[at + 1])

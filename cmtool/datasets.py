@@ -54,8 +54,9 @@ __all__ = [
     "DatasetError",
 ]
 
-#: The metadata columns' version (``generators.cases.CaseRecord``): 6 added ``cage_slip``.
-DATASET_SCHEMA_VERSION = 6
+#: The metadata columns' version (``generators.cases.CaseRecord``): 6 added ``cage_slip``, 7
+#: ``film_entrainment_factor``.
+DATASET_SCHEMA_VERSION = 7
 
 #: Arrow type per storage kind of a metadata column (``generators.cases.CaseRecord``).
 _ARROW = {
@@ -588,6 +589,7 @@ _RANGE_COLUMNS = (
     "shaft_mass_kg",
     "housing_mass_kg",
     "pedestal_stiffness_n_m",
+    "film_entrainment_factor",
     "housing_damping_ratio",
     "shaft_damping_ratio",
     "inner_form_waviness_m",

@@ -49,6 +49,7 @@ class CaseRecord:
     housing_mass_kg: float
     pedestal_stiffness_n_m: float
     film_damping_factor: float
+    film_entrainment_factor: float
     housing_damping_ratio: float
     shaft_damping_ratio: float
     radial_internal_clearance_m: float
@@ -161,6 +162,7 @@ class Case:
     film_damping_factor: float = math.nan
     housing_damping_ratio: float = math.nan  # NaN: the Rig's dashpots as they are
     shaft_damping_ratio: float = math.nan
+    film_entrainment_factor: float = math.nan  # NaN: none (the Rig's 0)
 
 
 #: The rig's parameters a recipe may draw under ``[model]``: recipe key (and case column) ->
@@ -325,6 +327,9 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                 for key in (*RIG_KEYS, *DAMPING_RATIO_KEYS)
             }
             cage_slip = _draw(op["cage_slip"], rng, k) if "cage_slip" in op else 0.0  # last
+            entrainment = math.nan  # the film at light load: after everything else
+            if "film_entrainment_factor" in r["model"]:
+                entrainment = _draw(r["model"]["film_entrainment_factor"], rng, k)
             yield Case(
                 index=index,
                 label=cond["label"],
@@ -355,6 +360,7 @@ def iter_cases(recipe: dict) -> Iterator[Case]:
                 outer_form_waviness_m=form[1],
                 ball_form_waviness_m=form[2],
                 load_angle_rad=load_angle,
+                film_entrainment_factor=entrainment,
                 **rig,
             )
             index += 1

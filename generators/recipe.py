@@ -225,12 +225,14 @@ def validate_recipe(recipe: dict) -> dict:
             raise _fail(section, table, "a table is required")
         _walk(table, section, f"{section}.")
     model = r["model"]
-    if model.get("film_entrainment_factor") and (model["scene"] == "full" or not model["ehl"]):
-        raise _fail(
-            "model.film_entrainment_factor",
-            model["film_entrainment_factor"],
-            "needs the film (ehl = true) and massless balls (scene shaft or shaft+housing)",
-        )
+    entrainment = model.get("film_entrainment_factor")
+    if entrainment and max(entrainment.get("grid", entrainment.get("range", ()))) > 0.0:
+        if model["scene"] == "full" or not model["ehl"]:
+            raise _fail(
+                "model.film_entrainment_factor",
+                recipe_value(entrainment),
+                "needs the film (ehl = true) and massless balls (scene shaft or shaft+housing)",
+            )
     if model.get("error_bound") is not None:
         if model.get("step_s") is not None:
             raise _fail("model.error_bound", model["error_bound"], "give error_bound or step_s")

@@ -198,10 +198,11 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
     ),
     Key(
         "model.film_entrainment_factor",
-        "number",
+        "values",
         0.0,
         1.0,
-        doc="the film's load at light load, as a share of a flooded contact's "
+        "",
+        doc="the film's load at light load, as a share of a flooded contact's, drawn per case "
         "(docs/model.md 4.6; absent: 0, none; scenes shaft and shaft+housing with ehl only)",
     ),
     Key(

@@ -188,6 +188,7 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         "radial_load_n": case.radial_load_n,
         "load_angle_rad": case.load_angle_rad,
         **{key: getattr(case, key) for key in RIG_KEYS},
+        "film_entrainment_factor": case.film_entrainment_factor,
         **{key: getattr(case, key) for key in DAMPING_RATIO_KEYS},
         "radial_internal_clearance_m": geometry.radial_internal_clearance,
         "surface": case.surface or "none",
@@ -240,9 +241,7 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
         return prepare_checked(geometry, operating, form, scene, rig, settings, rng, freqs)
 
     try:
-        rig = case_rig(
-            case, geometry, film_entrainment_factor=model.get("film_entrainment_factor") or 0.0
-        )
+        rig = case_rig(case, geometry)
         job.run = prepare_checked(
             geometry, operating, form + tuple(defects), scene, rig, settings, job.rng, freqs
         )
@@ -258,14 +257,16 @@ def _setup(recipe: dict, case: Case, channel: str, shared: dict) -> _Job:
     return job
 
 
-def case_rig(case: Case, geometry: BearingGeometry, *, film_entrainment_factor: float = 0.0) -> Rig:
+def case_rig(case: Case, geometry: BearingGeometry) -> Rig:
     """The rig of a case: the default ``Rig`` with what the recipe drew for it.
 
     ``RIG_KEYS`` columns replace their ``Rig`` fields; ``DAMPING_RATIO_KEYS`` columns set the
     dashpots from modal damping ratios: the pedestal damping 2 zeta_h sqrt(k_h M_h) (the
     housing on its support), the shaft damping 2 zeta_s sqrt(k_r M_s), k_r the bearing's
-    static radial stiffness at the case's load and clearance (:func:`bearing_stiffness`).
-    NaN columns keep the default's values.
+    static radial stiffness at the case's load and clearance (:func:`bearing_stiffness`); the
+    ``film_entrainment_factor`` column (the recipe's ``[model]`` key, drawn per case;
+    docs/model.md 4.6) sets ``Rig.film_entrainment_factor``. NaN columns keep the default's
+    values.
 
     Parameters
     ----------
@@ -273,9 +274,6 @@ def case_rig(case: Case, geometry: BearingGeometry, *, film_entrainment_factor: 
         A drawn case.
     geometry : BearingGeometry
         The case's bearing (with its clearance).
-    film_entrainment_factor : float
-        The recipe's ``model.film_entrainment_factor`` (``Rig.film_entrainment_factor``, 0-1;
-        docs/model.md 4.6), the same for every case.
 
     Returns
     -------
@@ -288,8 +286,8 @@ def case_rig(case: Case, geometry: BearingGeometry, *, film_entrainment_factor: 
         for key, field in RIG_KEYS.items()
         if not math.isnan(getattr(case, key))
     }
-    if film_entrainment_factor:
-        drawn["film_entrainment_factor"] = film_entrainment_factor
+    if case.film_entrainment_factor > 0.0:  # NaN (not drawn) and 0: none
+        drawn["film_entrainment_factor"] = case.film_entrainment_factor
     if drawn:
         rig = dataclasses.replace(rig, **drawn)
     zeta_h, zeta_s = case.housing_damping_ratio, case.shaft_damping_ratio

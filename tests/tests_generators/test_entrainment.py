@@ -291,6 +291,82 @@ def test_a_recipe_gives_every_case_the_films_entrainment():
             validate_recipe(tomllib.loads(ENTRAINED_RECIPE.format(model=model)))
 
 
+DRAWN_RECIPE = """
+name = "drawn"
+seed = 81
+bearings = ["6205"]
+[operating]
+rpm = [1797, 1730]
+load_n = { min = 50, max = 500 }
+clearance_m = { min = -10e-6, max = 15e-6 }
+random_slip = { min = 0.005, max = 0.02 }
+cage_slip = { min = 0.0, max = 0.01 }
+[model]
+scene = "shaft+housing"
+housing_mass_kg = { min = 1, max = 20 }
+shaft_damping_ratio = { min = 0.02, max = 0.05 }
+{model}
+[sensor]
+fs_hz = 12000
+duration_s = 0.3
+settle_s = 0.1
+background_db = { min = 0, max = 30 }
+[[conditions]]
+label = "healthy"
+count = 6
+[[conditions]]
+label = "outer"
+surface = "outer"
+defect = "localized"
+length_m = 0.3e-3
+depth_m = 0.1e-3
+count = 2
+"""
+
+
+def test_a_recipe_draws_the_films_entrainment_per_case_after_everything_else():
+    """``[model] film_entrainment_factor = { min, max }`` draws each case its own factor, which
+    its rig carries (and the ``film_entrainment_factor`` column). It is drawn after every
+    other value, so the cases are those of the recipe without the key (a paired comparison,
+    docs/realism.md 5); a single value draws nothing, and gives every case that value."""
+    import dataclasses
+    import tomllib
+
+    from generators.cases import expand_cases
+    from generators.recipe import validate_recipe
+    from generators.synthesis import case_rig, generate_cases
+
+    def cases(model: str) -> list:
+        return expand_cases(validate_recipe(tomllib.loads(DRAWN_RECIPE.replace("{model}", model))))
+
+    without = cases("")
+    drawn = cases("film_entrainment_factor = { min = 0.2, max = 0.9 }")
+    single = cases("film_entrainment_factor = 0.6")
+    factors = [c.film_entrainment_factor for c in drawn]
+    assert all(0.2 <= e <= 0.9 for e in factors) and len(set(factors)) == len(factors)
+    assert all(math.isnan(c.film_entrainment_factor) for c in without)
+    assert [c.film_entrainment_factor for c in single] == [0.6] * len(single)
+    for other in (drawn, single):
+        assert [dataclasses.replace(c, film_entrainment_factor=math.nan) for c in other] == [
+            dataclasses.replace(c, film_entrainment_factor=math.nan) for c in without
+        ]
+    g = bearing("6205")
+    assert [case_rig(c, g).film_entrainment_factor for c in drawn] == factors
+    assert {case_rig(c, g).film_entrainment_factor for c in without} == {0.0}
+    recipe = validate_recipe(
+        tomllib.loads(
+            DRAWN_RECIPE.replace("{model}", "film_entrainment_factor = { min = 0.2, max = 0.9 }")
+        )
+    )
+    rows = generate_cases(recipe, drawn[:2])
+    assert [row["film_entrainment_factor"] for row in rows] == factors[:2]
+    refused = "film_entrainment_factor = { min = 0, max = 0.5 }\nehl = false"
+    with pytest.raises(ParameterError, match=r"model.film_entrainment_factor = \{'min': 0.0"):
+        validate_recipe(tomllib.loads(DRAWN_RECIPE.replace("{model}", refused)))
+    with pytest.raises(ParameterError, match="model.film_entrainment_factor"):
+        cases("film_entrainment_factor = { min = 0.5, max = 1.5 }")
+
+
 def test_entrained_runs_hold_at_the_extremes_and_beyond_the_tables_reach(monkeypatch):
     """Preload (-10 um), a 6308 at 20 kN and 300 rpm, a 6002 at 9000 rpm and 48 kHz, in both
     scenes: finite records. With 0.5 mm of clearance the unloaded balls stand beyond the
