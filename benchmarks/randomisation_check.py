@@ -18,7 +18,9 @@ plus ``housing_damping_ratio = { min = 0.02, max = 0.08 }`` and ``shaft_damping_
 rotor's broadband excitation (``b3``: the recipes as stop 41 left them; ``b5``: ``b3`` plus
 ``rotor_force_db = { min = -10, max = 10 }`` under ``[background]``, as they now draw it).
 Stop 80's: the film at light load (``e0``: the recipes as shipped; ``e1``: ``film_entrainment_factor
-= 1.0`` under ``[model]``, the flooded bound of docs/model.md 4.6; measured, not drawn).
+= 1.0`` under ``[model]``, the flooded bound of docs/model.md 4.6; measured, not drawn). Stop
+81's: the same factor drawn per case (``ed``: ``film_entrainment_factor = { min = 0, max = 1 }``
+under ``[model]``; measured, not shipped: docs/realism.md 5).
 
 Run: .venv/bin/python benchmarks/randomisation_check.py FOLDER [BASE DRAWN] (default: ehl
 ang), FOLDER holding cwru-rig-V, mfpt-rig-V and cwru777-V for both variants V, each from
