@@ -54,6 +54,7 @@ FACTORS = {
     "fs_hz": ("sample rate", "kHz", 1e-3),
     "bearing": ("bearing", "", None),
     "load_from_sensor_deg": ("load's angle from the sensor axis", "deg", 1.0),
+    "film_entrainment_factor": ("film entrainment at light load", "", 1.0),
 }
 #: Width of the SNR bins [dB], from SNR_BIN_ORIGIN_DB up (the benchmark recipe's sweep is
 #: -20 to +10 dB: ten bins); fault SNRs below the origin (pits the balls barely touch, whose

@@ -135,6 +135,26 @@ def test_detection_against_snr_bins_in_order_with_intervals(rng):
     assert table["pd_at_pfa_0.01"].iloc[0] < 0.2 and table["pd_at_pfa_0.01"].iloc[-1] > 0.95
 
 
+def test_detection_and_verdicts_by_the_films_entrainment_where_a_recipe_draws_it(rng):
+    """A dataset that draws ``film_entrainment_factor`` (the recipe key, per case) is scored
+    by it too: four bins of equal counts, in order, readable, the detection rate rising where
+    the scores were made to rise with it, and a verdict table; a dataset without it has none."""
+    from cmtool.bench_scores import summarise
+
+    frame = _synthetic_results(rng)
+    frame["film_entrainment_factor"] = rng.uniform(0.0, 1.0, len(frame))
+    own = frame["label"] == "outer race"
+    frame.loc[own, "score_outer_race"] += 4.0 * frame.loc[own, "film_entrainment_factor"]
+    table = by_factor(frame, "film_entrainment_factor", fault="outer race")
+    assert list(table["value"]) == sorted(table["value"]) and len(table) == 4
+    edges = [tuple(float(v) for v in text.split("-")) for text in table["bin"]]  # "0.26-0.49"
+    assert all(low < high for low, high in edges) and edges == sorted(edges)
+    assert edges[0][0] < 0.01 and edges[-1][1] > 0.99  # the drawn span, unitless
+    assert table["pd_at_pfa_0.01"].iloc[0] < table["pd_at_pfa_0.01"].iloc[-1]
+    assert "film_entrainment_factor" in summarise(frame)
+    assert "film_entrainment_factor" not in summarise(frame.drop(columns="film_entrainment_factor"))
+
+
 def test_detection_against_snr_of_an_absent_fault_is_an_empty_table(rng):
     """A dataset of healthy and ball faults only: the per-fault table of inner-race faults has
     the columns and no rows (``cmtool bench`` stopped with a KeyError on it)."""
