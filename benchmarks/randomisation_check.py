@@ -20,7 +20,8 @@ rotor's broadband excitation (``b3``: the recipes as stop 41 left them; ``b5``: 
 Stop 80's: the film at light load (``e0``: the recipes as shipped; ``e1``: ``film_entrainment_factor
 = 1.0`` under ``[model]``, the flooded bound of docs/model.md 4.6; measured, not drawn). Stop
 81's: the same factor drawn per case (``ed``: ``film_entrainment_factor = { min = 0, max = 1 }``
-under ``[model]``; measured, not shipped: docs/realism.md 5).
+under ``[model]``; measured, not shipped: docs/realism.md 5), then on a grid (``eg``:
+``film_entrainment_factor = [0, 0.25, 0.5, 0.75, 1]``, fresh seeds; shipped).
 
 Run: .venv/bin/python benchmarks/randomisation_check.py FOLDER [BASE DRAWN] (default: ehl
 ang), FOLDER holding cwru-rig-V, mfpt-rig-V and cwru777-V for both variants V, each from
