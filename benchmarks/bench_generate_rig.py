@@ -7,9 +7,11 @@ printed with the single-core yardstick of bench_generate.py's host note in mind.
 
 With ``--entrainment E`` every case carries the film's entrainment at light load E (the
 recipe's ``[model] film_entrainment_factor = E`` in place of what it draws, docs/model.md 4.6;
-``--entrainment 0``: none): what the option costs.
+``--entrainment 0``: none): what the option costs. With ``--dry`` the recipe runs without its
+film (``[model] ehl = false``, no entrainment): what the lubricant costs (docs/performance.md,
+stop 82: a model trained on the dry recipe scores as well on lubricated draws).
 
-Run: .venv/bin/python benchmarks/bench_generate_rig.py [recipe ...] [--entrainment E]
+Run: .venv/bin/python benchmarks/bench_generate_rig.py [recipe ...] [--entrainment E | --dry]
 """
 
 import re
@@ -23,11 +25,20 @@ from cmtool.datasets import generate_dataset
 REPO = Path(__file__).resolve().parents[1]
 
 
-def main(recipes: list[str], entrainment: float | None = None) -> None:
+def main(recipes: list[str], entrainment: float | None = None, dry: bool = False) -> None:
     for name in recipes or ["cwru-rig", "mfpt-rig"]:
         recipe = REPO / "datasets" / f"{name}.toml"
         with tempfile.TemporaryDirectory() as tmp:
-            if entrainment is not None:
+            if dry:
+                text = re.sub(
+                    r"^film_entrainment_factor\s*=.*\n", "", recipe.read_text(), flags=re.M
+                )
+                text, given = re.subn(r"^ehl\s*=\s*true\s*$", "ehl = false", text, flags=re.M)
+                if not given:
+                    raise SystemExit(f"{recipe}: no `ehl = true` under [model] to take away")
+                recipe = Path(tmp) / f"{name}.toml"
+                recipe.write_text(text)
+            elif entrainment is not None:
                 if "[model]\n" not in recipe.read_text():
                     raise SystemExit(f"{recipe}: no [model] table to give the entrainment")
                 text, given = re.subn(  # a recipe that draws it gets the value instead
@@ -59,4 +70,9 @@ if __name__ == "__main__":
         at = args.index("--entrainment")
         factor = float(args[at + 1])
         del args[at : at + 2]
-    main(args, factor)
+    without_film = "--dry" in args
+    if without_film:
+        if factor is not None:
+            raise SystemExit("--dry and --entrainment: a dry recipe has no film to entrain")
+        args.remove("--dry")
+    main(args, factor, without_film)
