@@ -9,7 +9,7 @@ With ``--entrainment E`` every case carries the film's entrainment at light load
 recipe's ``[model] film_entrainment_factor = E`` in place of what it draws, docs/model.md 4.6;
 ``--entrainment 0``: none): what the option costs. With ``--dry`` the recipe runs without its
 film (``[model] ehl = false``, no entrainment): what the lubricant costs (docs/performance.md,
-stop 82: a model trained on the dry recipe scores as well on lubricated draws).
+stop 82: a model trained on the dry recipe scores within 0.011 of it on lubricated draws).
 
 Run: .venv/bin/python benchmarks/bench_generate_rig.py [recipe ...] [--entrainment E | --dry]
 """
