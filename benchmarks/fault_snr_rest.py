@@ -37,6 +37,14 @@ from generators.cases import expand_cases
 from generators.measurement import band_power
 
 VERDICT = {"inner": "inner race", "outer": "outer race", "ball": "ball"}
+COLUMNS = (
+    "label",
+    "case",
+    "film_entrainment_factor",
+    "fault_snr_db",
+    "over_background_db",
+    "found",
+)
 
 
 def pit_rows(recipe_path: str) -> pd.DataFrame:
@@ -88,7 +96,7 @@ def pit_rows(recipe_path: str) -> pd.DataFrame:
                     "found": d.rule_verdict["label"] == VERDICT[case.label],
                 }
             )
-    frame = pd.DataFrame(rows)
+    frame = pd.DataFrame(rows, columns=[*COLUMNS])
     frame["difference_db"] = frame["over_background_db"] - frame["fault_snr_db"]
     return frame
 
@@ -102,6 +110,8 @@ def main(recipe_path: str, out_csv: str | None = None) -> None:
     if out_csv:
         frame.to_csv(out_csv, index=False)
     print(f"{recipe_path}: {len(frame)} touched pits")
+    if frame.empty:
+        return  # a recipe without local defects, or none the races touch
     print("class   pits  found  AUC label  AUC over background  median difference [dB]")
     for name, group in [("all", frame), *frame.groupby("label")]:
         print(
