@@ -263,9 +263,10 @@ def test_benchmark_scripts_patch_functions_where_they_are_looked_up():
     (``features.separation.candidate_bands`` since the band selection moved to
     ``features.band_selection``, stop 78; ``cmtool.diagnose.SCAN_SEGMENT_PERIODS`` since the
     rule's steps moved to ``cmtool.rule``, stop 79) is looked up by nobody there, so setting
-    it silently measures the shipped code. Assignments ``M.NAME = ...`` and ``setattr(M,
-    "NAME", ...)`` are checked; a ``setattr`` on a cmtool, generators or features module whose
-    name is computed cannot be, and fails (stop 80: write the name out)."""
+    it silently measures the shipped code. Assignments ``M.NAME = ...``, ``setattr(M,
+    "NAME", ...)`` and ``mock.patch.object(M, "NAME", ...)`` (stop 82) are checked; a
+    ``setattr`` on a cmtool, generators or features module whose name is computed cannot be,
+    and fails (stop 80: write the name out)."""
     import importlib
     import inspect
 
@@ -293,6 +294,20 @@ def test_benchmark_scripts_patch_functions_where_they_are_looked_up():
                 and isinstance(node.func, ast.Name)
                 and node.func.id == "setattr"
                 and len(node.args) == 3
+                and isinstance(node.args[0], ast.Name)
+            ):
+                name = node.args[1]
+                written = isinstance(name, ast.Constant) and isinstance(name.value, str)
+                yield node.lineno, node.args[0].id, name.value if written else None
+            if (  # ``mock.patch.object(M, "NAME", ...)``: a set for as long as it holds
+                isinstance(node, ast.Call)
+                and isinstance(node.func, ast.Attribute)
+                and node.func.attr == "object"
+                and (
+                    (isinstance(node.func.value, ast.Attribute) and node.func.value.attr == "patch")
+                    or (isinstance(node.func.value, ast.Name) and node.func.value.id == "patch")
+                )
+                and len(node.args) >= 2
                 and isinstance(node.args[0], ast.Name)
             ):
                 name = node.args[1]
