@@ -575,3 +575,20 @@ def test_public_annotations_resolve_at_run_time():
                 except NameError:
                     failed.add(f"{name}.{qualified}")
     assert failed == set(LAZY_ANNOTATIONS), failed ^ set(LAZY_ANNOTATIONS)
+
+
+def test_the_benchmarks_index_lists_every_script_once():
+    """``benchmarks/README.md`` is where a reader finds the script behind a figure: every
+    script is in its tables once (``_``-prefixed helpers aside), and nothing else is."""
+    import re
+
+    index = (REPO / "benchmarks" / "README.md").read_text()
+    listed = re.findall(r"^\| `([a-z_0-9]+)\.py` \|", index, flags=re.M)
+    scripts = {p.stem for p in (REPO / "benchmarks").glob("*.py") if not p.stem.startswith("_")}
+    assert len(scripts) > 40
+    twice = sorted({n for n in listed if listed.count(n) > 1})
+    assert sorted(set(listed)) == sorted(scripts) and not twice, (
+        sorted(scripts - set(listed)),
+        sorted(set(listed) - scripts),
+        twice,
+    )
