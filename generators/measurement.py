@@ -14,6 +14,8 @@ literature and the rigs' published descriptions:
 * :func:`anti_alias_filter`: the acquisition's causal Butterworth low-pass
   (:func:`butterworth_low_pass`);
 * :func:`digitise`: quantisation to a number of bits over a full scale, clipping beyond it;
+* :func:`overall_velocity_rms`: a housing's overall vibration velocity in ISO 10816's broad
+  band, which sets a record's absolute level (``[sensor] machine_velocity_mm_s``);
 * :func:`machine_background`: shaft harmonics (unbalance, misalignment), electrical lines at
   the line frequency and its harmonics, another bearing's lines and coloured broadband noise
   (white forces on the housing and the rotor through the same structure).
@@ -43,6 +45,8 @@ __all__ = [
     "anti_alias_filter",
     "butterworth_low_pass",
     "digitise",
+    "overall_velocity_rms",
+    "overall_velocity_band",
     "machine_background",
     "band_power",
     "fault_band",
@@ -455,6 +459,95 @@ def digitise(x: np.ndarray, bits: int, full_scale: float) -> tuple[np.ndarray, f
     top = full_scale - step
     clipped = float(np.mean((x > top) | (x < -full_scale)))
     return np.clip(np.round(x / step) * step, -full_scale, top), clipped
+
+
+def overall_velocity_band(rpm: float, fs: float) -> tuple[float, float]:
+    """ISO 10816's broad band [Hz]: 10-1000 Hz (2-1000 Hz at 600 rpm or less), below fs / 2.
+
+    Parameters
+    ----------
+    rpm : float
+        Shaft speed [rev/min].
+    fs : float
+        Sample rate [Hz].
+
+    Returns
+    -------
+    low, high : float
+        The band [Hz] (``cmtool.diagnosis.overall_band``, cut at fs / 2).
+    """
+    check_real("rpm", rpm, low=0.0, high=1e6, low_inclusive=False, unit="rev/min")
+    check_real("fs", fs, low=0.0, high=1e9, low_inclusive=False, unit="Hz")
+    low = 2.0 if rpm <= 600.0 else 10.0
+    if fs / 2.0 <= low:
+        raise ParameterError(
+            f"fs = {fs:g} Hz is outside the allowed range: above {2.0 * low:g} Hz, for ISO "
+            f"10816's band from {low:g} Hz"
+        )
+    return low, min(1000.0, fs / 2.0)
+
+
+def overall_velocity_rms(
+    x: np.ndarray, fs: float, quantity: str, band: tuple[float, float]
+) -> float:
+    """The velocity RMS of a record over a band, by its spectrum [m/s for a record in SI].
+
+    The record's DFT is integrated (acceleration), taken as it is (velocity) or differentiated
+    (displacement) bin by bin, and the bins within ``band`` summed (Parseval): a housing's
+    overall vibration as ISO 10816 measures it.
+
+    Parameters
+    ----------
+    x : ndarray
+        One record, in m, m/s or m/s^2 as ``quantity`` says.
+    fs : float
+        Sample rate [Hz].
+    quantity : {"displacement", "velocity", "acceleration"}
+        What ``x`` is.
+    band : (float, float)
+        The band [Hz] (:func:`overall_velocity_band`).
+
+    Returns
+    -------
+    float
+        The RMS velocity in the band [m/s].
+
+    Raises
+    ------
+    ParameterError
+        ``quantity`` not one of the three, ``fs`` not positive, or the band not within
+        [0, fs / 2], each named with its allowed range.
+
+    Examples
+    --------
+    >>> fs = 12000.0; t = np.arange(12000) / fs
+    >>> a = 2 * np.pi * 100.0 * np.cos(2 * np.pi * 100.0 * t)  # velocity sin(2 pi 100 t) m/s
+    >>> round(overall_velocity_rms(a, fs, "acceleration", (10.0, 1000.0)), 4)
+    0.7071
+    """
+    if quantity not in ("displacement", "velocity", "acceleration"):
+        raise ParameterError(
+            f"quantity = {quantity!r} is outside the allowed values: displacement, velocity, "
+            "acceleration"
+        )
+    check_real("fs", fs, low=0.0, high=1e9, low_inclusive=False, unit="Hz")
+    low, high = (float(v) for v in band)
+    if not 0.0 <= low < high <= fs / 2.0:
+        raise ParameterError(
+            f"band = ({low:g}, {high:g}) Hz is outside the allowed range: 0 <= low < high <= "
+            f"fs / 2 = {fs / 2.0:g} Hz"
+        )
+    x = np.asarray(x, dtype=float)
+    n = x.size
+    spec = np.fft.rfft(x - x.mean())
+    f = np.fft.rfftfreq(n, 1.0 / fs)
+    inside = (f >= low) & (f <= high) & (f > 0.0)
+    jw = 2j * np.pi * f[inside]
+    to_velocity = {"acceleration": 1.0 / jw, "velocity": 1.0, "displacement": jw}[quantity]
+    velocity = spec[inside] * to_velocity
+    # one-sided: each bin but the Nyquist bin stands for two
+    weights = np.where(f[inside] == fs / 2.0, 1.0, 2.0)
+    return float(np.sqrt(np.sum(weights * np.abs(velocity) ** 2)) / n)
 
 
 def machine_background(

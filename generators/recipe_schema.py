@@ -339,6 +339,16 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
         "dB",
         doc="full scale over the record's peak (default 6; negative clips)",
     ),
+    Key(
+        "sensor.machine_velocity_mm_s",
+        "values",
+        1e-3,
+        100.0,
+        "mm/s",
+        doc="the healthy machine's overall velocity RMS in ISO 10816's band (10-1000 Hz; 2-1000"
+        " Hz at 600 rpm or less) before the sensor: the record is scaled to it (its absolute"
+        " level; the model's own if absent; the chain's other amplitudes are before it)",
+    ),
     Key("sensor.other_bearing", "bearing", doc="the shaft's other bearing (prefer [background])"),
     Key(
         "background.shaft_db",

@@ -33,6 +33,8 @@ from .measurement import (
     electronic_noise,
     fault_band_powers,
     machine_background,
+    overall_velocity_band,
+    overall_velocity_rms,
     sensor_response,
     transfer_path,
 )
@@ -527,6 +529,7 @@ def _finish_realistic(
     if form_lines:
         chain.update(form_db, form_lines=[list(pair) for pair in form_lines])
     y = healthy_at_sensor + noise
+    level_scale = _level_scale(recipe, case, y, chain)
     if healthy is not x:
         signature = at_sensor - healthy_at_sensor
         gain = 1.0
@@ -544,6 +547,7 @@ def _finish_realistic(
             meta["fault_snr_db"] = 10.0 * math.log10(max(gain * gain * own, 1e-300) / rest)
         chain["fault_gain"] = gain
         y = y + gain * signature
+    y = level_scale * y
     if job.untouched and not math.isnan(case.fault_snr_db):
         meta["fault_snr_db"] = -math.inf  # nothing of the fault reaches the sensor
     resonance = _pick(sensor.get("sensor_resonance_hz"), rng, None)
@@ -572,9 +576,29 @@ def _finish_realistic(
         chain.update(adc_bits=bits, adc_full_scale=full_scale, clipped_fraction=clipped)
     if not np.all(np.isfinite(y)):
         return {**meta, "error": "non-finite samples after the measurement chain"}
-    meta["noise_rms"] = machine.broadband_rms
+    meta["noise_rms"] = level_scale * machine.broadband_rms
     meta["chain"] = json.dumps(chain, separators=(",", ":"))
     return {**meta, "signal": y.astype(signal_dtype), "error": None}
+
+
+def _level_scale(recipe: dict, case: Case, machine: np.ndarray, chain: dict) -> float:
+    """The factor that gives a record its absolute level (``[sensor] machine_velocity_mm_s``).
+
+    The healthy machine (``machine``: the bearing's healthy record and the background at the
+    sensor's place, before the sensor) is scaled so that its overall velocity in ISO 10816's
+    band is the drawn value; the same factor scales the fault's signature, so a fault raises
+    the record over it. Drawn from a generator of its own (the case's seed, 7, 13), so that
+    every other draw of the case is the same with the key as without it; 1 without the key.
+    """
+    spec = recipe["sensor"].get("machine_velocity_mm_s")
+    if spec is None:
+        return 1.0
+    target = _pick(spec, np.random.default_rng([case.seed, 7, 13]), None)
+    band = overall_velocity_band(case.rpm, case.fs_hz)
+    now = overall_velocity_rms(machine, case.fs_hz, recipe["sensor"]["quantity"], band)
+    scale = 1e-3 * target / now if now > 0.0 else 1.0
+    chain.update(machine_velocity_mm_s=target, level_scale=scale)
+    return scale
 
 
 def _finish(

@@ -236,3 +236,68 @@ def test_the_electronics_floor_is_white_after_the_sensors_resonance():
     loud = psd_without > 100.0 * white
     assert np.count_nonzero(loud[freqs < 2000.0]) > 20
     assert abs(np.sum(psd[loud]) / np.sum(psd_without[loud]) - 1.0) < 0.02
+
+
+def test_a_record_has_the_absolute_level_of_its_healthy_machine():
+    """``[sensor] machine_velocity_mm_s`` (docs/realism.md 2, stop 83): the healthy machine
+    reads the drawn overall velocity in ISO 10816's band, as ``cmtool diagnose`` measures it
+    (``features.velocity_band_rms``: another implementation than the chain's), and a fault
+    raises the record over it; every record is the one without the key times a factor, since
+    the level comes from a generator of its own and the chain after it reads ratios."""
+    import features
+
+    text = RECIPE.replace("count = 40", "count = 3").replace("count = 8", "count = 3")
+    drawn = text.replace("adc_bits = 16", "adc_bits = 16\nmachine_velocity_mm_s = [0.45, 1.8]")
+    plain = validate_recipe(tomllib.loads(text))
+    recipe = validate_recipe(tomllib.loads(drawn))
+    without = generate_cases(plain, expand_cases(plain))
+    rows_with = generate_cases(recipe, expand_cases(recipe))
+    seen = set()
+    for row, before in zip(rows_with, without, strict=True):
+        x, x0 = np.asarray(row["signal"], float), np.asarray(before["signal"], float)
+        chain, chain0 = json.loads(row["chain"]), json.loads(before["chain"])
+        target = chain.pop("machine_velocity_mm_s")
+        scale = chain.pop("level_scale")
+        seen.add(target)
+        overall = 1e3 * features.velocity_band_rms(x, 12000.0, {"o": (10.0, 1000.0)})["o"]
+        if row["label"] == "healthy":
+            # the sensor's resonance, the anti-alias filter and the converter barely touch
+            # 10-1000 Hz: within 1 %
+            assert overall == pytest.approx(target, rel=0.01)
+        else:
+            assert overall > 0.99 * target
+        # the record without the key times the factor, up to the converter's rounding
+        assert np.std(x - scale * x0) < 1e-6 * np.std(x)
+        assert row["noise_rms"] == pytest.approx(scale * before["noise_rms"], rel=1e-9)
+        full_scale, full_scale0 = chain.pop("adc_full_scale"), chain0.pop("adc_full_scale")
+        assert full_scale == pytest.approx(scale * full_scale0, rel=1e-9)
+        assert chain == chain0  # every other draw the same (amplitudes before the scale)
+    assert seen == {0.45, 1.8}
+    for value, match in (
+        (0.0, r"sensor.machine_velocity_mm_s = 0.0: .*\[0.001, 100\] mm/s"),
+        ([1.0, 200.0], r"sensor.machine_velocity_mm_s = \[1.0, 200.0\]"),
+    ):
+        bad = tomllib.loads(drawn)
+        bad["sensor"]["machine_velocity_mm_s"] = value
+        with pytest.raises(ParameterError, match=match):
+            validate_recipe(bad)
+    bad = tomllib.loads(drawn)
+    bad["sensor"]["body"] = "shaft"
+    with pytest.raises(ParameterError, match=r"machine_velocity_mm_s.*a housing's"):
+        validate_recipe(bad)
+    bad = tomllib.loads(text)  # a recipe without the realistic chain has no such level
+    del bad["background"]
+    for key in ("modes", "mode_hz", "mode_damping", "mode_gain_db", "sensor_resonance_hz"):
+        del bad["sensor"][key]
+    del bad["sensor"]["anti_alias"], bad["sensor"]["adc_bits"]
+    bad["sensor"]["machine_velocity_mm_s"] = 1.0
+    with pytest.raises(ParameterError, match=r"machine_velocity_mm_s.*needs sensor.modes"):
+        validate_recipe(bad)
+    from generators.measurement import overall_velocity_band, overall_velocity_rms
+
+    with pytest.raises(ParameterError, match=r"quantity = 'jerk'"):
+        overall_velocity_rms(np.ones(64), 12000.0, "jerk", (10.0, 1000.0))
+    with pytest.raises(ParameterError, match=r"band = \(10, 1000\) Hz .* fs / 2 = 500 Hz"):
+        overall_velocity_rms(np.ones(64), 1000.0, "acceleration", (10.0, 1000.0))
+    assert overall_velocity_band(600.0, 12000.0) == (2.0, 1000.0)
+    assert overall_velocity_band(1797.0, 1000.0) == (10.0, 500.0)
