@@ -305,9 +305,10 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("diagnose", help="diagnose a measured recording")
     p.add_argument(
         "recording",
-        help="CSV, Excel .xlsx, WAV, MATLAB .mat (v4-v7.3), .npy/.npz, parquet or LabVIEW .tdms "
-        "file, or a folder whose MANIFEST.csv lists recordings with their rate, speed and "
-        "bearing (a line each; --report: a report each and verdicts.csv)",
+        help="CSV, Excel .xlsx, WAV, MATLAB .mat (v4-v7.3), .npy/.npz, parquet, LabVIEW .tdms "
+        "or UFF .uff/.unv (data-set 58) file, or a folder whose MANIFEST.csv lists "
+        "recordings with their rate, speed and bearing (a line each; --report: a report each "
+        "and verdicts.csv)",
     )
     p.add_argument("--fs", type=float, default=None, help="sample rate [Hz] (if not in file)")
     p.add_argument("--rpm", type=float, default=None, help="shaft speed [rev/min]")
@@ -330,7 +331,11 @@ def build_parser() -> argparse.ArgumentParser:
         "the CWRU and MFPT layouts; or give --geometry)",
     )
     which.add_argument("--geometry", default=None, help=GEOMETRY_HELP)
-    p.add_argument("--variable", default=None, help="variable of a .mat/.npz file")
+    p.add_argument(
+        "--variable",
+        default=None,
+        help="variable of a .mat/.npz file, group/channel of a .tdms file, ID line of a UFF record",
+    )
     p.add_argument("--channel", default=None, help="column or channel")
     p.add_argument(
         "--tacho",

@@ -32,6 +32,7 @@ from .file_variables import rate_and_speed
 from .last_file import keep_last_read
 from .tdms_files import read_tdms
 from .time_axis import spliced_time_axis, time_axis_rate
+from .uff_files import read_uff
 
 __all__ = [
     "write_signal",
@@ -629,8 +630,9 @@ def read_recording(
     MFPT files: struct ``bearing`` with ``gs``, ``sr`` and ``rate``), ``.csv`` (a column by name
     or index; the dialect, preamble and units row found by :func:`cmtool.csv_layout.csv_layout`;
     a time column, named ``time``, ``t`` or ``time_s`` or the first column rising in equal
-    steps, gives the rate), ``.wav``, ``.npy``/``.npz``, ``.parquet`` and LabVIEW's ``.tdms``
-    (:func:`cmtool.tdms_files.read_tdms`). Complex samples are refused.
+    steps, gives the rate), ``.wav``, ``.npy``/``.npz``, ``.parquet``, LabVIEW's ``.tdms``
+    (:func:`cmtool.tdms_files.read_tdms`) and the Universal File Format's data-set 58,
+    ``.uff``/``.unv`` (:func:`cmtool.uff_files.read_uff`). Complex samples are refused.
 
     Parameters
     ----------
@@ -753,6 +755,8 @@ def _read_samples(
         meta["fs_hz"] = float(rate)
     elif suffix == ".tdms":  # LabVIEW's: cmtool.tdms_files
         x = read_tdms(path, variable, channel, meta)
+    elif suffix in (".uff", ".unv"):  # analysers' data-set 58: cmtool.uff_files
+        x = read_uff(path, variable, channel, meta)
     elif suffix in (".npy", ".npz"):
         loaded = np.load(path, allow_pickle=False)
         if suffix == ".npz":
@@ -854,6 +858,7 @@ def _read_samples(
                 meta["fs_hz"] = rate
     else:
         raise RecordingError(
-            f"{path}: unknown format {suffix!r} (mat, csv, wav, npy, npz, parquet, tdms, xlsx)"
+            f"{path}: unknown format {suffix!r} (mat, csv, wav, npy, npz, parquet, tdms, uff, "
+            "unv, xlsx)"
         )
     return x

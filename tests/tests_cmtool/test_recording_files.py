@@ -628,6 +628,132 @@ def test_a_labview_tdms_recording_is_read_with_its_rate_unit_and_channels(tmp_pa
         read_recording(path)
 
 
+def _uff58(name, data, fs, unit, *, func_type=1, binary=0, x=None):
+    """A data-set 58 as pyuff writes it: a time response of ``data`` at ``fs`` in ``unit``."""
+    import pyuff
+
+    n = len(data)
+    complex_data = np.iscomplexobj(data)
+    return pyuff.prepare_58(
+        binary=binary,
+        id1=name,
+        id2="cmtool test",
+        id3="",
+        id4="",
+        id5="",
+        func_type=func_type,
+        ver_num=0,
+        load_case_id=0,
+        rsp_ent_name="pump",
+        rsp_node=1,
+        rsp_dir=3,
+        ref_ent_name="NONE",
+        ref_node=0,
+        ref_dir=0,
+        ord_data_type=6 if complex_data else 4,
+        num_pts=n,
+        abscissa_spacing=1 if x is None else 0,
+        abscissa_min=0.0,
+        abscissa_inc=1.0 / fs,
+        z_axis_value=0.0,
+        abscissa_spec_data_type=17 if func_type == 1 else 18,
+        abscissa_len_unit_exp=0,
+        abscissa_force_unit_exp=0,
+        abscissa_temp_unit_exp=0,
+        abscissa_axis_units_lab="s",
+        ordinate_spec_data_type=12,
+        ordinate_len_unit_exp=1,
+        ordinate_force_unit_exp=0,
+        ordinate_temp_unit_exp=0,
+        ordinate_axis_units_lab=unit,
+        orddenom_spec_data_type=0,
+        orddenom_len_unit_exp=0,
+        orddenom_force_unit_exp=0,
+        orddenom_temp_unit_exp=0,
+        orddenom_axis_units_lab="",
+        z_axis_spec_data_type=0,
+        z_axis_len_unit_exp=0,
+        z_axis_force_unit_exp=0,
+        z_axis_temp_unit_exp=0,
+        z_axis_axis_units_lab="",
+        data=data,
+        x=np.arange(n) / fs if x is None else x,
+        return_full_dict=True,
+    )
+
+
+def test_a_universal_file_formats_time_records_are_read_with_their_rate_and_unit(tmp_path, capsys):
+    """UFF data-set 58 (.uff/.unv), as modal and signal analysers export time records: the
+    file's time responses by --variable (their ID line) or --channel (ID line or number), a
+    frequency function beside them skipped; the rate one over the abscissa's step (the header
+    keeps six significant digits of it: the rate of fewest digits that prints so, 12000 Hz, and
+    MFPT's 97656.25 within 3e-6), the unit the ordinate's label; a tacho record for --tacho.
+    Before, ".uff" was an unknown format."""
+    import pyuff
+
+    rpm = 1750.0
+    t = np.arange(2 * N) / FS
+    x = np.random.default_rng(11).standard_normal(2 * N)
+    tacho = np.where((rpm / 60 * t) % 1.0 < 0.05, 5.0, 0.0)
+    frf = np.fft.rfft(x)[:200]
+    path = tmp_path / "route.uff"
+    pyuff.UFF(str(path)).write_sets(
+        [
+            _uff58("H1 DE-FE", frf, 1.0, "g/N", func_type=4),  # an FRF: not a time record
+            _uff58("DE accel", x, FS, "g"),
+            _uff58("Key", tacho, FS, "V"),
+        ],
+        mode="overwrite",
+    )
+    y, meta = read_recording(path)
+    np.testing.assert_allclose(y, x, rtol=1e-10)  # ASCII: E20.11
+    assert meta["fs_hz"] == FS and meta["unit"] == "g"  # 8.33333e-05 s: 12000 Hz
+    assert meta["variable"] == "DE accel" and meta["channels"] == 2
+    for asked in ({"channel": 1}, {"channel": "Key"}, {"variable": "Key"}):
+        k, meta = read_recording(path, **asked)
+        np.testing.assert_allclose(k, tacho, atol=1e-5)
+        assert "unit" not in meta, asked  # volts: no vibration unit
+    with pytest.raises(
+        RecordingError, match=r"record 'Other' not found; it holds 0: 'DE accel', 1: 'Key'$"
+    ):
+        read_recording(path, channel="Other")
+    argv = ["diagnose", str(path), "--bearing", "6205", "--tacho", "Key", "--json"]
+    assert main(argv) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["assumptions"]["rpm"] == pytest.approx(rpm, rel=2e-3)
+    assert d["assumptions"]["unit"] == "g"
+    assert d["assumptions"]["fs_hz"] == FS
+    # binary 58b keeps the samples in double precision (the increment as the header prints it)
+    binary = tmp_path / "route.unv"
+    # (pyuff 2.5 truncates a binary data-set's header in "overwrite": a new file, "add")
+    pyuff.UFF(str(binary)).write_sets([_uff58("DE accel", x, FS, "m/s^2", binary=1)], "add")
+    y, meta = read_recording(binary)
+    np.testing.assert_array_equal(y, x)
+    assert meta["fs_hz"] == FS and meta["unit"] == "m/s^2"
+    mfpt = tmp_path / "mfpt.uff"
+    pyuff.UFF(str(mfpt)).write_sets([_uff58("a", x[:N], 97656.25, "g")], "add")
+    assert read_recording(mfpt)[1]["fs_hz"] == pytest.approx(97656.25, rel=3e-6)
+    # the abscissa's values listed (uneven spacing): even steps give the rate, others refused
+    for binary_flag, rel in ((1, 1e-9), (0, 1e-6)):  # ASCII lists six digits of each value
+        listed = tmp_path / f"listed{binary_flag}.uff"
+        sets = [_uff58("a", x[:N], FS, "g", binary=binary_flag, x=t[:N])]
+        pyuff.UFF(str(listed)).write_sets(sets, "add")
+        assert read_recording(listed)[1]["fs_hz"] == pytest.approx(FS, rel=rel)
+        jittered = t[:N] + np.where(np.arange(N) == N // 2, 0.3 / FS, 0.0)
+        listed = tmp_path / f"jittered{binary_flag}.uff"
+        sets = [_uff58("a", x[:N], FS, "g", binary=binary_flag, x=jittered)]
+        pyuff.UFF(str(listed)).write_sets(sets, "add")
+        with pytest.raises(RecordingError, match=r"'a' is not evenly sampled"):
+            read_recording(listed)
+    only = tmp_path / "frf.uff"
+    pyuff.UFF(str(only)).write_sets([_uff58("H1", frf, 1.0, "g/N", func_type=4)], "overwrite")
+    with pytest.raises(RecordingError, match=r"frf\.uff: a UFF file with no time record .* 1 data"):
+        read_recording(only)
+    path.write_text("not a universal file\n" * 20)
+    with pytest.raises(RecordingError, match=r"route\.uff: not a readable UFF file"):
+        read_recording(path)
+
+
 def test_an_excel_workbooks_table_is_read_as_a_csv_files_is(tmp_path, capsys):
     """A recording saved from Excel (.xlsx): lines of notes, a header, a units row, time in
     seconds or as Excel's date-times, a column of the channel. The samples, the rate and the
