@@ -73,16 +73,22 @@ def _band_rise_db(without, with_key) -> np.ndarray:
     return np.array(rise)
 
 
+def generate_both(text: str, without: str, folder: Path, workers: int) -> dict:
+    """A recipe's text and the same without a key, generated in ``folder``: their frames."""
+    frames = {}
+    for name, body in (("without", without), ("with", text)):
+        path = folder / f"{name}.toml"
+        path.write_text(body)
+        generate_dataset(path, folder / name, workers=workers)
+        frames[name] = read_dataset(folder / name)
+    return frames
+
+
 def main(recipe: Path, seed: int, workers: int) -> None:
     text = re.sub(r"(?m)^seed = \d+", f"seed = {seed}", recipe.read_text())  # as cage_slip.py
     tomllib.loads(text)  # a readable recipe before anything is generated
     with tempfile.TemporaryDirectory() as tmp:
-        frames = {}
-        for name, body in (("without", _without_key(text)), ("with", text)):
-            path = Path(tmp) / f"{name}.toml"
-            path.write_text(body)
-            generate_dataset(path, Path(tmp) / name, workers=workers)
-            frames[name] = read_dataset(Path(tmp) / name)
+        frames = generate_both(text, _without_key(text), Path(tmp), workers)
         rates = frames["with"]["fs_hz"].to_numpy()
         verdicts = {name: _rule(frame) for name, frame in frames.items()}
         rise = _band_rise_db(frames["without"], frames["with"])

@@ -26,6 +26,7 @@ import sys
 from collections import Counter
 
 import numpy as np
+from sweep_waviness_verdicts import CHANNEL, RIGS  # the sweep's cases (benchmarks/ on the path)
 
 import features
 from cmtool.diagnose import diagnose_signal
@@ -34,7 +35,6 @@ from features.false_alarm import FALSE_ALARM, line_false_alarm
 from generators import (
     LocalizedDefect,
     OperatingCondition,
-    Rig,
     SimulationSettings,
     Waviness,
     bearing,
@@ -42,13 +42,7 @@ from generators import (
     simulate,
 )
 
-CHANNEL = "housing_acceleration_y"
 SLIP = (-0.005, 0.02)  # the ball-pass rate from 0.5 % above to 2 % below its kinematic one
-RIGS = {
-    "default": Rig(),
-    "light": Rig(housing_mass=0.8, pedestal_stiffness=2e7),
-    "heavy": Rig(housing_mass=6.0, pedestal_stiffness=2e8, shaft_mass=2.5),
-}
 BEARINGS = ("6205", "6203", "6305", "6002", "6308", "mfpt")
 RATES = (12000.0, 25600.0, 48000.0)
 

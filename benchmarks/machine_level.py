@@ -31,9 +31,9 @@ from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import numpy as np
+from electronic_floor import generate_both  # benchmarks/ on the path
 
 import features
-from cmtool.datasets import generate_dataset, read_dataset
 from cmtool.diagnose import diagnose_signal
 
 MIN_FAULT_SNR_DB = -10.0
@@ -77,12 +77,8 @@ def main(recipe: Path, seed: int, workers: int) -> None:
     text = re.sub(r"(?m)^seed = \d+", f"seed = {seed}", recipe.read_text())  # as cage_slip.py
     tomllib.loads(text)  # a readable recipe before anything is generated
     with tempfile.TemporaryDirectory() as tmp:
-        frames = {}
-        for name, body in (("without", _without_key(text)), ("with", text)):
-            path = Path(tmp) / f"{name}.toml"
-            path.write_text(body)
-            generate_dataset(path, Path(tmp) / name, workers=workers)
-            frames[name] = read_dataset(Path(tmp) / name).sort_values("index")
+        frames = generate_both(text, _without_key(text), Path(tmp), workers)
+        frames = {name: frame.sort_values("index") for name, frame in frames.items()}
         verdicts = {name: _rule(frame, workers) for name, frame in frames.items()}
     with_key, without = frames["with"], frames["without"]
     print(f"{recipe.name}, seed {seed}: {len(with_key)} records, {len(verdicts['with'])} kept")

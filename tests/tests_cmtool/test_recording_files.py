@@ -657,25 +657,20 @@ def _uff58(name, data, fs, unit, *, func_type=1, binary=0, x=None):
         abscissa_inc=1.0 / fs,
         z_axis_value=0.0,
         abscissa_spec_data_type=17 if func_type == 1 else 18,
-        abscissa_len_unit_exp=0,
-        abscissa_force_unit_exp=0,
-        abscissa_temp_unit_exp=0,
         abscissa_axis_units_lab="s",
         ordinate_spec_data_type=12,
         ordinate_len_unit_exp=1,
-        ordinate_force_unit_exp=0,
-        ordinate_temp_unit_exp=0,
         ordinate_axis_units_lab=unit,
         orddenom_spec_data_type=0,
-        orddenom_len_unit_exp=0,
-        orddenom_force_unit_exp=0,
-        orddenom_temp_unit_exp=0,
         orddenom_axis_units_lab="",
         z_axis_spec_data_type=0,
-        z_axis_len_unit_exp=0,
-        z_axis_force_unit_exp=0,
-        z_axis_temp_unit_exp=0,
         z_axis_axis_units_lab="",
+        **{  # no force or temperature in any axis, no length in the others
+            f"{axis}_{kind}_unit_exp": 0
+            for axis in ("abscissa", "ordinate", "orddenom", "z_axis")
+            for kind in ("len", "force", "temp")
+            if (axis, kind) != ("ordinate", "len")
+        },
         data=data,
         x=np.arange(n) / fs if x is None else x,
         return_full_dict=True,
