@@ -383,13 +383,6 @@ def _chain_rules(r: dict, fs_min: float) -> None:
             _shown(sensor["machine_velocity_mm_s"]),
             f"ISO 10816's overall velocity is a housing's; sensor.body = {sensor['body']!r}",
         )
-    if "machine_velocity_mm_s" in sensor and fs_min <= 20.0:
-        raise _fail(
-            "sensor.machine_velocity_mm_s",
-            _shown(sensor["machine_velocity_mm_s"]),
-            f"ISO 10816's band starts at 2-10 Hz: every sample rate must lie above 20 Hz "
-            f"(lowest {fs_min:g} Hz)",
-        )
     background = r.setdefault("background", {})
     if "other_bearing_db" in background and "other_bearing" not in background:
         raise _fail("background.other_bearing", None, "other_bearing_db needs other_bearing")
