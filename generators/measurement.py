@@ -9,8 +9,10 @@ literature and the rigs' published descriptions:
   modes (modal superposition of an accelerance: each mode a band-pass of unit peak gain times
   its own gain), so that impacts ring at several resonances, as on real machines;
 * :func:`sensor_response`: the accelerometer's mounted resonance (second order, flat below it);
+* :func:`sensor_noise`: the accelerometer's own white noise after its resonance, in
+  absolute units (a spectral density);
 * :func:`electronic_noise`: the sensor's and the recorder's own white noise, after the
-  resonance;
+  resonance, relative to what they amplify;
 * :func:`anti_alias_filter`: the acquisition's causal Butterworth low-pass
   (:func:`butterworth_low_pass`);
 * :func:`digitise`: quantisation to a number of bits over a full scale, clipping beyond it;
@@ -41,6 +43,7 @@ __all__ = [
     "SupportStructure",
     "transfer_path",
     "sensor_response",
+    "sensor_noise",
     "electronic_noise",
     "anti_alias_filter",
     "butterworth_low_pass",
@@ -369,6 +372,40 @@ def electronic_noise(
     check_real("floor_db", floor_db, low=-120.0, high=0.0, unit="dB")
     x = np.asarray(x, dtype=float)
     noise_rms = float(np.sqrt(np.mean(x * x))) * 10.0 ** (floor_db / 20.0)
+    return x + rng.normal(0.0, noise_rms, x.size), noise_rms
+
+
+def sensor_noise(
+    x: np.ndarray, fs: float, density: float, rng: np.random.Generator
+) -> tuple[np.ndarray, float]:
+    """The accelerometer's own noise: white after its mounted resonance, in absolute units.
+
+    A sensor's residual noise does not follow the vibration it measures: a datasheet gives it
+    as a spectral density or as an RMS over a band (docs/realism.md 2).
+
+    Parameters
+    ----------
+    x : ndarray
+        The sensor's output, one acceleration record [m/s^2] sampled at ``fs``.
+    fs : float
+        Sample rate [Hz].
+    density : float
+        The noise's one-sided amplitude spectral density [m/s^2/sqrt(Hz)], in [1e-9, 0.1]
+        (a general-purpose accelerometer: 1e-5 to 4e-5, 1-4 ug/sqrt(Hz); docs/realism.md 2).
+    rng : numpy.random.Generator
+        Source of the noise.
+
+    Returns
+    -------
+    y : ndarray
+        ``x`` plus the noise [m/s^2].
+    noise_rms : float
+        The noise's RMS over 0 to fs/2, ``density * sqrt(fs / 2)`` [m/s^2].
+    """
+    check_real("fs", fs, low=0.0, low_inclusive=False, unit="Hz")
+    check_real("density", density, low=1e-9, high=0.1, unit="m/s^2/sqrt(Hz)")
+    x = np.asarray(x, dtype=float)
+    noise_rms = density * math.sqrt(fs / 2.0)
     return x + rng.normal(0.0, noise_rms, x.size), noise_rms
 
 

@@ -55,6 +55,7 @@ _CHAIN_SENSOR_KEYS = (
     "mode_gain_db",
     "sensor_resonance_hz",
     "sensor_damping",
+    "sensor_noise_density",
     "electronic_floor_db",
     "anti_alias",
     "anti_alias_order",
@@ -383,6 +384,16 @@ def _chain_rules(r: dict, fs_min: float) -> None:
             _shown(sensor["machine_velocity_mm_s"]),
             f"ISO 10816's overall velocity is a housing's; sensor.body = {sensor['body']!r}",
         )
+    if "sensor_noise_density" in sensor:
+        # an absolute noise needs records in absolute units: an acceleration in m/s^2
+        why = ""
+        if "machine_velocity_mm_s" not in sensor:
+            why = "an absolute noise needs the record's absolute level, machine_velocity_mm_s"
+        elif sensor["quantity"] != "acceleration":
+            quantity = sensor["quantity"]
+            why = f"a density in m/s^2/sqrt(Hz) is an acceleration's; quantity = {quantity!r}"
+        if why:
+            raise _fail("sensor.sensor_noise_density", _shown(sensor["sensor_noise_density"]), why)
     background = r.setdefault("background", {})
     if "other_bearing_db" in background and "other_bearing" not in background:
         raise _fail("background.other_bearing", None, "other_bearing_db needs other_bearing")

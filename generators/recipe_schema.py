@@ -322,6 +322,15 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
         doc="its Butterworth order (default 8)",
     ),
     Key(
+        "sensor.sensor_noise_density",
+        "values",
+        1e-9,
+        0.1,
+        "m/s^2/sqrt(Hz)",
+        doc="accelerometer's own white noise after its resonance, absolute (none if absent;"
+        " needs machine_velocity_mm_s and an acceleration; not in fault_snr_db)",
+    ),
+    Key(
         "sensor.electronic_floor_db",
         "values",
         -120.0,

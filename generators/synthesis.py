@@ -35,6 +35,7 @@ from .measurement import (
     machine_background,
     overall_velocity_band,
     overall_velocity_rms,
+    sensor_noise,
     sensor_response,
     transfer_path,
 )
@@ -555,6 +556,13 @@ def _finish_realistic(
         zeta = _pick(sensor.get("sensor_damping"), rng, 0.03)
         y = sensor_response(y, fs, resonance, zeta)
         chain["sensor_resonance_hz"], chain["sensor_damping"] = resonance, zeta
+    if "sensor_noise_density" in sensor:
+        # the accelerometer's own noise, absolute (it does not follow the vibration), after
+        # its resonance; from a generator of its own, as the electronics' below
+        noise_rng = np.random.default_rng([case.seed, 7, 17])
+        density = _pick(sensor["sensor_noise_density"], noise_rng, None)
+        y, own_noise = sensor_noise(y, fs, density, noise_rng)
+        chain["sensor_noise_density"], chain["sensor_noise_rms"] = density, own_noise
     if "electronic_floor_db" in sensor:
         # the sensor's preamplifier and the recorder's front end: white after the mounted
         # resonance, low-passed by the anti-alias filter (docs/realism.md 2), from a generator

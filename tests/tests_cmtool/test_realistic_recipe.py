@@ -301,3 +301,51 @@ def test_a_record_has_the_absolute_level_of_its_healthy_machine():
         overall_velocity_rms(np.ones(64), 1000.0, "acceleration", (10.0, 1000.0))
     assert overall_velocity_band(600.0, 12000.0) == (2.0, 1000.0)
     assert overall_velocity_band(1797.0, 1000.0) == (10.0, 500.0)
+
+
+def test_the_sensors_own_noise_is_absolute_and_white_after_its_resonance():
+    """``[sensor] sensor_noise_density`` (docs/realism.md 2): an accelerometer's own noise is a
+    property of the sensor, not of the vibration it measures. The same healthy case at two
+    absolute levels holds the same noise (recovered from the pair: its RMS the density times
+    sqrt(fs / 2)); above a 2 kHz resonance, where the machine has rolled off, the record's
+    density is the one drawn; a recipe without an absolute level or not of an acceleration
+    is refused naming the key."""
+    from scipy import signal as sp_signal
+
+    fs, density = 48000.0, 2e-5
+    text = (
+        RECIPE.replace("fs_hz = 12000", "fs_hz = 48000")
+        .replace("sensor_resonance_hz = { min = 4000, max = 8000 }", "sensor_resonance_hz = 2000")
+        .replace("count = 40", "count = 1")
+        .replace("count = 8", "count = 1")
+        .replace("duration_s = 1.0", "duration_s = 0.5")
+        .replace(
+            "adc_bits = 16", f"machine_velocity_mm_s = [0.28]\nsensor_noise_density = [{density}]"
+        )
+    )
+    records, chains = [], []
+    for velocity in (0.28, 1.8):
+        bare = text.replace("anti_alias = 0.42\n", "").replace("[0.28]", f"[{velocity}]")
+        recipe = validate_recipe(tomllib.loads(bare))
+        (row,) = generate_cases(recipe, expand_cases(recipe)[:1])  # the healthy case
+        records.append(np.asarray(row["signal"], float))
+        chains.append(json.loads(row["chain"]))
+    (y1, y2), (s1, s2) = records, [c["level_scale"] for c in chains]
+    noise = (s2 * y1 - s1 * y2) / (s2 - s1)  # y = s x + n at both levels
+    expected = density * math.sqrt(fs / 2.0)
+    assert chains[0]["sensor_noise_rms"] == chains[1]["sensor_noise_rms"] == pytest.approx(expected)
+    assert np.std(noise) == pytest.approx(expected, rel=0.03)  # 24,000 samples: 0.5 % sd
+    # with the anti-alias filter: the record's density above the resonance is the one drawn
+    recipe = validate_recipe(tomllib.loads(text))
+    (row,) = generate_cases(recipe, expand_cases(recipe)[:1])  # the healthy case
+    freqs, psd = sp_signal.welch(np.asarray(row["signal"], float), fs, nperseg=2048)
+    high = (freqs > 9000.0) & (freqs < 15000.0)
+    level_db = 10.0 * np.log10(np.mean(psd[high]) / density**2)
+    assert -0.5 < level_db < 1.0, level_db
+    for change, match in (
+        (("machine_velocity_mm_s = [0.28]\n", ""), r"sensor_noise_density.*machine_velocity_mm_s"),
+        (("[sensor]", '[sensor]\nquantity = "velocity"'), r"sensor_noise_density.*'velocity'"),
+        (("[2e-05]", "[1.0]"), r"sensor.sensor_noise_density = \[1.0\].*m/s\^2/sqrt\(Hz\)"),
+    ):
+        with pytest.raises(ParameterError, match=match):
+            validate_recipe(tomllib.loads(text.replace(*change)))
