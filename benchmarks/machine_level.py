@@ -73,6 +73,29 @@ def _overall_mm_s(row) -> float:
     return 1e3 * features.velocity_band_rms(x, float(row.fs_hz), {"overall": band})["overall"]
 
 
+def report_verdicts(verdicts: dict, titles: dict[str, str]) -> None:
+    """Print each run's right verdicts per class and the records whose verdict changed.
+
+    ``verdicts`` maps "with" and "without" to ``_rule``'s {record: (label, verdict)};
+    ``titles`` names the two runs, in the order printed.
+    """
+    for name, title in titles.items():
+        right, total = Counter(), Counter()
+        for label, verdict in verdicts[name].values():
+            total[label] += 1
+            right[label] += NAMES[label] == verdict
+        print(
+            f"  {title}: right {sum(right.values())}/{len(verdicts[name])} ("
+            + ", ".join(f"{label} {right[label]}/{total[label]}" for label in sorted(total))
+            + ")"
+        )
+    changed = [i for i in verdicts["with"] if verdicts["with"][i][1] != verdicts["without"][i][1]]
+    print(f"  verdicts changed: {len(changed)}")
+    for i in changed:
+        label, before = verdicts["without"][i]
+        print(f"    record {i} ({label}): {before} -> {verdicts['with'][i][1]}")
+
+
 def main(recipe: Path, seed: int, workers: int) -> None:
     text = re.sub(r"(?m)^seed = \d+", f"seed = {seed}", recipe.read_text())  # as cage_slip.py
     tomllib.loads(text)  # a readable recipe before anything is generated
@@ -107,21 +130,7 @@ def main(recipe: Path, seed: int, workers: int) -> None:
         factor = np.dot(a, b) / np.dot(a, a)
         residue.append(np.std(b - factor * a) / np.std(b))
     print(f"  records with the key over a multiple of those without: residue <= {max(residue):.1e}")
-    for name, rule in verdicts.items():
-        right, total = Counter(), Counter()
-        for label, verdict in rule.values():
-            total[label] += 1
-            right[label] += NAMES[label] == verdict
-        print(
-            f"  {name} the key: right {sum(right.values())}/{len(rule)} ("
-            + ", ".join(f"{label} {right[label]}/{total[label]}" for label in sorted(total))
-            + ")"
-        )
-    changed = [i for i in verdicts["with"] if verdicts["with"][i][1] != verdicts["without"][i][1]]
-    print(f"  verdicts changed: {len(changed)}")
-    for i in changed:
-        label, before = verdicts["without"][i]
-        print(f"    record {i} ({label}): {before} -> {verdicts['with'][i][1]}")
+    report_verdicts(verdicts, {"without": "without the key", "with": "with the key"})
 
 
 if __name__ == "__main__":

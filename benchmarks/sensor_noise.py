@@ -28,14 +28,12 @@ import json
 import re
 import tempfile
 import tomllib
-from collections import Counter
 from pathlib import Path
 
 import numpy as np
 from electronic_floor import _band_rise_db, generate_both  # benchmarks/ on the path
-from machine_level import _rule
+from machine_level import _rule, report_verdicts
 
-NAMES = {"healthy": "healthy", "inner": "inner race", "outer": "outer race", "ball": "ball"}
 SENSOR_NOISE = "sensor_noise_density = { min = 1e-5, max = 4e-5 }"  # 1-4 ug/sqrt(Hz)
 RECORDER_FLOOR = "electronic_floor_db = { min = -74, max = -56 }"  # a 16-bit recorder's
 
@@ -65,21 +63,7 @@ def main(recipe: Path, seed: int, workers: int, keep: Path | None) -> None:
             (keep / "with").rename(keep / "sensor-noise")
     noisy, shipped = frames["with"], frames["without"]
     print(f"{recipe.name}, seed {seed}: {len(shipped)} records, {len(verdicts['with'])} kept")
-    for name, title in (("without", "as shipped"), ("with", "with the sensor's noise")):
-        right, total = Counter(), Counter()
-        for label, verdict in verdicts[name].values():
-            total[label] += 1
-            right[label] += NAMES[label] == verdict
-        print(
-            f"  {title}: right {sum(right.values())}/{len(verdicts[name])} ("
-            + ", ".join(f"{label} {right[label]}/{total[label]}" for label in sorted(total))
-            + ")"
-        )
-    changed = [i for i in verdicts["with"] if verdicts["with"][i][1] != verdicts["without"][i][1]]
-    print(f"  verdicts changed: {len(changed)}")
-    for i in changed:
-        label, old = verdicts["without"][i]
-        print(f"    record {i} ({label}): {old} -> {verdicts['with'][i][1]}")
+    report_verdicts(verdicts, {"without": "as shipped", "with": "with the sensor's noise"})
     rise = _band_rise_db(shipped, noisy)
     print(
         f"  fault-band power rise over {rise.size} faults: median {np.median(rise):.3f} dB, "

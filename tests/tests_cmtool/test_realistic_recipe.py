@@ -193,6 +193,18 @@ def test_the_bearings_own_form_lines_stand_at_its_rates_and_drawn_levels():
         assert lines_only[far].max() < 0.01 * amp0[far].max()
 
 
+def _wideband_pair() -> str:
+    """RECIPE at 48 kHz over a 2 kHz mounted resonance, one healthy and one faulty case of 0.5
+    s: above the resonance the machine has rolled off, where the chain's own noise shows."""
+    return (
+        RECIPE.replace("fs_hz = 12000", "fs_hz = 48000")
+        .replace("sensor_resonance_hz = { min = 4000, max = 8000 }", "sensor_resonance_hz = 2000")
+        .replace("count = 40", "count = 1")
+        .replace("count = 8", "count = 1")
+        .replace("duration_s = 1.0", "duration_s = 0.5")
+    )
+
+
 def test_the_electronics_floor_is_white_after_the_sensors_resonance():
     """``[sensor] electronic_floor_db`` (docs/realism.md 2): the sensor's and the recorder's own
     noise comes after the mounted resonance, so at 48 kHz above a 2 kHz resonance, where the
@@ -201,13 +213,7 @@ def test_the_electronics_floor_is_white_after_the_sensors_resonance():
     record is the one without the key, whose every other draw is the same."""
     from scipy import signal as sp_signal
 
-    text = (
-        RECIPE.replace("fs_hz = 12000", "fs_hz = 48000")
-        .replace("sensor_resonance_hz = { min = 4000, max = 8000 }", "sensor_resonance_hz = 2000")
-        .replace("count = 40", "count = 1")
-        .replace("count = 8", "count = 1")
-        .replace("duration_s = 1.0", "duration_s = 0.5")
-    )
+    text = _wideband_pair()
     drawn = text.replace("anti_alias = 0.42", "electronic_floor_db = [-50]\nanti_alias = 0.42")
     plain = validate_recipe(tomllib.loads(text))
     recipe = validate_recipe(tomllib.loads(drawn))
@@ -313,15 +319,8 @@ def test_the_sensors_own_noise_is_absolute_and_white_after_its_resonance():
     from scipy import signal as sp_signal
 
     fs, density = 48000.0, 2e-5
-    text = (
-        RECIPE.replace("fs_hz = 12000", "fs_hz = 48000")
-        .replace("sensor_resonance_hz = { min = 4000, max = 8000 }", "sensor_resonance_hz = 2000")
-        .replace("count = 40", "count = 1")
-        .replace("count = 8", "count = 1")
-        .replace("duration_s = 1.0", "duration_s = 0.5")
-        .replace(
-            "adc_bits = 16", f"machine_velocity_mm_s = [0.28]\nsensor_noise_density = [{density}]"
-        )
+    text = _wideband_pair().replace(
+        "adc_bits = 16", f"machine_velocity_mm_s = [0.28]\nsensor_noise_density = [{density}]"
     )
     records, chains = [], []
     for velocity in (0.28, 1.8):
