@@ -10,8 +10,12 @@ recipe's ``[model] film_entrainment_factor = E`` in place of what it draws, docs
 ``--entrainment 0``: none): what the option costs. With ``--dry`` the recipe runs without its
 film (``[model] ehl = false``, no entrainment): what the lubricant costs (docs/performance.md,
 stop 82: a model trained on the dry recipe scores within 0.011 of it on lubricated draws).
+With ``--step S`` the recipe runs RK4 at ``[model] step_s = S`` (``--step default``: at the
+scene's own step, as the rig recipes run; docs/performance.md, "Speed", stop 85;
+benchmarks/recipe_step.py measures what the step changes).
 
 Run: .venv/bin/python benchmarks/bench_generate_rig.py [recipe ...] [--entrainment E | --dry]
+    [--step S]
 """
 
 import re
@@ -20,15 +24,26 @@ import tempfile
 import time
 from pathlib import Path
 
+from recipe_step import step_value, with_step  # benchmarks/ on the path
+
 from cmtool.datasets import generate_dataset
 
 REPO = Path(__file__).resolve().parents[1]
 
 
-def main(recipes: list[str], entrainment: float | None = None, dry: bool = False) -> None:
+def main(
+    recipes: list[str],
+    entrainment: float | None = None,
+    dry: bool = False,
+    step: str | None = None,
+) -> None:
     for name in recipes or ["cwru-rig", "mfpt-rig"]:
         recipe = REPO / "datasets" / f"{name}.toml"
         with tempfile.TemporaryDirectory() as tmp:
+            if step is not None:
+                text = with_step(recipe.read_text(), step_value(step))
+                recipe = Path(tmp) / f"{name}-step.toml"
+                recipe.write_text(text)
             if dry:
                 text = re.sub(
                     r"^film_entrainment_factor\s*=.*\n", "", recipe.read_text(), flags=re.M
@@ -70,9 +85,14 @@ if __name__ == "__main__":
         at = args.index("--entrainment")
         factor = float(args[at + 1])
         del args[at : at + 2]
+    step_s = None
+    if "--step" in args:
+        at = args.index("--step")
+        step_s = args[at + 1]
+        del args[at : at + 2]
     without_film = "--dry" in args
     if without_film:
         if factor is not None:
             raise SystemExit("--dry and --entrainment: a dry recipe has no film to entrain")
         args.remove("--dry")
-    main(args, factor, without_film)
+    main(args, factor, without_film, step_s)
