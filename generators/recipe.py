@@ -176,7 +176,7 @@ def _value(key: Key, where: str, value: Any) -> Any:
         if not isinstance(value, str) or not value:
             raise _fail(where, value, "a text is required")
         return value
-    return value  # "any"
+    raise AssertionError(f"recipe key {where}: the schema's kind {key.kind!r} is not known")
 
 
 def _walk(table: dict, section: str, where: str, *, only: set[str] | None = None) -> None:

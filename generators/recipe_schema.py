@@ -48,8 +48,8 @@ class Key:
     uniform range drawn per case), ``grid`` (a number or a list only), ``number`` (one number),
     ``integer`` (one integer), ``choice`` (one of ``choices``), ``flag`` (true or false),
     ``name`` (letters, digits, - and _), ``bearings`` (catalog names), ``bearing`` (one catalog
-    name), ``text`` and ``any`` (checked where it is used: ``model.step_s`` and ``model.rtol``
-    by :class:`~generators.params.SimulationSettings`).
+    name) and ``text`` (until stop 85 ``model.step_s`` and ``model.rtol`` were ``any``, checked
+    only where :class:`~generators.params.SimulationSettings` took them, under its own names).
     """
 
     path: str  # "key" at the top, "section.key", or "conditions.key" for every condition
@@ -155,7 +155,14 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
     ),
     Key("model.ehl", "flag", default=True, doc="lubricant film in the contacts"),
     Key("model.integrator", "choice", default="rk4", choices=INTEGRATORS, doc="time integrator"),
-    Key("model.step_s", "any", unit="s", doc="RK4 step (default: the scene's own)"),
+    Key(
+        "model.step_s",
+        "number",
+        1e-9,
+        1e-3,
+        "s",
+        doc="RK4 step (default: the scene's own; the range SimulationSettings allows)",
+    ),
     Key(
         "model.error_bound",
         "number",
@@ -163,7 +170,7 @@ RECIPE_SCHEMA: tuple[Key, ...] = (
         0.5,
         doc="RK4 step per bearing, rate and condition for this relative error (no step_s)",
     ),
-    Key("model.rtol", "any", doc="DOPRI5 relative tolerance"),
+    Key("model.rtol", "number", 1e-13, 0.1, doc="DOPRI5 relative tolerance"),
     Key(
         "model.shaft_mass_kg",
         "values",

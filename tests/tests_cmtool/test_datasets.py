@@ -96,6 +96,10 @@ def test_shipped_recipes_validate():
             "conditions\\[1\\].amplitude_m = .* not a key of a localized defect",
         ),
         (("[sensor]", "[model]\nerror_bound = 0.7\n[sensor]"), "model.error_bound = 0.7"),
+        # named by the recipe's key, before any case is built (until stop 85: "step = 0 s")
+        (("[sensor]", "[model]\nstep_s = 0\n[sensor]"), "recipe key model.step_s = 0"),
+        (("[sensor]", '[model]\nstep_s = "2e-5"\n[sensor]'), "model.step_s = '2e-5'"),
+        (("[sensor]", "[model]\nrtol = 1.0\n[sensor]"), "recipe key model.rtol = 1.0"),
         (
             ("[sensor]", "[model]\nerror_bound = 0.01\nstep_s = 1e-5\n[sensor]"),
             "give error_bound or step_s",
