@@ -14,11 +14,16 @@ With ``--step S`` the recipe runs RK4 at ``[model] step_s = S`` (``--step defaul
 scene's own step, as the rig recipes run; docs/performance.md, "Speed", stop 85;
 benchmarks/recipe_step.py measures what the step changes).
 
+With ``--alternate N`` each recipe runs as it ships and with the options given, in turn, N
+times each, and the medians' ratio is printed (the host's load moves single runs by 20 % and
+more: docs/performance.md, "Speed", stop 85).
+
 Run: .venv/bin/python benchmarks/bench_generate_rig.py [recipe ...] [--entrainment E | --dry]
-    [--step S]
+    [--step S] [--alternate N]
 """
 
 import re
+import statistics
 import sys
 import tempfile
 import time
@@ -31,50 +36,76 @@ from cmtool.datasets import generate_dataset
 REPO = Path(__file__).resolve().parents[1]
 
 
+def variant_text(
+    name: str, entrainment: float | None = None, dry: bool = False, step: str | None = None
+) -> str:
+    """The recipe ``datasets/NAME.toml``'s text with the options given (as it ships: none)."""
+    recipe = REPO / "datasets" / f"{name}.toml"
+    text = recipe.read_text()
+    if step is not None:
+        text = with_step(text, step_value(step))
+    if dry:
+        text = re.sub(r"^film_entrainment_factor\s*=.*\n", "", text, flags=re.M)
+        text, given = re.subn(r"^ehl\s*=\s*true\s*$", "ehl = false", text, flags=re.M)
+        if not given:
+            raise SystemExit(f"{recipe}: no `ehl = true` under [model] to take away")
+    elif entrainment is not None:
+        if "[model]\n" not in text:
+            raise SystemExit(f"{recipe}: no [model] table to give the entrainment")
+        text, given = re.subn(  # a recipe that draws it gets the value instead
+            r"^film_entrainment_factor\s*=.*$",
+            f"film_entrainment_factor = {entrainment}",
+            text,
+            flags=re.M,
+        )
+        if not given:
+            text = text.replace(
+                "[model]\n", f"[model]\nfilm_entrainment_factor = {entrainment}\n", 1
+            )
+    return text
+
+
+def rate(name: str, text: str, title: str = "") -> float:
+    """Generate the recipe ``text`` whole on two workers; print and return its rate [1/s]."""
+    with tempfile.TemporaryDirectory() as tmp:
+        recipe = Path(tmp) / f"{name}.toml"
+        recipe.write_text(text)
+        start = time.perf_counter()
+        summary = generate_dataset(recipe, Path(tmp) / name, workers=2)
+        seconds = time.perf_counter() - start
+    done = summary["written"] + summary["failed"]
+    print(
+        f"{name}{title}: {done} signals in {seconds:.1f} s on 2 workers: {done / seconds:.1f} "
+        f"per second ({summary['failed']} failed)",
+        flush=True,
+    )
+    return done / seconds
+
+
 def main(
     recipes: list[str],
     entrainment: float | None = None,
     dry: bool = False,
     step: str | None = None,
+    alternate: int = 0,
 ) -> None:
+    """Each recipe's rate with the options given; with ``alternate`` N, the recipe as it ships
+    and with the options N times each, in turn, and the medians' ratio."""
     for name in recipes or ["cwru-rig", "mfpt-rig"]:
-        recipe = REPO / "datasets" / f"{name}.toml"
-        with tempfile.TemporaryDirectory() as tmp:
-            if step is not None:
-                text = with_step(recipe.read_text(), step_value(step))
-                recipe = Path(tmp) / f"{name}-step.toml"
-                recipe.write_text(text)
-            if dry:
-                text = re.sub(
-                    r"^film_entrainment_factor\s*=.*\n", "", recipe.read_text(), flags=re.M
-                )
-                text, given = re.subn(r"^ehl\s*=\s*true\s*$", "ehl = false", text, flags=re.M)
-                if not given:
-                    raise SystemExit(f"{recipe}: no `ehl = true` under [model] to take away")
-                recipe = Path(tmp) / f"{name}.toml"
-                recipe.write_text(text)
-            elif entrainment is not None:
-                if "[model]\n" not in recipe.read_text():
-                    raise SystemExit(f"{recipe}: no [model] table to give the entrainment")
-                text, given = re.subn(  # a recipe that draws it gets the value instead
-                    r"^film_entrainment_factor\s*=.*$",
-                    f"film_entrainment_factor = {entrainment}",
-                    recipe.read_text(),
-                    flags=re.M,
-                )
-                if not given:
-                    text = text.replace(
-                        "[model]\n", f"[model]\nfilm_entrainment_factor = {entrainment}\n", 1
-                    )
-                recipe = Path(tmp) / f"{name}.toml"
-                recipe.write_text(text)
-            start = time.perf_counter()
-            summary = generate_dataset(recipe, Path(tmp) / name, workers=2)
-            seconds = time.perf_counter() - start
-        done = summary["written"] + summary["failed"]
+        text = variant_text(name, entrainment, dry, step)
+        if not alternate:
+            rate(name, text)
+            continue
+        shipped = (REPO / "datasets" / f"{name}.toml").read_text()
+        rates: dict[str, list[float]] = {"as it ships": [], "with the options": []}
+        for _ in range(alternate):
+            rates["as it ships"].append(rate(name, shipped, " as it ships"))
+            rates["with the options"].append(rate(name, text, " with the options"))
+        medians = {k: statistics.median(v) for k, v in rates.items()}
         print(
-            f"{name}: {done} signals in {seconds:.1f} s on 2 workers: {done / seconds:.1f} per "
-            f"second ({summary['failed']} failed)"
+            f"{name}: median {medians['as it ships']:.1f} per second as it ships, "
+            f"{medians['with the options']:.1f} with the options over {alternate} turns: "
+            f"{medians['with the options'] / medians['as it ships']:.2f} times"
         )
 
 
@@ -90,9 +121,16 @@ if __name__ == "__main__":
         at = args.index("--step")
         step_s = args[at + 1]
         del args[at : at + 2]
+    turns = 0
+    if "--alternate" in args:
+        at = args.index("--alternate")
+        turns = int(args[at + 1])
+        del args[at : at + 2]
+        if turns < 1:
+            raise SystemExit(f"--alternate {turns}: at least 1 turn")
     without_film = "--dry" in args
     if without_film:
         if factor is not None:
             raise SystemExit("--dry and --entrainment: a dry recipe has no film to entrain")
         args.remove("--dry")
-    main(args, factor, without_film, step_s)
+    main(args, factor, without_film, step_s, turns)
