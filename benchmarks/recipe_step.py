@@ -3,9 +3,9 @@
 The rig recipes run `shaft+housing` with the film by RK4 at the scene's default step (2e-5 s
 or the stability step, docs/model.md 7); near a local defect the steps are split
 (``generators.steps.DEFECT_STEPS``). Stop 85 measured ``[model] step_s = 4e-5`` against a bar
-and kept the default (docs/performance.md, "Speed"). This
-generates the recipe as given and at ``--step`` (a step [s], or ``default``: the scene's own)
-at one seed and compares, on every record:
+and kept the default (docs/performance.md, "Speed"). This generates the recipe as given and at
+``--step`` (a step [s], or ``default``: the scene's own) at one seed and compares, on every
+record:
 
 - how far each record at the step lies from the record as given (relative L2 difference
   of the written signals, per class and sample rate: median, 90th percentile, largest);
@@ -23,7 +23,7 @@ records and scored on each dataset folder given (a fresh draw of this rig and of
 ``--fraction F`` cuts every condition's count to that fraction (a quicker draw);
 ``--keep DIR`` keeps the datasets in DIR/shipped (as given), DIR/step and DIR/reference (for
 ``benchmarks/cross_domain.py``). The rate each run generated at is printed too (two workers;
-alternate runs to compare rates: bench_generate_rig.py ``--step``).
+to compare rates, ``bench_generate_rig.py --step S --alternate N``).
 
 Run (about 3 minutes a rig on two cores; with a reference of 1e-5 s, about twice that):
     .venv/bin/python benchmarks/recipe_step.py datasets/cwru-rig.toml --seed 8511 --step 4e-5
