@@ -22,9 +22,9 @@ Run: .venv/bin/python benchmarks/bench_generate_rig.py [recipe ...] [--entrainme
     [--step S] [--alternate N]
 """
 
+import argparse
 import re
 import statistics
-import sys
 import tempfile
 import time
 from pathlib import Path
@@ -109,28 +109,20 @@ def main(
         )
 
 
+def _turns(value: str) -> int:
+    """``--alternate``'s count: at least one turn."""
+    if int(value) < 1:
+        raise argparse.ArgumentTypeError(f"{value}: at least 1 turn")
+    return int(value)
+
+
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    factor = None
-    if "--entrainment" in args:
-        at = args.index("--entrainment")
-        factor = float(args[at + 1])
-        del args[at : at + 2]
-    step_s = None
-    if "--step" in args:
-        at = args.index("--step")
-        step_s = args[at + 1]
-        del args[at : at + 2]
-    turns = 0
-    if "--alternate" in args:
-        at = args.index("--alternate")
-        turns = int(args[at + 1])
-        del args[at : at + 2]
-        if turns < 1:
-            raise SystemExit(f"--alternate {turns}: at least 1 turn")
-    without_film = "--dry" in args
-    if without_film:
-        if factor is not None:
-            raise SystemExit("--dry and --entrainment: a dry recipe has no film to entrain")
-        args.remove("--dry")
-    main(args, factor, without_film, step_s, turns)
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("recipes", nargs="*", help="names in datasets/ (cwru-rig, mfpt-rig)")
+    film = parser.add_mutually_exclusive_group()  # a dry recipe has no film to entrain
+    film.add_argument("--entrainment", type=float, help="film_entrainment_factor for every case")
+    film.add_argument("--dry", action="store_true", help="ehl = false, no entrainment")
+    parser.add_argument("--step", help="[model] step_s [s], or 'default'")
+    parser.add_argument("--alternate", type=_turns, default=0, help="turns as shipped and not")
+    args = parser.parse_args()
+    main(args.recipes, args.entrainment, args.dry, args.step, args.alternate)
