@@ -13,6 +13,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from . import _kernels as K
+from . import _static_kernels as SK
 from ._validate import ParameterError
 from .contact import (
     HertzContact,
@@ -440,6 +441,8 @@ def with_film_tables(p: np.ndarray) -> np.ndarray:
 #: a clearance; beyond, the kernels solve the law by Newton (``_kernels._entrained_table``). A
 #: fixed count, so that every case's table has the same length (the lanes stack them).
 ENTRAINED_GAP_NODES = FILM_TABLE_NODES // 2
+#: Halvings of the entrained table's bisection on ln Q in [-40, 50]: to the last bit.
+ENTRAINED_PASSES = 64
 
 
 @functools.lru_cache(maxsize=8)
@@ -451,8 +454,10 @@ def _entrained_film_table(values: tuple[float, ...]) -> np.ndarray:
     table's spacing, ``ENTRAINED_GAP_NODES`` of them inside the gap and ``FILM_TABLE_NODES``
     from s = 0 to the plain table's top. At each node the load Q solves
     (Q / K)^(2/3) - h(Q) = delta, h(Q) = film (Q + floor)^-0.067 + C^2 / Q^2, by bisection on
-    ln Q to the last bit, then C = 1.5 tau K d^0.5 + Q / (Q + floor) squeeze film / h, and the
-    slopes in s by implicit differentiation: dQ/ds = 2 |s| / (d delta / dQ).
+    ln Q to the last bit (``_static_kernels._entrained_bisection``: the halvings far from the
+    root decided by its side, since stop 86; until then every one by the law, in numpy: the
+    same bits on this project's hosts), then C = 1.5 tau K d^0.5 + Q / (Q + floor) squeeze film
+    / h, and the slopes in s by implicit differentiation: dQ/ds = 2 |s| / (d delta / dQ).
     """
     (floor, _, _, _, k, film_inner, film_outer, _, _, tau, _, _, squeeze) = values[:13]
     max_inner, max_outer = values[7], values[8]
@@ -461,19 +466,11 @@ def _entrained_film_table(values: tuple[float, ...]) -> np.ndarray:
     e = K.FILM_EXPONENT
     s = step * (np.arange(ENTRAINED_GAP_NODES + FILM_TABLE_NODES) - ENTRAINED_GAP_NODES)
     delta = np.sign(s) * s**2 - h_max
-
-    def residual(log_q: np.ndarray) -> np.ndarray:
-        q = np.exp(log_q)
-        return (q / k) ** (2 / 3) - film * (q + floor) ** e - entrainment / q**2 - delta
-
-    lo = np.full(s.shape, -40.0)  # ln Q [ln N], as _kernels._entrained_film's bracket
-    hi = np.full(s.shape, 50.0)
-    for _ in range(64):  # the residual rises with Q: bisection to the last bit (90 / 2^64)
-        mid = 0.5 * (lo + hi)
-        above = residual(mid) > 0.0
-        hi = np.where(above, mid, hi)
-        lo = np.where(above, lo, mid)
-    q = np.exp(0.5 * (lo + hi))
+    # ln Q [ln N] in [-40, 50] (_kernels._entrained_film's bracket): the residual rises with Q,
+    # 64 halvings take it to the last bit (90 / 2^64)
+    log_q = np.empty(s.shape)
+    SK._entrained_bisection(delta, k, film, floor, entrainment, e, ENTRAINED_PASSES, log_q)
+    q = np.exp(log_q)
     d = (q / k) ** (2 / 3)
     ehl = film * (q + floor) ** e
     rigid = entrainment / q**2

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import generators._kernels as K
+import generators._static_kernels as SK
 from generators import (
     LUBRICANTS,
     OperatingCondition,
@@ -25,6 +26,7 @@ from generators.contact import (
     hertz_contact,
     rigid_isoviscous_coefficient,
 )
+from generators.packing import ENTRAINED_GAP_NODES, ENTRAINED_PASSES, FILM_TABLE_NODES
 from generators.prepared import prepare
 
 CHANNEL = "housing_acceleration_y"
@@ -159,6 +161,53 @@ def test_the_entrained_table_reads_the_law_newton_solves():
         far = -h_max - 1.01 * reach
         law = K._entrained_film(far, 1e-3, k, tau, film, squeeze, floor, c2)
         assert K._entrained_table(far, 1e-3, k, tau, film, squeeze, floor, c2, h_max, p) == law
+
+
+def _entrained_residual(log_q, delta, k, film, floor, c2):
+    """(Q / K)^(2/3) - film (Q + floor)^e - C^2 / Q^2 - delta [m], as the table's law in numpy."""
+    q = np.exp(log_q)
+    return (q / k) ** (2 / 3) - film * (q + floor) ** K.FILM_EXPONENT - c2 / q**2 - delta
+
+
+def _numpy_is_libm(k, floor):
+    """Whether numpy's exp and pow give the C library's bits (numba's) on this host."""
+    v = np.linspace(-40.0, 50.0, 1001)
+    q = np.exp(v)
+    return all(
+        np.exp(x) == math.exp(x)
+        and (math.exp(x) / k) ** (2 / 3) == ((q[i] / k) ** (2 / 3))
+        and (math.exp(x) + floor) ** K.FILM_EXPONENT == (q[i] + floor) ** K.FILM_EXPONENT
+        for i, x in enumerate(v)
+    )
+
+
+def test_the_entrained_tables_bisection_is_the_laws_to_the_bit():
+    """The entrained table's loads (``_static_kernels._entrained_bisection``: its halvings far
+    from the root decided by the root's side) are the bisection by the law alone, halving by
+    halving, from the gap's far end through the Hertz regime, at film factors 0.01-1 and
+    300-12,000 rpm and with 64 and 20 halvings: the same bits where numpy's exp and pow are the
+    C library's (this project's hosts), within 1e-13 elsewhere."""
+    e = K.FILM_EXPONENT
+    for factor, rpm in ((1.0, 1800.0), (0.3, 900.0), (0.01, 300.0), (1.0, 12000.0)):
+        p = _packed(factor, rpm)
+        k, _, film, _, floor, _, h_max, c2 = _film_parameters(factor, rpm)
+        step = p[K.P_ENTRAINED_STEP]
+        s = step * (np.arange(ENTRAINED_GAP_NODES + FILM_TABLE_NODES) - ENTRAINED_GAP_NODES)
+        delta = np.sign(s) * s**2 - h_max
+        exact = _numpy_is_libm(k, floor)
+        for passes in (ENTRAINED_PASSES, 20):
+            log_q = np.empty(delta.size)
+            SK._entrained_bisection(delta, k, film, floor, c2, e, passes, log_q)
+            lo, hi = np.full(delta.size, -40.0), np.full(delta.size, 50.0)
+            for _ in range(passes):
+                mid = 0.5 * (lo + hi)
+                above = _entrained_residual(mid, delta, k, film, floor, c2) > 0.0
+                hi, lo = np.where(above, mid, hi), np.where(above, lo, mid)
+            reference = 0.5 * (lo + hi)
+            if exact:
+                assert np.array_equal(log_q, reference), (factor, rpm, passes)
+            else:
+                assert np.allclose(np.exp(log_q), np.exp(reference), rtol=1e-13, atol=0.0)
 
 
 def test_entrained_runs_in_lanes_are_simulates_and_do_not_depend_on_their_block():
