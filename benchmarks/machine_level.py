@@ -54,7 +54,7 @@ def _verdict(args: tuple) -> str:
     return diagnose_signal(np.asarray(signal, float), fs, rpm, name, waviness=False).verdict
 
 
-def _rule(frame, workers: int) -> dict[int, tuple[str, str]]:
+def rule_verdicts(frame, workers: int) -> dict[int, tuple[str, str]]:
     """Per kept record: its label and the rule's verdict."""
     kept = [
         (i, row)
@@ -76,7 +76,7 @@ def _overall_mm_s(row) -> float:
 def report_verdicts(verdicts: dict, titles: dict[str, str]) -> None:
     """Print each run's right verdicts per class and the records whose verdict changed.
 
-    ``verdicts`` maps "with" and "without" to ``_rule``'s {record: (label, verdict)};
+    ``verdicts`` maps "with" and "without" to ``rule_verdicts``'s {record: (label, verdict)};
     ``titles`` names the two runs, in the order printed.
     """
     for name, title in titles.items():
@@ -102,7 +102,7 @@ def main(recipe: Path, seed: int, workers: int) -> None:
     with tempfile.TemporaryDirectory() as tmp:
         frames = generate_both(text, _without_key(text), Path(tmp), workers)
         frames = {name: frame.sort_values("index") for name, frame in frames.items()}
-        verdicts = {name: _rule(frame, workers) for name, frame in frames.items()}
+        verdicts = {name: rule_verdicts(frame, workers) for name, frame in frames.items()}
     with_key, without = frames["with"], frames["without"]
     print(f"{recipe.name}, seed {seed}: {len(with_key)} records, {len(verdicts['with'])} kept")
     velocity = np.array([_overall_mm_s(row) for row in with_key.itertuples()])

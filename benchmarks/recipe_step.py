@@ -42,7 +42,7 @@ from pathlib import Path
 
 import numpy as np
 from cross_domain import feature_table, print_cell  # benchmarks/ on the path
-from machine_level import MIN_FAULT_SNR_DB, _rule, report_verdicts
+from machine_level import MIN_FAULT_SNR_DB, report_verdicts, rule_verdicts
 
 from cmtool.classifier import DEFAULT_FEATURE_SET
 from cmtool.datasets import generate_dataset, read_dataset
@@ -168,8 +168,8 @@ def main(args: argparse.Namespace) -> None:
         if args.reference is not None:  # (a step given, not the default)
             reference = generate("reference", with_step(text, args.reference), folder, args.workers)
         verdicts = {
-            "without": _rule(frames["shipped"], args.workers),
-            "with": _rule(frames["step"], args.workers),
+            "without": rule_verdicts(frames["shipped"], args.workers),
+            "with": rule_verdicts(frames["step"], args.workers),
         }
     shipped, step = frames["shipped"], frames["step"]
     report_errors(

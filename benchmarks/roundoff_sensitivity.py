@@ -29,7 +29,7 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-from machine_level import MIN_FAULT_SNR_DB, _rule  # benchmarks/ on the path
+from machine_level import MIN_FAULT_SNR_DB, rule_verdicts  # benchmarks/ on the path
 from recipe_step import generate, relative_errors, with_fraction
 
 import generators.packing as packing
@@ -79,7 +79,7 @@ def main(args: argparse.Namespace) -> None:
         if not calls:
             print("  the recipe builds no film tables: nothing perturbed")
             return
-        verdicts = {"as-is": _rule(plain, 2), "perturbed": _rule(moved, 2)}
+        verdicts = {"as-is": rule_verdicts(plain, 2), "perturbed": rule_verdicts(moved, 2)}
     errors = relative_errors(moved, plain)
     frame = plain.assign(error=errors)
     print(f"  {len(calls)} film tables perturbed; records (relative L2 change):")

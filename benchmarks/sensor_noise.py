@@ -32,7 +32,7 @@ from pathlib import Path
 
 import numpy as np
 from electronic_floor import _band_rise_db, generate_both  # benchmarks/ on the path
-from machine_level import _rule, report_verdicts
+from machine_level import report_verdicts, rule_verdicts
 
 SENSOR_NOISE = "sensor_noise_density = { min = 1e-5, max = 4e-5 }"  # 1-4 ug/sqrt(Hz)
 RECORDER_FLOOR = "electronic_floor_db = { min = -74, max = -56 }"  # a 16-bit recorder's
@@ -57,7 +57,7 @@ def main(recipe: Path, seed: int, workers: int, keep: Path | None) -> None:
         folder.mkdir(parents=True, exist_ok=True)
         frames = generate_both(_with_sensor_noise(text), text, folder, workers)
         frames = {name: frame.sort_values("index") for name, frame in frames.items()}
-        verdicts = {name: _rule(frame, workers) for name, frame in frames.items()}
+        verdicts = {name: rule_verdicts(frame, workers) for name, frame in frames.items()}
         if keep is not None:
             (keep / "without").rename(keep / "shipped")
             (keep / "with").rename(keep / "sensor-noise")
