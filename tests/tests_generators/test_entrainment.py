@@ -170,14 +170,15 @@ def _entrained_residual(log_q, delta, k, film, floor, c2):
 
 
 def _numpy_is_libm(k, floor):
-    """Whether numpy's exp and pow give the C library's bits (numba's) on this host."""
+    """Whether numpy's array exp and pow give the C library's bits (numba's) on this host."""
     v = np.linspace(-40.0, 50.0, 1001)
     q = np.exp(v)
-    return all(
-        np.exp(x) == math.exp(x)
-        and (math.exp(x) / k) ** (2 / 3) == ((q[i] / k) ** (2 / 3))
-        and (math.exp(x) + floor) ** K.FILM_EXPONENT == (q[i] + floor) ** K.FILM_EXPONENT
-        for i, x in enumerate(v)
+    elastic, ehl = (q / k) ** (2 / 3), (q + floor) ** K.FILM_EXPONENT
+    libm = [math.exp(x) for x in v]
+    return (
+        q.tolist() == libm
+        and elastic.tolist() == [(x / k) ** (2 / 3) for x in libm]
+        and ehl.tolist() == [(x + floor) ** K.FILM_EXPONENT for x in libm]
     )
 
 
