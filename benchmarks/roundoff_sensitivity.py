@@ -10,11 +10,12 @@ tables that ``generators.packing.with_film_tables`` appends to every case's para
 multiplied by 1 + ``--epsilon`` x a standard normal draw per entry (a fixed generator): a
 perturbation of the size another machine's rounding of those tables makes. It prints, per
 class, how many records changed at all and by more than 1e-6 in relative L2, their 90th
-percentile and largest change, the fault SNR labels' largest change (over the pits touched,
-at -20 dB or more, and over all), and the rule's verdicts (``diagnose_signal``,
-``waviness=False``) on the healthy records and the faults at fault SNR >= ``MIN_FAULT_SNR_DB``
-both ways. A recipe without the film (``ehl = false``) is not
-perturbed at all, and says so.
+percentile and largest change, how many of those over 1e-6 are preloaded and whether their
+change grows along the record (a divergence that grows is chaos; one that does not was set
+at the start), the fault SNR labels' largest change (over the pits touched, at -20 dB or
+more, and over all), and the rule's verdicts (``diagnose_signal``, ``waviness=False``) on
+the healthy records and the faults at fault SNR >= ``MIN_FAULT_SNR_DB`` both ways. A recipe
+without the film (``ehl = false``) is not perturbed at all, and says so.
 
 Run (docs/performance.md, "Speed", stop 86; about a minute a recipe):
     .venv/bin/python benchmarks/roundoff_sensitivity.py datasets/cwru-rig.toml --seed 8601
@@ -52,6 +53,14 @@ def perturbed_tables(epsilon: float, seed: int = 86):
         return out
 
     return with_tables
+
+
+def _tenths_growth(x, y) -> float:
+    """RMS of x - y over the record's last tenth, over that of its first tenth."""
+    d = np.asarray(x, float) - np.asarray(y, float)
+    n = d.size // 10
+    first = np.sqrt(np.mean(d[:n] ** 2))
+    return float(np.sqrt(np.mean(d[-n:] ** 2)) / first) if first > 0 else float("nan")
 
 
 def main(args: argparse.Namespace) -> None:
@@ -92,9 +101,14 @@ def main(args: argparse.Namespace) -> None:
         )
     over = frame[frame["error"] > 1e-6]
     if len(over):
+        preloaded = int((over["radial_internal_clearance_m"] < 0).sum())
+        growth = [_tenths_growth(plain["signal"][i], moved["signal"][i]) for i in over.index]
+        loads = over["radial_load_n"].median(), frame["radial_load_n"].median()
         print(
-            f"    radial load of those over 1e-6: median {over['radial_load_n'].median():.0f} N "
-            f"(all records {frame['radial_load_n'].median():.0f} N)"
+            f"    of those over 1e-6: {preloaded} preloaded (operating clearance < 0; all "
+            f"records {int((frame['radial_internal_clearance_m'] < 0).sum())}), radial load "
+            f"median {loads[0]:.0f} N (all {loads[1]:.0f} N); the change in the record's last "
+            f"tenth over its first: median {np.median(growth):.2f}"
         )
     a, b = plain["fault_snr_db"].to_numpy(), moved["fault_snr_db"].to_numpy()
     finite = np.isfinite(a) & np.isfinite(b)
