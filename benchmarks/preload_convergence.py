@@ -20,14 +20,27 @@ bearing's housing RMS at the default step (6205, 1797 rpm, `shaft+housing` with 
 changes between the default step and 5 us: where every ball stays loaded the record at the
 sensor is mostly rounding (docs/performance.md, "Speed", stop 87).
 
+``--recipe RECIPE [--seed S] [--fraction F]`` (stop 87) generates a draw of a recipe (one
+worker, in a temporary folder) and prints, for the cases where every ball stays loaded (the
+boundary of ``--map``: clearance under -L / 50 um at L newtons) and for the others, how many
+there are and the healthy part's RMS before and after the structural path (the chain's
+``reference``, which every background level is drawn relative to).
+
 Run: .venv/bin/python benchmarks/preload_convergence.py [--rounding] [--map]
+    [--recipe datasets/cwru-rig.toml --seed 8701 --fraction 0.5]
 """
 
 import argparse
+import re
+import sys
+import tempfile
+from pathlib import Path
 
 import numpy as np
+from recipe_step import with_fraction  # benchmarks/ on the path
 
-from generators import OperatingCondition, Scene, SimulationSettings, bearing, simulate
+from cmtool.datasets import generate_dataset
+from generators import OperatingCondition, Scene, SimulationSettings, bearing, simulate, synthesis
 from generators.accuracy import band_error
 from generators.measurement import StructuralMode, transfer_path
 
@@ -124,12 +137,76 @@ def preload_map() -> None:
         print(f"{load:.0f} | " + " | ".join(cells))
 
 
+def all_loaded(clearance_m: float, load_n: float) -> bool:
+    """Whether every ball stays loaded, by ``--map``'s boundary (a 6205 at 1797 rpm)."""
+    return clearance_m * 1e6 < -load_n / 50.0
+
+
+def recipe_references(recipe: Path, seed: int | None, fraction: float) -> None:
+    """A recipe draw's healthy parts before and after the path, every ball loaded or not."""
+    rows = []
+    through = synthesis.transfer_path
+
+    def recorded(x, fs, modes):  # the chain's call: the healthy record is the last row
+        out = through(x, fs, modes)
+        caller = sys._getframe(1)
+        if caller.f_code.co_name == "_finish_realistic":
+            case = caller.f_locals["job"].case
+            before, after = np.atleast_2d(x)[-1], np.atleast_2d(out)[-1]
+            rows.append(
+                (
+                    case.index,
+                    all_loaded(case.clearance_m or 0.0, case.radial_load_n),
+                    float(np.sqrt(np.mean(before**2))),
+                    float(np.sqrt(np.mean(after**2))),
+                )
+            )
+        return out
+
+    text = recipe.read_text()
+    if seed is not None:
+        text = re.sub(r"(?m)^seed = \d+", f"seed = {seed}", text)
+    text = with_fraction(text, fraction)
+    synthesis.transfer_path = recorded
+    try:
+        with tempfile.TemporaryDirectory() as folder:
+            path = Path(folder) / recipe.name
+            path.write_text(text)
+            generate_dataset(path, Path(folder) / "out", workers=1)
+    finally:
+        synthesis.transfer_path = through
+    cases = {row[0]: row[1:] for row in rows}
+    print(
+        f"{recipe} (seed {'as given' if seed is None else seed}, fraction {fraction:g}): "
+        f"{len(cases)} cases"
+    )
+    print(
+        "every ball loaded | cases | healthy RMS at the bearing ; at the sensor [m/s^2]: "
+        "min, median, max"
+    )
+    for loaded in (True, False):
+        values = np.array([v[1:] for v in cases.values() if v[0] == loaded])
+        if values.size == 0:
+            print(f"{loaded} | 0 |")
+            continue
+        spans = [
+            f"{np.min(column):.1e}, {np.median(column):.1e}, {np.max(column):.1e}"
+            for column in values.T
+        ]
+        print(f"{loaded} | {len(values)} | " + " ; ".join(spans))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rounding", action="store_true", help="the band's content per step")
     parser.add_argument("--map", action="store_true", help="over the rig recipes' loads")
+    parser.add_argument("--recipe", type=Path, help="a recipe whose draw to look at")
+    parser.add_argument("--seed", type=int, help="the recipe's seed instead of its own")
+    parser.add_argument("--fraction", type=float, default=0.5, help="of each condition's count")
     args = parser.parse_args()
-    if not (args.rounding or args.map):
+    if args.recipe is not None:
+        recipe_references(args.recipe, args.seed, args.fraction)
+    if not (args.rounding or args.map or args.recipe is not None):
         convergence()
     if args.rounding:
         rounding()
