@@ -27,6 +27,7 @@ if TYPE_CHECKING:
         LocalizedDefect,
         OperatingRangeWarning,
         SimulationResult,
+        StepShortenedWarning,
         simulate,
         waviness_passage_frequencies,
     )
@@ -42,6 +43,7 @@ _LAZY = {
     "simulate": "generators",
     "LocalizedDefect": "generators",
     "OperatingRangeWarning": "generators",
+    "StepShortenedWarning": "generators",
     "waviness_passage_frequencies": "generators",
     "Diagnosis": "cmtool.diagnosis",
     "diagnose_signal": "cmtool.diagnose",
@@ -74,6 +76,7 @@ __all__ = [
     "SimulationDivergedError",
     "SimulationResult",
     "SimulationSettings",
+    "StepShortenedWarning",
     "Waviness",
     "__version__",
     "bearing",

@@ -8,7 +8,12 @@ from typing import TYPE_CHECKING
 # the light modules (pure Python: parameters, catalog, kinematics) load with the package; the
 # numerical ones (numpy, scipy, numba) on first use of one of their names, so that a command
 # line's --help or a parameter check does not pay for the compiler (PEP 562)
-from ._validate import OperatingRangeWarning, ParameterError, SimulationDivergedError
+from ._validate import (
+    OperatingRangeWarning,
+    ParameterError,
+    SimulationDivergedError,
+    StepShortenedWarning,
+)
 from .catalog import BEARINGS, bearing
 from .form import form_waviness
 from .kinematics import (
@@ -114,6 +119,7 @@ __all__ = [
     "SimulationResult",
     "SimulationSettings",
     "StaticSolution",
+    "StepShortenedWarning",
     "Waviness",
     "WavinessLine",
     "bearing",

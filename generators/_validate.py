@@ -25,6 +25,14 @@ class OperatingRangeWarning(UserWarning):
     """
 
 
+class StepShortenedWarning(UserWarning):
+    """A run diverged at its default RK4 step and was integrated again at a shorter one.
+
+    The step used is in the result's ``parameters["integrator_stats"]`` (``step_s``,
+    ``step_halvings``).
+    """
+
+
 class SimulationDivergedError(RuntimeError):
     """The time integration left the physically bounded region or produced non-finite values."""
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import dataclasses
 import logging
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -26,6 +27,7 @@ import numpy as np
 
 from . import _integrators
 from . import _kernels as K
+from ._validate import SimulationDivergedError, StepShortenedWarning
 from .batches import lanes_supported, simulate_lanes
 from .decimation import decimate, record_columns
 from .kinematics import BearingFrequencies
@@ -58,6 +60,10 @@ from .steps import (
 
 if TYPE_CHECKING:
     import pandas as pd
+
+#: How often :func:`integrate` halves a diverged RK4 run's default step before it reports the
+#: divergence (the step down to an eighth).
+MAX_STEP_HALVINGS = 3
 
 __all__ = [
     "Prepared",
@@ -175,7 +181,13 @@ def simulate(
         An input is outside its valid range.
     SimulationDivergedError
         The integration produced a non-finite or runaway state, or the adaptive step
-        collapsed; the message names the scene and the time.
+        collapsed; the message names the scene and the time. At RK4's default step the run
+        is first integrated again at up to an eighth of it (:func:`integrate`).
+
+    Warns
+    -----
+    StepShortenedWarning
+        The default RK4 step diverged and a shorter one ran through (:func:`integrate`).
 
     Examples
     --------
@@ -221,13 +233,52 @@ def integrate(prep: Prepared) -> SimulationResult:
     ------
     SimulationDivergedError
         As :func:`simulate`.
+
+    Warns
+    -----
+    StepShortenedWarning
+        RK4 at its default step diverged and the run was integrated again at half, a quarter
+        or an eighth of it (``MAX_STEP_HALVINGS``), which ran through; the result's
+        ``integrator_stats`` hold the step used and ``step_halvings``. With a step given, or an
+        error bound, a diverged run is reported at once.
     """
     plan = plan_run(prep)
     record = _Record.allocate(prep, plan)
     run = _run_rk4 if prep.settings.integrator == "rk4" else _run_dopri5
     status, t_fail, stats = run(prep, plan, record)
+    settings = prep.settings
+    # RK4 at its default step: the step is the stability limit at the static start, and a run
+    # that goes far from it (a ball knocked into firm contact by a pit in a dry, lightly
+    # loaded `full` scene: docs/model.md 7.2) can leave RK4's region; halved and run again
+    retry = settings.integrator == "rk4" and settings.step is None and not settings.error_bound
+    halvings = 0
+    failed_at, failed_step = t_fail, plan.dt
+    while status != K.STATUS_OK and retry and halvings < MAX_STEP_HALVINGS:
+        halvings += 1
+        plan = plan_run(prep, halvings)
+        record = _Record.allocate(prep, plan)
+        status, t_fail, stats = run(prep, plan, record)
+        if status == K.STATUS_OK:
+            stats["step_halvings"] = halvings
+            warnings.warn(
+                StepShortenedWarning(
+                    f"the run diverged at its default RK4 step, {failed_step:.3g} s, at t = "
+                    f"{failed_at:.6g} s (scene {prep.scene_name}/"
+                    f"{'ehl' if prep.ehl else 'dry'}): integrated again at {plan.dt:.3g} s"
+                ),
+                stacklevel=2,
+            )
     if status != K.STATUS_OK:
-        raise diverged_error(prep, int(status), float(t_fail))
+        error = diverged_error(prep, int(status), float(t_fail))
+        if halvings:
+            error = SimulationDivergedError(
+                f"{error} (and at the default step, {failed_step:.3g} s, at t = "
+                f"{failed_at:.6g} s, and every halving of it down to {plan.dt:.3g} s)",
+                scene=error.scene,
+                time=error.time,
+                reason=error.reason,
+            )
+        raise error
     return _result(prep, plan, record, stats)
 
 

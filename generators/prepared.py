@@ -443,13 +443,17 @@ class Plan:
         return slice(first, first + self.n_out)
 
 
-def plan_run(prep: Prepared) -> Plan:
+def plan_run(prep: Prepared, halvings: int = 0) -> Plan:
     """Step, record rate and record count of a prepared run (as :func:`simulate` does).
 
     Parameters
     ----------
     prep : Prepared
         The run.
+    halvings : int
+        RK4 at its default step only: the step halved this many times and not grown onto the
+        record grid (what :func:`~generators.model.integrate` retries a diverged run with);
+        0, the default step as it is.
 
     Returns
     -------
@@ -476,6 +480,8 @@ def plan_run(prep: Prepared) -> Plan:
             step, longest = default_step_and_growth(
                 prep.scene_name, prep.scene_code, prep.film_mode, prep.p, prep.wav, prep.y0
             )
+            if halvings:
+                step, longest = step / 2.0**halvings, 1.0
         refine = True  # never step over a pit, whatever the step
         oversample = oversample or default_oversample(settings.fs)
     oversample = oversample or DEFAULT_OVERSAMPLE

@@ -215,6 +215,34 @@ def test_divergence_is_reported_not_returned():
     assert err.value.time >= 0.0
 
 
+def test_a_run_that_diverges_at_its_default_step_runs_again_at_a_shorter_one():
+    """A dry `full` 6205 under no load with a 1 mm x 20 um ball pit on its rolling circle, 1800
+    rpm: the pit knocks the ball into firmer contact than the static start that sets the
+    default step (14.3 us) and RK4 diverges there; half the step runs through (docs/model.md
+    7.2). The result is that of the shorter step given, and the default step given diverges."""
+    import dataclasses
+
+    from generators import LocalizedDefect, StepShortenedWarning
+    from generators.prepared import plan_run
+
+    pit = LocalizedDefect(surface="ball", length=1e-3, depth=2e-5)
+    loose = OperatingCondition.from_rpm(1800, 0.0)
+    dry_full = Scene(level="full", ehl=False)
+    st = SimulationSettings(
+        fs=12000.0, duration=0.05, settle_time=0.01, channels=("housing_acceleration_y",)
+    )
+    with pytest.warns(StepShortenedWarning, match="diverged at its default RK4 step"):
+        r = simulate(G6205, loose, pit, scene=dry_full, settings=st, random_state=1)
+    stats = r.parameters["integrator_stats"]
+    default = plan_run(prepare(G6205, loose, pit, scene=dry_full, settings=st)).dt
+    assert stats["step_halvings"] >= 1 and stats["step_s"] <= default / 2.0
+    given = dataclasses.replace(st, step=stats["step_s"])
+    again = simulate(G6205, loose, pit, scene=dry_full, settings=given, random_state=1)
+    np.testing.assert_array_equal(r["housing_acceleration_y"], again["housing_acceleration_y"])
+    with pytest.raises(SimulationDivergedError, match="full/dry"):
+        simulate(G6205, loose, pit, scene=dry_full, settings=dataclasses.replace(st, step=default))
+
+
 def test_same_seed_same_signal():
     st = SimulationSettings(fs=5120.0, duration=0.02, settle_time=0.005)
     ball = Waviness(surface="ball", order=4, amplitude=0.5e-6, phase=None)
