@@ -31,6 +31,16 @@ def check_signal(x: object, *, name: str = "x", min_length: int = 2, axis: int =
     return arr
 
 
+def check_record(x: object, *, function: str, name: str = "x", min_length: int = 2) -> np.ndarray:
+    """:func:`check_signal` for a function that takes one record: ``x`` must be 1-D."""
+    arr = check_signal(x, name=name, min_length=min_length)
+    if arr.ndim != 1:
+        raise FeatureError(
+            f"{name} has shape {arr.shape}; {function} takes a 1-D signal (one record)"
+        )
+    return arr
+
+
 def check_fs(fs: object) -> float:
     """Return the sample rate [Hz] as a positive finite float."""
     try:

@@ -17,7 +17,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _windows
-from ._validate import FeatureError, check_count, check_fs, check_positive, check_signal
+from ._validate import (
+    FeatureError,
+    check_count,
+    check_fs,
+    check_positive,
+    check_record,
+)
 from .false_alarm import FLOOR_BINS, SEARCHED_BINS, detection_threshold_db
 
 __all__ = [
@@ -256,7 +262,7 @@ def select_band(
     BandSelection
         The chosen band, its score, and the scores of every candidate.
     """
-    x = check_signal(x, min_length=64)
+    x = check_record(x, function="select_band", min_length=64)
     fs = check_fs(fs)
     if not rates:
         raise FeatureError("rates is empty: give at least one fault rate in Hz")

@@ -22,7 +22,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ._validate import FeatureError, check_count, check_fs, check_signal
+from ._validate import FeatureError, check_count, check_fs, check_record
 from .envelope import envelope_spectrum, kurtogram
 from .evidence import slip_line
 
@@ -107,7 +107,7 @@ def envelope_scores(
     >>> s["bpfo"] > 20 > s["bpfi"]
     True
     """
-    x = check_signal(x, min_length=64)
+    x = check_record(x, function="envelope_scores", min_length=64)
     fs = check_fs(fs)
     if band is None:
         band = (FIXED_BAND[0] * fs, FIXED_BAND[1] * fs)
@@ -203,7 +203,7 @@ def time_scores(x: np.ndarray) -> dict[str, float]:
     >>> round(s["kurtosis"], 2), round(s["crest_factor"], 3)
     (1.5, 1.414)
     """
-    x = check_signal(x, min_length=4)
+    x = check_record(x, function="time_scores", min_length=4)
     y = x - x.mean()
     rms = float(np.sqrt(np.mean(y**2)))
     if rms == 0:

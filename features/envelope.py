@@ -23,7 +23,15 @@ import numpy as np
 from scipy import fft as sp_fft
 
 from . import _windows
-from ._validate import FeatureError, check_band, check_count, check_fs, check_positive, check_signal
+from ._validate import (
+    FeatureError,
+    check_band,
+    check_count,
+    check_fs,
+    check_positive,
+    check_record,
+    check_signal,
+)
 from .band_selection import fault_band
 from .lattice import inner_race_lattice_offsets
 from .separation import separate_discrete
@@ -135,10 +143,8 @@ def envelope(
     ndarray
         Envelope, same length as ``x``.
     """
-    x = check_signal(x, min_length=8)
+    x = check_record(x, function="envelope", min_length=8)
     fs = check_fs(fs)
-    if x.ndim != 1:
-        raise FeatureError(f"x has shape {x.shape}; envelope takes a 1-D signal")
     if method not in ("hilbert", "squared"):
         raise FeatureError(f"method = {method!r} is not one of 'hilbert', 'squared'")
     low, high = (0.0, fs / 2) if band is None else check_band(band, fs)
@@ -216,7 +222,7 @@ def envelope_spectrum(
     >>> round(float(a[100]), 3)
     0.5
     """
-    x = check_signal(x, min_length=8)
+    x = check_record(x, function="envelope_spectrum", min_length=8)
     fs = check_fs(fs)
     if prewhitening:
         x = prewhiten(x)
@@ -292,10 +298,8 @@ def kurtogram(
     KurtogramResult
         Selected centre frequency and bandwidth [Hz], its kurtosis, and the kurtogram matrix.
     """
-    x = check_signal(x, min_length=64)
+    x = check_record(x, function="kurtogram", min_length=64)
     fs = check_fs(fs)
-    if x.ndim != 1:
-        raise FeatureError(f"x has shape {x.shape}; kurtogram takes a 1-D signal")
     nlevel = check_count("nlevel", nlevel, low=1, high=12)
     if min_bandwidth is not None:
         min_bandwidth = check_positive("min_bandwidth", min_bandwidth, unit="Hz")

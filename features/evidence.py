@@ -56,7 +56,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ._validate import FeatureError, check_fs, check_positive, check_signal
+from ._validate import FeatureError, check_fs, check_positive, check_record
 from .band_selection import ANALYSER_RATIO, BAND_FLOOR_FACTOR, BandSelection, fault_band
 from .envelope import envelope
 from .lattice import inner_race_lattice_offsets, inner_race_lattice_orders
@@ -288,7 +288,7 @@ def fault_evidence(x: np.ndarray, fs: float, fault_frequencies: Mapping[str, flo
     >>> bool(e.features["evidence_margin_db"] < 0)  # noise: nothing above the threshold
     True
     """
-    x = check_signal(x, min_length=64)
+    x = check_record(x, function="fault_evidence", min_length=64)
     fs = check_fs(fs)
     missing = [k for k in (*EVIDENCE_FAULTS, "shaft", "ftf") if k not in fault_frequencies]
     if missing:

@@ -25,7 +25,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ._validate import FeatureError, check_fs, check_positive, check_signal
+from ._validate import FeatureError, check_fs, check_positive, check_record
 
 __all__ = [
     "inner_race_lattice_offsets",
@@ -148,7 +148,7 @@ def held_offsets(
     >>> held_offsets(noise + 0.5 * comb, fs, 100.0, (37.0, 61.0))
     (37.0,)
     """
-    residue = check_signal(residue, min_length=64)
+    residue = check_record(residue, function="held_offsets", name="residue", min_length=64)
     fs = check_fs(fs)
     spacing = check_positive("spacing", spacing, unit="Hz")
     n = residue.size

@@ -29,7 +29,7 @@ from scipy import ndimage, sparse
 from scipy import signal as sp_signal
 from scipy.sparse import linalg as sparse_linalg
 
-from ._validate import FeatureError, check_fs, check_positive, check_signal
+from ._validate import FeatureError, check_fs, check_positive, check_record
 from .band_selection import (  # noqa: F401 (moved in stop 78, still exported here)
     ANALYSER_RATIO,
     BAND_FLOOR_FACTOR,
@@ -140,7 +140,7 @@ def remove_harmonics(
     ndarray
         ``x`` minus its mean and the harmonic series.
     """
-    x = check_signal(x, min_length=64)
+    x = check_record(x, function="remove_harmonics", min_length=64)
     fs = check_fs(fs)
     y = x - x.mean()
     n = y.size
@@ -424,7 +424,7 @@ def _line_editing(
     lattice: Sequence[float] = (),
 ) -> tuple[np.ndarray, np.ndarray, tuple[float, ...], float]:
     """:func:`separate_discrete`'s spectrum after steps 1-2, edited bins, offsets held, floor."""
-    x = check_signal(x, min_length=64)
+    x = check_record(x, function="separate_discrete", min_length=64)
     fs = check_fs(fs)
     check_positive("line_db", line_db, unit="dB")
     check_positive("window_hz", window_hz, unit="Hz")

@@ -25,7 +25,7 @@ from numpy.lib.stride_tricks import sliding_window_view
 from scipy import signal as sp_signal
 from scipy.linalg import solve_toeplitz
 
-from ._validate import FeatureError, check_fs, check_positive, check_signal
+from ._validate import FeatureError, check_fs, check_positive, check_record
 from .separation import separate_discrete
 
 #: AR (prediction-error) filter order [s of the record's samples], clipped to AR_ORDER_LIMITS
@@ -113,7 +113,7 @@ def ar_prediction_error(x: np.ndarray, order: int) -> np.ndarray:
     >>> bool(np.std(ar_prediction_error(x, 2)[2:] - e[2:]) < 0.05)
     True
     """
-    x = check_signal(x, min_length=4)
+    x = check_record(x, function="ar_prediction_error", min_length=4)
     if not 1 <= order < x.size:
         raise FeatureError(f"order = {order} is outside the allowed range [1, {x.size - 1}]")
     x = x - x.mean()
@@ -207,7 +207,7 @@ def entry_exit_spacing(
         A rate, the span or the sample rate is not positive, or ``fs`` is under 4 kHz.
     """
     fs = check_fs(fs)
-    x = check_signal(x, min_length=8)
+    x = check_record(x, function="entry_exit_spacing", min_length=8)
     for name, value in (
         ("fault_rate", fault_rate),
         ("shaft_rate", shaft_rate),

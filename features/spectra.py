@@ -18,6 +18,7 @@ from ._validate import (
     check_count,
     check_fs,
     check_positive,
+    check_record,
     check_signal,
 )
 
@@ -293,7 +294,9 @@ def acceleration_from_velocity(velocity: np.ndarray, fs: float) -> np.ndarray:
     >>> float(np.max(np.abs(a - 2 * np.pi * 100 * np.cos(2 * np.pi * 100 * t)))) < 1.0
     True
     """
-    v = check_signal(velocity, min_length=16)
+    v = check_record(
+        velocity, function="acceleration_from_velocity", name="velocity", min_length=16
+    )
     fs = check_fs(fs)
     n = v.size
     v = v - v.mean()
@@ -334,7 +337,7 @@ def velocity_band_rms(
     >>> round(velocity_band_rms(a, fs)["medium"], 4)
     0.7071
     """
-    x = check_signal(acceleration, min_length=16)
+    x = check_record(acceleration, function="velocity_band_rms", name="acceleration", min_length=16)
     fs = check_fs(fs)
     bands = ISO_15242_BANDS if bands is None else bands
     n = x.size
@@ -417,7 +420,7 @@ def band_rms(x: np.ndarray, fs: float, band: tuple[float, float]) -> float:
     >>> round(band_rms(x, fs, (50, 150)), 4)  # 2 / sqrt(2)
     1.4142
     """
-    x = check_signal(x, min_length=2)
+    x = check_record(x, function="band_rms", min_length=2)
     fs = check_fs(fs)
     low, high = check_band(band, fs)
     n = x.size

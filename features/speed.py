@@ -15,7 +15,13 @@ import numpy as np
 import scipy.fft
 from scipy.signal import czt
 
-from ._validate import FeatureError, check_count, check_fs, check_positive, check_signal
+from ._validate import (
+    FeatureError,
+    check_count,
+    check_fs,
+    check_positive,
+    check_record,
+)
 from .instrument_floor import instrument_floor_median
 from .spectra import peak_offset_bins
 
@@ -164,7 +170,7 @@ def shaft_rate_from_spectrum(
     >>> round(estimate.rate_hz, 2), estimate.found, round(estimate.deviation, 3)
     (28.8, True, -0.04)
     """
-    x = check_signal(x, min_length=64)
+    x = check_record(x, function="shaft_rate_from_spectrum", min_length=64)
     fs = check_fs(fs)
     given_hz = check_positive("given_hz", given_hz, unit="Hz")
     if not 0.0 < search < 0.2:
@@ -256,7 +262,7 @@ def shaft_rate_from_tacho(pulses: np.ndarray, fs: float, pulses_per_rev: int = 1
         The channel has no two levels, or fewer than ``2 pulses_per_rev + 1`` rising edges
         (two revolutions).
     """
-    x = check_signal(pulses, name="pulses", min_length=16)
+    x = check_record(pulses, function="shaft_rate_from_tacho", name="pulses", min_length=16)
     fs = check_fs(fs)
     pulses_per_rev = check_count("pulses_per_rev", pulses_per_rev, high=10_000)
     low, high = np.percentile(x, [1.0, 99.0])
@@ -336,7 +342,7 @@ def order_track(x: np.ndarray, fs: float, tacho: TachoSpeed, pulses_per_rev: int
     """
     from scipy.interpolate import PchipInterpolator
 
-    x = check_signal(x, min_length=16)
+    x = check_record(x, function="order_track", min_length=16)
     fs = check_fs(fs)
     pulses_per_rev = check_count("pulses_per_rev", pulses_per_rev, high=10_000)
     times = np.asarray(tacho.edge_times, dtype=float)

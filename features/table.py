@@ -36,7 +36,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import FeatureError, check_count, check_fs, check_positive, check_signal
+from ._validate import (
+    FeatureError,
+    check_count,
+    check_fs,
+    check_positive,
+    check_record,
+)
 from .bands import line_snr
 from .envelope import KurtogramResult, envelope, kurtogram
 from .spectra import amplitude_spectrum
@@ -117,7 +123,7 @@ def compute_spectra(
         The amplitude and envelope spectra [Hz], [U], the band [Hz] and the kurtogram (None
         when ``band`` was given).
     """
-    x = check_signal(x, min_length=64)
+    x = check_record(x, function="compute_spectra", min_length=64)
     fs = check_fs(fs)
     freqs, amp = amplitude_spectrum(x, fs)
     kg = None
@@ -244,7 +250,7 @@ def extract_features(
         if name not in context:
             raise FeatureError(f"fault_frequencies has no {name!r}; it needs {list(faults)}")
         check_positive(f"fault_frequencies[{name!r}]", context[name], unit="Hz")
-    x = check_signal(x, min_length=64)
+    x = check_record(x, function="extract_features", min_length=64)
     if spectra is None:
         fastest = max(float(context[f]) for f in faults)
         spectra = compute_spectra(
