@@ -556,6 +556,11 @@ def _one_channel(
     return squeezed.ravel()
 
 
+#: Suffixes of delimited text tables, read as a CSV is (a data logger's export is often a
+#: tab-separated ``.txt``).
+TEXT_TABLES = (".csv", ".txt", ".tsv")
+
+
 @keep_last_read
 def _read_csv_table(path: Path) -> tuple[pd.DataFrame, CsvLayout]:
     """A CSV recording's table of numbers, read in the dialect :func:`csv_layout` finds."""
@@ -627,8 +632,9 @@ def read_recording(
 
     Formats: MATLAB ``.mat`` (CWRU files: ``X###_DE_time`` by default, of several the one the
     file's name numbers, rpm from ``X###RPM``;
-    MFPT files: struct ``bearing`` with ``gs``, ``sr`` and ``rate``), ``.csv`` (a column by name
-    or index; the dialect, preamble and units row found by :func:`cmtool.csv_layout.csv_layout`;
+    MFPT files: struct ``bearing`` with ``gs``, ``sr`` and ``rate``), ``.csv`` and the text
+    tables data loggers export as ``.txt`` or ``.tsv`` (a column by name or index; the dialect,
+    preamble and units row found by :func:`cmtool.csv_layout.csv_layout`;
     a time column, named ``time``, ``t`` or ``time_s`` or the first column rising in equal
     steps, gives the rate), ``.wav``, ``.npy``/``.npz``, ``.parquet``, LabVIEW's ``.tdms``
     (:func:`cmtool.tdms_files.read_tdms`) and the Universal File Format's data-set 58,
@@ -772,10 +778,10 @@ def _read_samples(
             loaded = loaded[key]
             meta["variable"] = key
         x = _one_channel(_real_samples(loaded, path), channel, path, meta)
-    elif suffix in (".csv", ".parquet", ".xlsx"):
+    elif suffix in (*TEXT_TABLES, ".parquet", ".xlsx"):
         info = None  # a cmtool simulate file's metadata: rate, speed, bearing, SI units
         layout = None
-        if suffix == ".csv":
+        if suffix in TEXT_TABLES:
             frame, layout = _read_csv_table(path)
             info = _csv_sidecar(path)
         elif suffix == ".xlsx":  # a workbook's first sheet, read as a CSV table is
@@ -858,7 +864,7 @@ def _read_samples(
                 meta["fs_hz"] = rate
     else:
         raise RecordingError(
-            f"{path}: unknown format {suffix!r} (mat, csv, wav, npy, npz, parquet, tdms, uff, "
-            "unv, xlsx)"
+            f"{path}: unknown format {suffix!r} (mat, csv, txt, tsv, wav, npy, npz, parquet, "
+            "tdms, uff, unv, xlsx)"
         )
     return x

@@ -69,6 +69,22 @@ def test_each_dialect_reads_the_samples_and_the_rate(tmp_path, dialect):
     assert "warnings" not in meta  # rounded steps are no gap
 
 
+@pytest.mark.parametrize("suffix", [".txt", ".tsv"])
+def test_a_loggers_text_export_is_read_as_a_csv_is(tmp_path, suffix):
+    """A data logger's tab-separated export under .txt or .tsv: the same samples and rate as
+    the same text under .csv. Before, both were an unknown format."""
+    text = DIALECTS["tab, decimal comma"]
+    (tmp_path / "rec.csv").write_text(text, encoding="utf-8", newline="")
+    (tmp_path / f"rec{suffix}").write_text(text, encoding="utf-8", newline="")
+    x, meta = read_recording(tmp_path / f"rec{suffix}")
+    y, expected = read_recording(tmp_path / "rec.csv")
+    np.testing.assert_array_equal(x, y)
+    assert meta["fs_hz"] == expected["fs_hz"] and meta["variable"] == "acc"
+    (tmp_path / "rec.dat").write_text(text)
+    with pytest.raises(RecordingError, match=r"rec.dat: unknown format '.dat' \(mat, csv, txt"):
+        read_recording(tmp_path / "rec.dat")
+
+
 def test_a_time_column_with_gaps_or_a_jump_back_is_read_at_its_rate_and_said(tmp_path, capsys):
     """A logger that dropped samples, or two files joined end to end: the rate of the regular
     steps (100 samples lost of 12000 gave 11900 Hz from the span, unsaid) and a warning
