@@ -260,14 +260,8 @@ def integrate(prep: Prepared) -> SimulationResult:
         status, t_fail, stats = run(prep, plan, record)
         if status == K.STATUS_OK:
             stats["step_halvings"] = halvings
-            warnings.warn(
-                StepShortenedWarning(
-                    f"the run diverged at its default RK4 step, {failed_step:.3g} s, at t = "
-                    f"{failed_at:.6g} s (scene {prep.scene_name}/"
-                    f"{'ehl' if prep.ehl else 'dry'}): integrated again at {plan.dt:.3g} s"
-                ),
-                stacklevel=2,
-            )
+            scene = f"{prep.scene_name}/{'ehl' if prep.ehl else 'dry'}"
+            warnings.warn(step_shortened(failed_step, failed_at, scene, plan.dt), stacklevel=2)
     if status != K.STATUS_OK:
         error = diverged_error(prep, int(status), float(t_fail))
         if halvings:
@@ -280,6 +274,32 @@ def integrate(prep: Prepared) -> SimulationResult:
             )
         raise error
     return _result(prep, plan, record, stats)
+
+
+def step_shortened(
+    default_step: float, failed_at: float, scene: str, step: float
+) -> StepShortenedWarning:
+    """The warning of a run made again at ``step`` [s] after its default step diverged.
+
+    Parameters
+    ----------
+    default_step : float
+        The default RK4 step [s].
+    failed_at : float
+        When the run at it diverged [s].
+    scene : str
+        The scene (its level, and its film where known).
+    step : float
+        The step the run went through at [s].
+
+    Returns
+    -------
+    StepShortenedWarning
+    """
+    return StepShortenedWarning(
+        f"the run diverged at its default RK4 step, {default_step:.3g} s, at t = "
+        f"{failed_at:.6g} s (scene {scene}): integrated again at {step:.3g} s"
+    )
 
 
 @dataclass(frozen=True)

@@ -5,7 +5,9 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import logging
+import math
 import sys
+import warnings
 from pathlib import Path
 
 from generators import (
@@ -17,6 +19,7 @@ from generators import (
     OperatingCondition,
     Rig,
     Scene,
+    SimulationDivergedError,
     SimulationSettings,
     Waviness,
     bearing,
@@ -649,29 +652,50 @@ def _print_run(run, settings, geometry, operating, film: bool) -> None:
 
 def _simulate_streamed(args, geometry, operating, defects, scene, rig, settings, film) -> int:
     """A long run: integrated and written block by block, with a progress bar."""
+    from generators.model import MAX_STEP_HALVINGS, step_shortened
     from generators.stream import simulate_stream
 
     from ..io import write_signal_stream
 
-    stream = simulate_stream(
-        geometry,
-        operating,
-        defects,
-        scene=scene,
-        rig=rig,
-        settings=settings,
-        random_state=args.seed,
-    )
-    stream.parameters["seed"] = args.seed
-    with progress_bar(stream.n_samples, "simulate", "sample", unit_scale=True) as bar:
-        if args.out:
-            path = write_signal_stream(
-                stream, args.out, channels=_requested_channels(args), progress=bar.update
-            )
-        else:
-            path = None
-            for block in stream:
-                bar.update(len(block.time))
+    # as generators.model.integrate does in memory: RK4's default step, diverged, is halved
+    # and the run made again from its start (the file is written whole or not at all)
+    retry = settings.integrator == "rk4" and settings.step is None and not settings.error_bound
+    attempt, halvings, default_step, failed = settings, 0, math.nan, None
+    while True:
+        stream = simulate_stream(
+            geometry,
+            operating,
+            defects,
+            scene=scene,
+            rig=rig,
+            settings=attempt,
+            random_state=args.seed,
+        )
+        stream.parameters["seed"] = args.seed
+        if halvings == 0:
+            default_step = stream.parameters["integrator_stats"]["step_s"]
+        else:  # in the file's header, which is written before the first block
+            stream.parameters["integrator_stats"]["step_halvings"] = halvings
+        try:
+            with progress_bar(stream.n_samples, "simulate", "sample", unit_scale=True) as bar:
+                if args.out:
+                    path = write_signal_stream(
+                        stream, args.out, channels=_requested_channels(args), progress=bar.update
+                    )
+                else:
+                    path = None
+                    for block in stream:
+                        bar.update(len(block.time))
+            break
+        except SimulationDivergedError as error:
+            if not retry or halvings == MAX_STEP_HALVINGS:
+                raise
+            failed = failed or error
+            halvings += 1
+            attempt = dataclasses.replace(settings, step=default_step / 2.0**halvings)
+    if halvings:
+        used = stream.parameters["integrator_stats"]["step_s"]
+        warnings.warn(step_shortened(default_step, failed.time, failed.scene, used), stacklevel=2)
     _print_run(stream, settings, geometry, operating, film)
     if path is not None:
         print(f"wrote {path} (streamed in blocks of {stream.block_samples:,} samples)")
