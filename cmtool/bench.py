@@ -75,7 +75,7 @@ from .bench_scores import (  # noqa: F401 (moved in stop 56, still exported here
     write_report,
 )
 from .diagnose import CANONICAL, FAULTS, diagnose_signal
-from .inputs import checked_workers
+from .inputs import checked_frame, checked_workers
 from .manifest import read_manifest
 from .speeds import manifest_record
 
@@ -110,6 +110,9 @@ BUILTIN_DETECTORS = (
     "kurtosis",
     "crest_factor",
 )
+#: The columns the benchmark reads of a dataset's signals (the factors it breaks figures
+#: down by are read where present).
+BENCH_COLUMNS = ("id", "signal", "fs_hz", "rpm", "bearing", "label")
 #: Nominal labels of the fault-blind statistics (the ROC and Pd use the scores, not these):
 #: spectral kurtosis above 1, kurtosis above 4 (Gaussian: 0 and 3), crest factor above 6.
 BLIND_LIMITS = {"spectral_kurtosis": 1.0, "kurtosis": 4.0, "crest_factor": 6.0}
@@ -324,6 +327,7 @@ def _records(path: Path, bearing_default: str, allow_incomplete: bool = False):
     from .datasets import read_dataset
 
     frame = read_dataset(path, allow_incomplete=allow_incomplete)
+    frame = checked_frame(frame, str(path), BENCH_COLUMNS, "cmtool generate")
     for _, row in frame.iterrows():
         meta = {c: row[c] for c in FACTORS if c in row and pd.notna(row[c])}
         meta["rig"] = row["bearing"]

@@ -530,6 +530,17 @@ def plot_pd_vs_snr(table: pd.DataFrame, path: Path, *, pfa: float = 1e-2, title:
             ax.fill_between(
                 part["snr_db"], part["ci_low"], part["ci_high"], color=line.get_color(), alpha=0.1
             )
+        if not part_fault[key].notna().any():  # too few healthy signals for the threshold
+            ax.text(
+                0.5,
+                0.5,
+                f"not measurable: a threshold at false alarm {pfa:g}\n"
+                f"needs {math.ceil(1 / pfa)} or more healthy signals",
+                transform=ax.transAxes,
+                ha="center",
+                va="center",
+                fontsize=9,
+            )
         ax.set_xlabel("fault SNR where the fault stands out most [dB]")
         ax.set_ylim(-0.02, 1.02)
         ax.grid(alpha=0.3)

@@ -740,13 +740,15 @@ def cmd_bench(args: argparse.Namespace) -> int:
         snr_table = bench.by_factor(results, snr_column)
         if len(snr_table):
             by_snr = snr_table.rename(columns={"value": "snr_db"})[columns]
-            by_snr_fault = pd.concat(
+            per_fault = {
+                f: bench.by_factor(results, snr_column, fault=f) for f in bench.FAULT_CLASSES
+            }
+            by_snr_fault = pd.concat(  # a fault the dataset lacks has no rows, and no panel
                 [by_snr.assign(fault="all")]
                 + [
-                    bench.by_factor(results, snr_column, fault=f)
-                    .rename(columns={"value": "snr_db"})[columns]
-                    .assign(fault=f)
-                    for f in bench.FAULT_CLASSES
+                    t.rename(columns={"value": "snr_db"})[columns].assign(fault=f)
+                    for f, t in per_fault.items()
+                    if len(t)
                 ],
                 ignore_index=True,
             )

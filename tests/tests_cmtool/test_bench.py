@@ -306,6 +306,40 @@ def test_a_dataset_of_healthy_signals_only_gives_false_alarm_figures_and_no_cras
     assert (out / "report.md").is_file() and (out / "roc.png").is_file()
 
 
+def test_a_dataset_of_healthy_and_one_fault_gives_its_figures_and_plots(tmp_path):
+    """A recipe of healthy and outer-race signals only (a user's own, for one fault): the
+    per-fault SNR table has no rows for the faults it lacks and the plot no panel for them.
+    Before: a TypeError in matplotlib (the absent faults' empty tables made the SNR columns
+    objects). With 16 healthy signals no 1e-2 threshold exists, and the plot says so."""
+    import shutil
+
+    data = tmp_path / "outer_only" / "data"
+    data.mkdir(parents=True)
+    for index in (0, 1, 12, 13):  # parts of datasets/small: two healthy, two outer race
+        name = SMALL / "data" / f"part-{index:05d}.parquet"
+        shutil.copy(name, data / name.name)
+    out = tmp_path / "out"
+    assert main(["bench", str(data.parent), "--out", str(out)]) == 0
+    by_fault = pd.read_csv(out / "by_snr_fault.csv")
+    assert set(by_fault["fault"]) == {"all", "outer race"}
+    assert (by_fault.groupby("fault")["signals"].sum() == 16 * len(BUILTIN_DETECTORS)).all()
+    assert (out / "pd_vs_snr.png").stat().st_size > 10000
+    summary = pd.read_csv(out / "summary.csv").set_index(["detector", "fault"])
+    assert (summary.xs("outer race", level="fault")["signals"] == 16).all()
+
+
+def test_bench_names_the_column_a_dataset_lacks(tmp_path):
+    """Before: a KeyError ('rpm') from deep in the benchmark."""
+    import pyarrow.parquet as pq
+
+    data = tmp_path / "cut" / "data"
+    data.mkdir(parents=True)
+    table = pq.read_table(SMALL / "data" / "part-00000.parquet")
+    pq.write_table(table.drop_columns(["rpm"]), data / "part-00000.parquet")
+    with pytest.raises(ValueError, match=r"has no column 'rpm' \(cmtool generate gives"):
+        run_bench(data.parent, allow_incomplete=True)
+
+
 def test_a_dataset_that_turns_the_load_gives_detection_by_its_angle_from_the_sensor(tmp_path):
     """A recipe that draws the load's direction (operating.load_angle_deg) gets its detection
     counted by the angle between the load and the sensor's axis (0-90 deg)."""
