@@ -546,8 +546,8 @@ def read_dataset(
     Raises
     ------
     DatasetError
-        When there is no data, or the dataset is incomplete and ``allow_incomplete`` is
-        False.
+        When there is no data, a part is unreadable, a column asked for is missing, or the
+        dataset is incomplete and ``allow_incomplete`` is False.
     """
     path = Path(path)
     data = path / "data" if (path / "data").is_dir() else path
@@ -563,6 +563,14 @@ def read_dataset(
         table = pq.read_table(data, columns=columns)
     except (ValueError, OSError) as error:  # pyarrow's ArrowInvalid is a ValueError
         bad = [p.name for p in sorted(data.glob("[!.]*.parquet")) if not _readable(p)]
+        if not bad and columns is not None:
+            present = set(pq.read_schema(next(data.glob("[!.]*.parquet"))).names)
+            missing = [c for c in columns if c not in present]
+            if missing:
+                raise DatasetError(
+                    f"{path}: its signals have no column {', '.join(map(repr, missing))} "
+                    "(`cmtool generate` writes every one)"
+                ) from error
         if not bad:
             raise
         raise DatasetError(

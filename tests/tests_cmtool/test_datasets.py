@@ -260,6 +260,21 @@ def test_a_cut_part_is_named_and_resume_generates_it_again(tiny, tmp_path, part)
     assert sorted(read_dataset(out)["id"]) == [f"tiny-{i:06d}" for i in range(6)]
 
 
+def test_a_column_the_signals_lack_is_named(tmp_path, capsys):
+    """A part rewritten without a column (by hand, or by a tool of the user's): reading it
+    for that column names it. Before, ``cmtool dataset info`` printed pyarrow's "No match
+    for FieldRef.Name(label)" followed by the whole schema."""
+    small = Path(__file__).resolve().parents[2] / "datasets" / "small" / "data"
+    data = tmp_path / "cut" / "data"
+    data.mkdir(parents=True)
+    table = pq.read_table(small / "part-00000.parquet")
+    pq.write_table(table.drop_columns(["label"]), data / "part-00000.parquet")
+    with pytest.raises(DatasetError, match=r"cut: its signals have no column 'label' \(`cmtool"):
+        read_dataset(data.parent, columns=["label", "rpm"], allow_incomplete=True)
+    assert main(["dataset", "info", str(data.parent)]) == 2
+    assert "no column 'label'" in capsys.readouterr().err
+
+
 def test_a_failing_worker_stops_the_run_and_resume_finishes_it(monkeypatch, tiny, tmp_path):
     import cmtool.datasets as cd
 
