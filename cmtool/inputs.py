@@ -192,7 +192,8 @@ def checked_frame(frame: Any, name: str, columns: Sequence[str], source: str) ->
     Raises
     ------
     ValueError
-        When ``frame`` is not a table, or lacks a column (naming every one missing).
+        When ``frame`` is not a table, lacks a column (naming every one missing), or, where
+        ``columns`` holds ``signal``, one of its signals holds a NaN or an infinity (named).
     """
     if not hasattr(frame, "columns") or not hasattr(frame, "iloc"):
         raise ValueError(f"{name} is a {type(frame).__name__}, not a DataFrame ({source})")
@@ -202,4 +203,14 @@ def checked_frame(frame: Any, name: str, columns: Sequence[str], source: str) ->
         raise ValueError(
             f"{name} has no {noun} {', '.join(map(repr, missing))} ({source} gives every one)"
         )
+    if "signal" in columns:  # one bad signal named, rather than a feature's error about "x"
+        for position, signal in enumerate(frame["signal"]):
+            values = np.asarray(signal, dtype=float)
+            bad = values.size - int(np.count_nonzero(np.isfinite(values)))
+            if bad:
+                who = repr(frame["id"].iloc[position]) if "id" in frame.columns else "at row"
+                raise ValueError(
+                    f"{name}: signal {who} (row {position}) has {bad} non-finite values "
+                    f"(NaN or inf) of {values.size}: mend or leave out that signal"
+                )
     return frame

@@ -1175,6 +1175,35 @@ def test_train_and_the_realism_gauge_name_the_columns_a_table_lacks(small_datase
     assert set(TRAINING_COLUMNS) <= set(small_dataset.columns)
 
 
+def test_train_and_bench_name_a_signal_that_holds_nan(small_dataset, tmp_path):
+    """A dataset edited after it was written (cmtool generate writes no NaN: a diverging run
+    is a recorded failure). Before: "x contains 6400 non-finite values", naming no signal."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from cmtool.bench import run_bench
+    from cmtool.classifier import train
+
+    frame = small_dataset.copy()
+    frame.at[5, "signal"] = np.where(np.arange(6400) == 7, np.inf, frame.at[5, "signal"])
+    who = frame.at[5, "id"]
+    with pytest.raises(ValueError, match=rf"frame: signal '{who}' \(row 5\) has 1 non-finite"):
+        train(frame)
+    small = Path(__file__).resolve().parents[2] / "datasets" / "small" / "data"
+    table = pq.read_table(small / "part-00001.parquet")
+    signals = table.column("signal").to_pylist()
+    signals[2][100] = float("nan")
+    column = pa.array(signals, type=table.schema.field("signal").type)
+    (tmp_path / "data").mkdir()
+    pq.write_table(
+        table.set_column(table.schema.get_field_index("signal"), "signal", column),
+        tmp_path / "data" / "part-00001.parquet",
+    )
+    who = table.column("id")[2].as_py()
+    with pytest.raises(ValueError, match=rf"signal '{who}' \(row 2\) has 1 non-finite values"):
+        run_bench(tmp_path, allow_incomplete=True)
+
+
 @pytest.mark.parametrize(
     ("argv", "warned"),
     [
