@@ -43,7 +43,7 @@ from generators import bearing
 from generators.params import check_int
 
 from . import __version__
-from .inputs import checked_frame, checked_workers
+from .inputs import check_record_lengths, checked_frame, checked_workers
 from .model_files import (  # the model files, kept importable from here
     MODEL_FORMAT,
     TRUSTED_TYPES,
@@ -648,6 +648,7 @@ def train(
         )
     workers = checked_workers(workers)
     frame = checked_frame(frame, "frame", TRAINING_COLUMNS, "cmtool.datasets.read_dataset")
+    check_record_lengths(frame)
     kept = visible_faults(frame, min_fault_snr_db)
     left_out = int((~kept).sum())
     faint = frame[~kept.to_numpy()].reset_index(drop=True)
@@ -780,13 +781,15 @@ def evaluate(
         and ``by_rig``.
     """
     workers = checked_workers(workers)
+    check_record_lengths(frame)
     y = frame["label"].astype(str).to_numpy()
     pipeline = bundle["pipeline"]
     extractor = copy.copy(pipeline[0])  # the bundle's own extractor is left as it came
     extractor.n_jobs = workers
     table = transform_in_chunks(extractor, frame, "features", progress)
     pred = pipeline[1:].predict(table)
-    labels = sorted(set(y) | set(pred))
+    learnt = getattr(pipeline[-1], "classes_", [])  # a class absent here: a column of zeros
+    labels = sorted(set(y) | set(pred) | {str(c) for c in learnt})
     report = classification_report(y, pred, labels=labels, output_dict=True, zero_division=0)
     return {
         "accuracy": float(accuracy_score(y, pred)),

@@ -11,10 +11,18 @@ from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
+import pandas as pd
 
 from generators import BearingGeometry, ParameterError, bearing
 
-__all__ = ["checked_record", "checked_rate", "checked_geometry", "checked_model"]
+__all__ = [
+    "checked_record",
+    "checked_rate",
+    "checked_geometry",
+    "checked_model",
+    "checked_frame",
+    "check_record_lengths",
+]
 
 
 def checked_record(x: Any, name: str = "x") -> np.ndarray:
@@ -214,3 +222,47 @@ def checked_frame(frame: Any, name: str, columns: Sequence[str], source: str) ->
                     f"(NaN or inf) of {values.size}: mend or leave out that signal"
                 )
     return frame
+
+
+#: The columns a signal's length is judged by (:func:`check_record_lengths`).
+_LENGTH_COLUMNS = ("signal", "fs_hz", "bpfo_hz", "bpfi_hz", "two_bsf_hz")
+
+
+def check_record_lengths(frame: pd.DataFrame, name: str = "frame") -> None:
+    """Refuse a table holding a signal too short to tell its bearing's fault rates apart.
+
+    The diagnosis's own bound (``cmtool.rule.MIN_RATE_PERIODS`` periods of the slowest of
+    BPFO, BPFI and 2 x BSF), applied to every signal of a table the features of a model are
+    computed on, where the table has the signals' rates [Hz] (a dataset has).
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        Signals with ``fs_hz`` [Hz] and ``bpfo_hz``, ``bpfi_hz``, ``two_bsf_hz`` [Hz].
+    name : str
+        What to call the table in the error.
+
+    Raises
+    ------
+    ValueError
+        Naming the first signal too short (its id and row), its length and the one needed.
+    """
+    from .rule import MIN_RATE_PERIODS
+
+    if not set(_LENGTH_COLUMNS) <= set(frame.columns) or not len(frame):
+        return
+    samples = frame["signal"].map(len).to_numpy(dtype=float)
+    fs = frame["fs_hz"].to_numpy(dtype=float)
+    slowest = frame[["bpfo_hz", "bpfi_hz", "two_bsf_hz"]].min(axis=1).to_numpy(dtype=float)
+    short = np.flatnonzero(samples / fs * slowest < MIN_RATE_PERIODS)
+    if short.size:
+        row = int(short[0])
+        who = repr(frame["id"].iloc[row]) if "id" in frame.columns else "at row"
+        needed = MIN_RATE_PERIODS / slowest[row]
+        raise ValueError(
+            f"{name}: signal {who} (row {row}) is {samples[row] / fs[row]:.3g} s long "
+            f"({samples[row]:.0f} samples at {fs[row]:g} Hz; {short.size} of {len(frame)} "
+            f"signals as short); telling the fault rates apart needs at least "
+            f"{MIN_RATE_PERIODS} periods of the slowest ({slowest[row]:.1f} Hz): "
+            f"{needed:.3g} s"
+        )

@@ -1175,6 +1175,42 @@ def test_train_and_the_realism_gauge_name_the_columns_a_table_lacks(small_datase
     assert set(TRAINING_COLUMNS) <= set(small_dataset.columns)
 
 
+def test_train_and_evaluate_name_a_signal_too_short_for_the_fault_rates(
+    small_dataset, small_bundle
+):
+    """The diagnosis's bound (20 periods of the slowest fault rate) for a model's signals.
+    Before, train stopped with the rule's message, naming no signal, and evaluate scored
+    0.016 s records (a 64 Hz resolution for lines 1.4 % apart) without a word."""
+    from cmtool.classifier import evaluate, train
+
+    frame = small_dataset.copy()
+    frame.at[2, "signal"] = frame.at[2, "signal"][:1000]  # 0.16 s; 0.28 s needed at 1200 rpm
+    who = frame.at[2, "id"]
+    assert frame.at[2, "rpm"] == 1200
+    message = rf"signal '{who}' \(row 2\) is 0.156 s long \(1000 samples at 6400 Hz; 1 of 192"
+    with pytest.raises(ValueError, match=message):
+        train(frame)
+    with pytest.raises(ValueError, match=message + r".* at least 20 periods .*: 0.279 s"):
+        evaluate(small_bundle, frame)
+
+
+def test_evaluate_on_one_class_counts_in_the_models_classes(small_dataset, small_bundle):
+    """Healthy signals only: the confusion matrix has every class the model knows (zeros
+    where none), not one cell, and scikit-learn's warning about a single label is gone."""
+    import warnings
+
+    from cmtool.classifier import evaluate
+
+    healthy = small_dataset[small_dataset["label"] == "healthy"].head(8)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        result = evaluate(small_bundle, healthy.reset_index(drop=True))
+    assert result["labels"] == ["ball", "healthy", "inner", "outer"]
+    confusion = np.array(result["confusion"])
+    assert confusion.shape == (4, 4) and confusion.sum() == 8
+    assert confusion[[0, 2, 3]].sum() == 0
+
+
 def test_train_and_bench_name_a_signal_that_holds_nan(small_dataset, tmp_path):
     """A dataset edited after it was written (cmtool generate writes no NaN: a diverging run
     is a recorded failure). Before: "x contains 6400 non-finite values", naming no signal."""
