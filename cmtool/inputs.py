@@ -216,9 +216,8 @@ def checked_frame(frame: Any, name: str, columns: Sequence[str], source: str) ->
             values = np.asarray(signal, dtype=float)
             bad = values.size - int(np.count_nonzero(np.isfinite(values)))
             if bad:
-                who = repr(frame["id"].iloc[position]) if "id" in frame.columns else "at row"
                 raise ValueError(
-                    f"{name}: signal {who} (row {position}) has {bad} non-finite values "
+                    f"{name}: {_which_signal(frame, position)} has {bad} non-finite values "
                     f"(NaN or inf) of {values.size}: mend or leave out that signal"
                 )
     return frame
@@ -257,12 +256,20 @@ def check_record_lengths(frame: pd.DataFrame, name: str = "frame") -> None:
     short = np.flatnonzero(samples / fs * slowest < MIN_RATE_PERIODS)
     if short.size:
         row = int(short[0])
-        who = repr(frame["id"].iloc[row]) if "id" in frame.columns else "at row"
         needed = MIN_RATE_PERIODS / slowest[row]
         raise ValueError(
-            f"{name}: signal {who} (row {row}) is {samples[row] / fs[row]:.3g} s long "
+            f"{name}: {_which_signal(frame, row)} is {samples[row] / fs[row]:.3g} s long "
             f"({samples[row]:.0f} samples at {fs[row]:g} Hz; {short.size} of {len(frame)} "
             f"signals as short); telling the fault rates apart needs at least "
             f"{MIN_RATE_PERIODS} periods of the slowest ({slowest[row]:.1f} Hz): "
             f"{needed:.3g} s"
         )
+
+
+def _which_signal(frame: pd.DataFrame, row: int) -> str:
+    """A signal of a table as an error names it: by its id, else its recording, and row."""
+    if "id" in frame.columns:
+        return f"signal {frame['id'].iloc[row]!r} (row {row})"
+    if "group" in frame.columns:  # a segment of a recording (cmtool.realism)
+        return f"a segment of {frame['group'].iloc[row]!r} (row {row})"
+    return f"the signal at row {row}"

@@ -28,7 +28,7 @@ from generators import BearingFrequencies, characteristic_frequencies
 from generators import bearing as catalog_bearing
 
 from .bench import CANONICAL
-from .inputs import checked_frame
+from .inputs import check_record_lengths, checked_frame
 from .manifest import read_manifest
 from .speeds import manifest_record
 
@@ -181,6 +181,8 @@ def realism(
         raise ValueError(f"n_estimators = {n_estimators!r} is outside the allowed range [1, inf)")
     checked_frame(simulated, "simulated", ("signal", "fs_hz"), "cmtool.datasets.read_dataset")
     checked_frame(measured, "measured", ("signal", "group", "fs_hz"), "recording_segments")
+    check_record_lengths(simulated, "simulated")
+    check_record_lengths(measured, "measured")
     groups_measured = measured["group"].astype(str).to_numpy()
     recordings = len(set(groups_measured))
     if recordings < 2:

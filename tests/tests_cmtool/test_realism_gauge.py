@@ -76,6 +76,22 @@ def test_gauge_needs_a_manifest_and_two_recordings(small, tmp_path):
             realism(small, recording_segments(two, 1.0), n_estimators=trees)
 
 
+def test_gauge_refuses_signals_too_short_for_the_fault_rates_by_name(small, tmp_path):
+    """20 periods of the slowest fault rate, as the diagnosis. Before, the gauge compared the
+    features of 0.016 s simulated records (or recordings) with the rest without a word."""
+    rng = np.random.default_rng(4)
+    long, short = rng.standard_normal(6400), rng.standard_normal(1000)  # 0.156 s at 6400 Hz
+    folder = _recordings(tmp_path / "rec", [[long], [long], [short]], [1800.0] * 3, 6400.0)
+    segments = recording_segments(folder, 1.0)
+    with pytest.raises(ValueError, match=r"measured: a segment of 'rec2.npy' \(row 2\) is 0.156"):
+        realism(small, segments, n_estimators=TREES)
+    cut = small.copy()
+    cut.at[7, "signal"] = cut.at[7, "signal"][:1000]
+    message = rf"simulated: signal '{cut.at[7, 'id']}' \(row 7\) is 0.156 s long .* 1 of 192"
+    with pytest.raises(ValueError, match=message):
+        realism(cut, segments.iloc[:2], n_estimators=TREES)
+
+
 @pytest.mark.realdata
 def test_cli_realism_on_the_measured_recordings(shared_data, tmp_path, capsys):
     rc = main(["realism", str(SMALL), str(shared_data), "--out", str(tmp_path)])
