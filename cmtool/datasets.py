@@ -323,6 +323,8 @@ def generate_dataset(
                 "signals; generators.synthesis.GENERATOR_REVISION); cannot resume: generate "
                 "into a new folder"
             )
+    if scheduler:
+        _check_scheduler(scheduler)  # before anything is written: a typo leaves no folder
     out.mkdir(parents=True, exist_ok=True)
     if resume:
         _remove_stale_temporaries(out)
@@ -365,6 +367,19 @@ def generate_dataset(
     text = json_text(summary)
     atomic_write(out / "_dataset.json", lambda tmp: tmp.write_text(text))
     return summary
+
+
+def _check_scheduler(scheduler: str) -> None:
+    """Connect to a Dask scheduler once, or raise a DatasetError naming its address."""
+    from dask.distributed import Client
+
+    try:
+        Client(scheduler).close()
+    except (OSError, ValueError, TypeError) as error:  # unreachable; a malformed address
+        raise DatasetError(
+            f"scheduler = {scheduler!r}: cannot connect ({error}); start one with "
+            "`dask scheduler` and give its address, tcp://HOST:8786"
+        ) from error
 
 
 class _ChunkFeed:

@@ -438,6 +438,20 @@ def test_dask_cluster_with_a_worker_killed_mid_run(tiny, tmp_path):
     assert result["rc"] == 0
 
 
+def test_a_scheduler_that_cannot_be_reached_is_named_and_nothing_is_written(tiny, tmp_path):
+    """Before: dask's OSError as a traceback (after 30 s), and a folder holding recipe.toml
+    that the next try refused as "not empty" until --resume."""
+    import dask
+
+    out = tmp_path / "ds"
+    with pytest.raises(DatasetError, match=r"scheduler = 'nonsense': cannot connect \(missing"):
+        generate_dataset(tiny, out, scheduler="nonsense")
+    with dask.config.set({"distributed.comm.timeouts.connect": "1s"}):
+        with pytest.raises(DatasetError, match=r"'tcp://127.0.0.1:1': cannot connect \(Timed out"):
+            generate_dataset(tiny, out, scheduler="tcp://127.0.0.1:1")
+    assert not out.exists()
+
+
 def test_committed_dataset_reads_with_pyarrow_and_dask():
     data = REPO / "datasets" / "small" / "data"
     table = pq.read_table(data, columns=["id", "label", "signal"])
