@@ -835,6 +835,7 @@ def cmd_fidelity(args: argparse.Namespace) -> int:
     """
     check_output_file("--out", args.out, "a CSV file")
     check_output_file("--plot", args.plot, "a PNG file")
+    _check_outputs(argparse.Namespace(plot=args.plot))  # its suffix, before the runs
     from ..fidelity import fidelity_study, plot_fidelity, recommend
 
     geometry, operating, defects, _, rig, settings = _model_inputs(args)

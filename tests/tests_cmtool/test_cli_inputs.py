@@ -1099,6 +1099,15 @@ def test_an_output_of_the_wrong_kind_is_refused_before_any_work(
     assert out.is_dir() if kind == "dir" else out.read_text() == "keep me"
 
 
+def test_fidelity_refuses_a_plot_format_before_the_study(tmp_path, capsys):
+    """Before: matplotlib's "Format 'txt' is not supported" after the whole study."""
+    plot = tmp_path / "study.txt"
+    argv = ["fidelity", "--levels", "shaft", "--steps", "1e-5", "--plot", str(plot)]
+    assert main(argv) == 2
+    assert "--plot" in (said := _one_line_error(capsys)) and "must end in one of .png" in said
+    assert not plot.exists()
+
+
 @pytest.mark.parametrize(
     ("given", "said"),
     [
