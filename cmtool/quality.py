@@ -127,6 +127,32 @@ def check_not_pulses(x: np.ndarray, name: str = "signal") -> None:
         )
 
 
+def non_finite_text(x: np.ndarray, name: str = "signal") -> str:
+    """What an error says of a record holding NaN or inf: how many, and where the first is.
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        The record, with at least one sample that is not finite.
+    name : str
+        What to call it.
+
+    Returns
+    -------
+    str
+        For example "signal contains 1 non-finite values (NaN or inf), the first at sample
+        5662 of 5663 (the last: a file cut short?)"; a reader leaves a cut line's missing
+        value as NaN.
+    """
+    finite = np.isfinite(np.ravel(x))
+    first = int(np.argmin(finite))
+    where = f"the first at sample {first} of {finite.size}"
+    if first == finite.size - 1:
+        where += " (the last: a file cut short?)"
+    bad = finite.size - int(np.count_nonzero(finite))
+    return f"{name} contains {bad} non-finite values (NaN or inf), {where}"
+
+
 def check_clipping(x: np.ndarray, name: str = "signal") -> None:
     """Refuse a record too clipped for the rule's verdict to be trusted.
 
@@ -145,9 +171,8 @@ def check_clipping(x: np.ndarray, name: str = "signal") -> None:
         the record takes two levels only (:func:`check_not_pulses`).
     """
     x = np.asarray(x, dtype=float)
-    bad = x.size - int(np.count_nonzero(np.isfinite(x)))
-    if bad:  # an inf would pass for the largest value of a 100 % clipped record
-        raise ValueError(f"{name} contains {bad} non-finite values (NaN or inf)")
+    if not np.all(np.isfinite(x)):  # an inf would pass for the largest value of a clipped one
+        raise ValueError(non_finite_text(x, name))
     check_not_pulses(x, name)  # a clean pulse train is all plateaus: say what it is
     share = clipped_share(x)  # 0 for a constant record: diagnose_signal says what that is
     if share < CLIPPING_ERROR_SHARE:
@@ -182,9 +207,8 @@ def check_signal_quality(x: np.ndarray, name: str = "signal") -> list[str]:
         When the record holds NaN or inf, is constant, or takes two levels only
         (:func:`check_not_pulses`).
     """
-    bad = x.size - int(np.count_nonzero(np.isfinite(x)))
-    if bad:
-        raise ValueError(f"{name} contains {bad} non-finite values (NaN or inf)")
+    if not np.all(np.isfinite(x)):
+        raise ValueError(non_finite_text(x, name))
     warnings = []
     peak = float(np.max(np.abs(x)))
     if peak == 0 or float(np.ptp(x)) == 0:

@@ -85,6 +85,27 @@ def test_a_loggers_text_export_is_read_as_a_csv_is(tmp_path, suffix):
         read_recording(tmp_path / "rec.dat")
 
 
+def test_a_csv_cut_within_its_last_line_is_refused_saying_where(tmp_path, capsys):
+    """A copy stopped within a line leaves its last value missing (read as NaN). Before, the
+    error said "contains 1 non-finite values", not where; now the sample and a likely cause."""
+    lines = ["time,acc"] + [f"{float(t)!r},{float(x)!r}" for t, x in zip(T, X, strict=True)]
+    text = "\n".join(lines)
+    path = tmp_path / "cut.csv"
+    path.write_text(text[: text.rindex(",") + 1])  # the last line keeps its time only
+    assert main(["diagnose", str(path), "--rpm", "1797", "--bearing", "6205"]) == 2
+    err = capsys.readouterr().err
+    said = f"cut.csv contains 1 non-finite values (NaN or inf), the first at sample {N - 1} of"
+    assert said in err and "(the last: a file cut short?)" in err
+    from cmtool.diagnose import diagnose_signal
+
+    middle = X.copy()
+    middle[[10, 20]] = np.nan
+    with pytest.raises(
+        ValueError, match=rf"2 non-finite values .*, the first at sample 10 of {N}$"
+    ):
+        diagnose_signal(middle, FS, 1797.0, "6205")
+
+
 def test_a_time_column_with_gaps_or_a_jump_back_is_read_at_its_rate_and_said(tmp_path, capsys):
     """A logger that dropped samples, or two files joined end to end: the rate of the regular
     steps (100 samples lost of 12000 gave 11900 Hz from the span, unsaid) and a warning
