@@ -370,11 +370,27 @@ def generate_dataset(
 
 
 def _check_scheduler(scheduler: str) -> None:
-    """Connect to a Dask scheduler once, or raise a DatasetError naming its address."""
-    from dask.distributed import Client
+    """Connect to a Dask scheduler once, or raise a DatasetError naming its address.
+
+    A bare connection (``distributed.comm.connect``), not a ``Client``: a Client that fails
+    to connect stays dask's default client, and every later ``compute()`` in the process
+    waits for it. The connection is made in a thread of its own, which works where an event
+    loop already runs (a notebook).
+    """
+    import asyncio
+    from concurrent.futures import ThreadPoolExecutor
+
+    import dask
+    from distributed.comm import connect
+
+    async def probe() -> None:
+        timeout = dask.config.get("distributed.comm.timeouts.connect")
+        comm = await connect(scheduler, timeout=timeout)
+        await comm.close()
 
     try:
-        Client(scheduler).close()
+        with ThreadPoolExecutor(1) as thread:
+            thread.submit(asyncio.run, probe()).result()
     except (OSError, ValueError, TypeError) as error:  # unreachable; a malformed address
         raise DatasetError(
             f"scheduler = {scheduler!r}: cannot connect ({error}); start one with "

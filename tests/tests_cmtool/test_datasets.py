@@ -450,6 +450,10 @@ def test_a_scheduler_that_cannot_be_reached_is_named_and_nothing_is_written(tiny
         with pytest.raises(DatasetError, match=r"'tcp://127.0.0.1:1': cannot connect \(Timed out"):
             generate_dataset(tiny, out, scheduler="tcp://127.0.0.1:1")
     assert not out.exists()
+    # dask's own configuration as it was: a failed Client leaves the distributed scheduler
+    # asked for, and any later compute() in the process failed
+    assert dask.config.get("scheduler", None) is None
+    assert dask.delayed(sum)([1, 2]).compute() == 3
 
 
 def test_committed_dataset_reads_with_pyarrow_and_dask():
