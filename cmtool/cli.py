@@ -24,14 +24,8 @@ from . import __version__
 from .commands.analysis import cmd_bench, cmd_demo, cmd_diagnose, cmd_realism
 from .commands.common import CliError, finite_float, positive_float, seed_int
 from .commands.data import cmd_dataset_info, cmd_evaluate, cmd_generate, cmd_train
-from .commands.simulate import (
-    add_model_arguments,
-    cmd_fidelity,
-    cmd_frequencies,
-    cmd_simulate,
-    parse_defect,
-    parse_waviness,
-)
+from .commands.simulate import add_model_arguments, cmd_fidelity, cmd_frequencies, cmd_simulate
+from .commands.specs import parse_defect, parse_waviness
 from .vibration_zones import MACHINE_CLASSES, parse_zone_limits
 
 logger = logging.getLogger("cmtool")

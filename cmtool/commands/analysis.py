@@ -84,7 +84,7 @@ def cmd_diagnose(args: argparse.Namespace) -> int:
         raise CliError(f"{args.recording}: the file holds no shaft speed; give --rpm or --tacho")
     geometry = None
     if args.geometry:
-        from .simulate import parse_geometry
+        from .specs import parse_geometry
 
         geometry = parse_geometry(args.geometry)
     name = args.bearing or (geometry.name if geometry is not None else meta.get("bearing"))

@@ -538,7 +538,7 @@ def test_form_waviness_flag_simulates_the_bearings_own_form_errors(tmp_path, cap
     """``--form-waviness INNER,OUTER,BALL`` adds generators.form_waviness's rows (the lines of
     a real bearing's form errors) to the run; amplitudes outside [0, 2 um] or not three are
     refused naming the flag and the component."""
-    from cmtool.commands.simulate import parse_form_waviness
+    from cmtool.commands.specs import parse_form_waviness
     from cmtool.io import read_recording
 
     assert parse_form_waviness("1e-7, 0, 5e-8") == (1e-7, 0.0, 5e-8)
