@@ -233,6 +233,16 @@ class TachoSpeed:
     edge_times: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False, compare=False)
 
 
+#: Largest median change of a revolution's period from one revolution to the next (fraction
+#: of the median period) that a tachometer's channel may show. A shaft's inertia keeps it
+#: small: edges timed within a sample, 1-300 Hz shafts at 12 kHz, a run-up from 10 to 50 Hz
+#: in 10 s and a fifth of the pulses lost all stay under 0.6 %; an accelerometer's or noise
+#: channel read as pulses gives 40-150 % (datasets/small, white noise; stop 88). A channel
+#: ringing at one frequency in clean bursts can pass (its crossings within a burst are
+#: regular): with noise a fifth of the ringing's amplitude, 106 %; a twentieth, 9.9 %.
+TACHO_PERIOD_JUMP = 0.1
+
+
 def shaft_rate_from_tacho(pulses: np.ndarray, fs: float, pulses_per_rev: int = 1) -> TachoSpeed:
     """The shaft rate from a tachometer or key-phasor channel.
 
@@ -259,8 +269,9 @@ def shaft_rate_from_tacho(pulses: np.ndarray, fs: float, pulses_per_rev: int = 1
     Raises
     ------
     FeatureError
-        The channel has no two levels, or fewer than ``2 pulses_per_rev + 1`` rising edges
-        (two revolutions).
+        The channel has no two levels, fewer than ``2 pulses_per_rev + 1`` rising edges (two
+        revolutions), or revolutions whose periods jump by more than ``TACHO_PERIOD_JUMP``
+        from one to the next (median): no shaft's pulses.
     """
     x = check_record(pulses, function="shaft_rate_from_tacho", name="pulses", min_length=16)
     fs = check_fs(fs)
@@ -288,6 +299,15 @@ def shaft_rate_from_tacho(pulses: np.ndarray, fs: float, pulses_per_rev: int = 1
     revolutions = (times.size - 1) / pulses_per_rev
     rate = revolutions / float(times[-1] - times[0])
     per_rev = times[::pulses_per_rev]
+    periods = np.diff(per_rev)
+    jump = float(np.median(np.abs(np.diff(periods))) / np.median(periods))
+    if jump > TACHO_PERIOD_JUMP:
+        raise FeatureError(
+            f"pulses: one revolution's period differs from the next by {100 * jump:.0f} % "
+            f"(median of {periods.size - 1}), over the {100 * TACHO_PERIOD_JUMP:.0f} % a "
+            "shaft's inertia allows: no tachometer's pulse train (a vibration's channel? "
+            "pulses_per_rev too few for uneven marks?)"
+        )
     rates = 1.0 / np.diff(per_rev)
     variation = float(np.std(rates) / rate) if rates.size > 1 else 0.0
     return TachoSpeed(

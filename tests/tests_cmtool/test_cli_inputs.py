@@ -1381,6 +1381,10 @@ def test_the_speed_from_a_tacho_channel(tmp_path, capsys):
     # the channel diagnosed is no tacho; a folder's speeds are its manifest's
     assert main([*argv, "--tacho", "0"]) == 2
     assert "tacho channel 0 is the channel diagnosed" in capsys.readouterr().err
+    # another vibration channel given as the tacho (a CWRU file's fan end): refused
+    pd.DataFrame({"acc": x, "fan end": rng.standard_normal(n)}).to_csv(path, index=False)
+    assert main([*argv, "--tacho", "1"]) == 2
+    assert "no tachometer's pulse train (a vibration's channel?" in capsys.readouterr().err
     assert main(["diagnose", str(tmp_path), "--tacho", "1"]) == 2
     assert "--tacho reads one recording's speed" in capsys.readouterr().err
 

@@ -155,6 +155,30 @@ def test_a_tacho_without_pulses_is_refused_by_name():
         F.shaft_rate_from_tacho(one_rev, FS, pulses_per_rev=0)
 
 
+def test_a_vibration_given_as_the_tacho_is_refused_and_real_pulse_trains_are_not():
+    """A channel whose crossings come at random (noise; a bearing's impacts at random
+    spacing) read as pulses gave a "speed" (115,000 rpm from white noise at 12 kHz). A
+    shaft cannot change its period by 10 % from one revolution to the next; a tachometer's
+    pulses with their timing jitter, a run-up and lost pulses stay far under."""
+    rng = np.random.default_rng(11)
+    noise = rng.standard_normal(120000)
+    with pytest.raises(F.FeatureError, match=r"period differs from the next by \d+ % .*no tach"):
+        F.shaft_rate_from_tacho(noise, 12000.0)
+    starts = np.zeros(120000)
+    starts[np.cumsum(rng.integers(60, 180, 900))[:800]] = 1.0  # impacts at random spacing,
+    ring = np.exp(-np.arange(60) / 15.0) * np.sin(2 * np.pi * 2000.0 * np.arange(60) / 12000.0)
+    impacts = np.convolve(starts, ring)[:120000] + 0.2 * noise  # each ringing at 2 kHz
+    with pytest.raises(F.FeatureError, match="a vibration's channel"):
+        F.shaft_rate_from_tacho(impacts, 12000.0)
+    run_up = _pulse_train(lambda t: 10.0 + 4.0 * t, 12000.0, 10.0)  # 10 -> 50 Hz
+    assert F.shaft_rate_from_tacho(run_up, 12000.0).variation > 0.3
+    lost = _pulse_train(lambda t: np.full(t.size, 30.0), 12000.0, 10.0, noise=0.3)
+    edges = np.flatnonzero(np.diff((lost > 2.5).astype(int)) > 0)
+    for start in edges[rng.random(edges.size) < 0.2]:  # a fifth of the pulses missing
+        lost[start : start + 50] = 0.0
+    assert F.shaft_rate_from_tacho(lost, 12000.0).rate_hz == pytest.approx(30.0, rel=0.25)
+
+
 @pytest.mark.parametrize("fs", [12000.0, 48000.0])
 @pytest.mark.parametrize("order", [3.585, 20.0])
 def test_order_tracking_reads_the_record_at_equal_angles(fs, order):
