@@ -235,7 +235,7 @@ class TachoSpeed:
 
 #: Largest median change of a revolution's period from one revolution to the next (fraction
 #: of the median period) that a tachometer's channel may show. A shaft's inertia keeps it
-#: small: edges timed within a sample, 1-300 Hz shafts at 12 kHz, a run-up from 10 to 50 Hz
+#: small: edges timed within a sample, 5-300 Hz shafts at 12 kHz, a run-up from 10 to 50 Hz
 #: in 10 s and a fifth of the pulses lost all stay under 0.6 %; an accelerometer's or noise
 #: channel read as pulses gives 40-150 % (datasets/small, white noise; stop 88). A channel
 #: ringing at one frequency in clean bursts can pass (its crossings within a burst are
