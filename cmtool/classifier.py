@@ -21,7 +21,6 @@ from typing import Any
 import numpy as np
 import pandas as pd
 import sklearn
-from sklearn.base import clone
 from sklearn.ensemble import (
     ExtraTreesClassifier,
     HistGradientBoostingClassifier,
@@ -43,6 +42,7 @@ from generators import bearing
 from generators.params import check_int
 
 from . import __version__
+from .fits import fit_single_threaded, fold_fit, held_out_accuracy, run_fits
 from .inputs import check_record_lengths, checked_frame, checked_workers
 from .model_files import (  # the model files, kept importable from here
     MODEL_FORMAT,
@@ -334,29 +334,41 @@ def _out_of_fold(
     *,
     probabilities: bool = False,
     X_extra: np.ndarray | None = None,
+    workers: int = 1,
 ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
     """Each signal's prediction by the grouped fold's model that did not see its group.
 
     With ``probabilities`` also the class probabilities (columns: the sorted labels of
     ``y``; a class a fold's model never saw has 0) and those of ``X_extra`` (signals in no
     fold) averaged over the folds' models: what :func:`pooled_calibration` weighs. One fit
-    per fold serves the score and the calibration.
+    per fold serves the score and the calibration; the folds are fitted in ``workers``
+    processes (:func:`cmtool.fits.run_fits`).
     """
+    folds = list(GroupKFold(n_splits=n_splits).split(X, y, groups))
+    results = run_fits(_fold_calls(X, y, folds, estimator, probabilities, X_extra), workers)
+    return _assemble_folds(y, folds, results, probabilities, X_extra)
+
+
+def _fold_calls(X, y, folds, estimator, probabilities: bool, X_extra) -> list[tuple]:
+    """The :func:`cmtool.fits.fold_fit` calls of ``folds``, in their order."""
+    return [(fold_fit, (estimator, X, y, tr, te, probabilities, X_extra)) for tr, te in folds]
+
+
+def _assemble_folds(y, folds, results, probabilities: bool, X_extra) -> tuple:
+    """:func:`_out_of_fold`'s predictions from the folds' :func:`cmtool.fits.fold_fit`."""
     classes = np.array(sorted(set(y)))
     pred = np.empty_like(y)
     proba = np.zeros((len(y), classes.size)) if probabilities else None
     extra = None
     if probabilities and X_extra is not None and len(X_extra):
         extra = np.zeros((len(X_extra), classes.size))
-    folds = list(GroupKFold(n_splits=n_splits).split(X, y, groups))
-    for train_idx, test_idx in folds:
-        est = clone(estimator).fit(X[train_idx], y[train_idx])
-        pred[test_idx] = est.predict(X[test_idx])
+    for (_, test_idx), (predicted, p, p_extra, seen) in zip(folds, results, strict=True):
+        pred[test_idx] = predicted
         if proba is not None:
-            columns = np.searchsorted(classes, est.classes_)
-            proba[np.ix_(test_idx, columns)] = est.predict_proba(X[test_idx])
+            columns = np.searchsorted(classes, seen)
+            proba[np.ix_(test_idx, columns)] = p
             if extra is not None:
-                extra[:, columns] += est.predict_proba(X_extra) / len(folds)
+                extra[:, columns] += p_extra / len(folds)
     return pred, proba, extra
 
 
@@ -396,16 +408,15 @@ def extreme_masks(
     return top, bottom
 
 
-def _extrapolation(X, y, frame, estimator) -> dict[str, float]:
-    """Accuracy on each end of the speed and load ranges of a model trained without it."""
-    out = {}
+def _extrapolation_masks(frame: pd.DataFrame) -> list[tuple[str, np.ndarray]]:
+    """Each end of the speed and load ranges a model is scored on, trained without it."""
+    out = []
     for col in ("rpm", "radial_load_n"):
         masks = extreme_masks(frame[col].to_numpy())
         for side, test in zip(("above", "below"), masks, strict=True):
             if test.all() or not test.any():
                 continue
-            est = clone(estimator).fit(X[~test], y[~test])
-            out[f"{col}_{side}_training"] = float(accuracy_score(y[test], est.predict(X[test])))
+            out.append((f"{col}_{side}_training", test))
     return out
 
 
@@ -622,12 +633,12 @@ def train(
         ``recipe`` names in ``[training] classifier``, else the best grouped-CV score, which
         None always keeps.
     workers : int
-        Processes for the long stage, every signal's features and the rule detector's
-        evidence for the pooled calibration (one ``fault_evidence`` serves both), at least 1;
-        the bundle is the same for any count.
+        Processes, at least 1, for every signal's features and the rule detector's evidence
+        for the pooled calibration (one ``fault_evidence`` serves both), then for the model
+        fits, each on one thread (:mod:`cmtool.fits`); the bundle is the same for any count.
     progress : callable, optional
         ``progress(stage, done, total)`` after each chunk of signals (``stage``: ``"features
-        and rule evidence"``).
+        and rule evidence"``), then after each model fit (``"model fits"``).
 
     Returns
     -------
@@ -686,14 +697,24 @@ def train(
     )
     X, X_faint = table[: len(frame)], (table[len(frame) :] if len(faint) else None)
     y = frame["label"].astype(str).to_numpy()
-    scores, cv_predictions, probabilities = {}, {}, {}
+    # every model fit, in ``workers`` processes on one thread each (cmtool.fits): each
+    # candidate on each grouped fold (the probabilities for the calibration from the same
+    # fits, of each candidate that may be kept), then the kept one without each end of the
+    # speed and load ranges and on everything
+    folds = list(GroupKFold(n_splits=n_splits).split(X, y, groups))
+    masks = _extrapolation_masks(frame)
+    total = len(candidates) * len(folds) + len(masks) + 1
+    calls = []
     for name, clf in candidates.items():
-        est = make_pipeline(StandardScaler(), clf)
-        # the probabilities for the calibration from the same fits, of each candidate that
-        # may be kept
         keepable = classifier in (None, name)
-        pred, proba, proba_faint = _out_of_fold(
-            X, y, groups, est, n_splits, probabilities=keepable, X_extra=X_faint
+        est = make_pipeline(StandardScaler(), clf)
+        calls += _fold_calls(X, y, folds, est, keepable, X_faint)
+    results = run_fits(calls, workers, progress, total=total)
+    scores, cv_predictions, probabilities = {}, {}, {}
+    for i, name in enumerate(candidates):
+        mine = results[i * len(folds) : (i + 1) * len(folds)]
+        pred, proba, proba_faint = _assemble_folds(
+            y, folds, mine, classifier in (None, name), X_faint
         )
         scores[name] = float(balanced_accuracy_score(y, pred))
         cv_predictions[name], probabilities[name] = pred, (proba, proba_faint)
@@ -711,12 +732,15 @@ def train(
         rule=rule,
         out_of_fold=probabilities[best],
     )
-    extrapolation = _extrapolation(X, y, frame, head)
     pipeline = make_classifier(best, random_state=random_state, feature_set=feature_set)
     # the feature step is stateless: fit it, then fit the rest on the precomputed table
     pipeline.steps[0][1].fit(frame)
-    pipeline.steps[1][1].fit(X)
-    pipeline.steps[2][1].fit(pipeline.steps[1][1].transform(X), y)
+    scaled = pipeline.steps[1][1].fit(X).transform(X)
+    calls = [(held_out_accuracy, (head, X, y, test)) for _, test in masks]
+    calls.append((fit_single_threaded, (pipeline.steps[2][1], scaled, y)))
+    *held_out, fitted = run_fits(calls, workers, progress, done=total - len(calls), total=total)
+    extrapolation = dict(zip([key for key, _ in masks], held_out, strict=True))
+    pipeline.steps[2] = (pipeline.steps[2][0], fitted)
     return {
         "format": MODEL_FORMAT,
         "training_fingerprint": dataset_fingerprint(frame),

@@ -264,8 +264,8 @@ def build_parser() -> argparse.ArgumentParser:
         "--workers",
         type=_positive_int,
         default=os.cpu_count() or 1,
-        help="processes for the features and the rule evidence of the calibration (default: "
-        "all cores; the model is the same for any count)",
+        help="processes for the features, the rule evidence of the calibration and the model "
+        "fits (default: all cores; the model is the same for any count)",
     )
     _add_allow_incomplete(p)
     p.set_defaults(func=cmd_train)

@@ -165,19 +165,24 @@ def progress_bar(
 class StageBars:
     """``progress(stage, done, total)`` shown as a progress bar per stage (``COMMAND: stage``).
 
+    What a stage counts is ``units[stage]``, else ``unit``.
+
     A stage's bar is closed when the next stage reports; use as a context manager so that the
     last one is closed too.
     """
 
-    def __init__(self, command: str, unit: str = "signal") -> None:
-        self.command, self.unit = command, unit
+    def __init__(
+        self, command: str, unit: str = "signal", units: dict[str, str] | None = None
+    ) -> None:
+        self.command, self.unit, self.units = command, unit, dict(units or {})
         self.bars: dict[str, tqdm] = {}
 
     def __call__(self, stage: str, done: int, total: int) -> None:
         """Move ``stage``'s bar to ``done`` of ``total``."""
         if stage not in self.bars:
             self.close()
-            self.bars[stage] = progress_bar(total, f"{self.command}: {stage}", self.unit)
+            unit = self.units.get(stage, self.unit)
+            self.bars[stage] = progress_bar(total, f"{self.command}: {stage}", unit)
         self.bars[stage].update(done - self.bars[stage].n)
 
     def close(self) -> None:

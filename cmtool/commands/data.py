@@ -107,10 +107,11 @@ def cmd_train(args: argparse.Namespace) -> int:
 
     from ..classifier import save_model, scores_by_rig, train, visible_faults
     from ..datasets import read_dataset
+    from ..fits import FIT_STAGE
 
     frame = read_dataset(args.dataset, allow_incomplete=args.allow_incomplete)
     recipe = Path(args.dataset, "recipe.toml")
-    with StageBars("train") as progress:
+    with StageBars("train", units={FIT_STAGE: "fit"}) as progress:
         bundle = train(
             frame,
             recipe=recipe.read_text() if recipe.is_file() else "",

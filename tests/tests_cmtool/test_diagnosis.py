@@ -1264,12 +1264,14 @@ def test_train_on_two_workers_makes_the_same_model_and_reports_its_progress(
     small, light_forests, monkeypatch
 ):
     """``train(workers=2)`` extracts the features and weighs the rule detector's evidence for
-    the pooled calibration in two processes, chunk by chunk: the bundle is the one a single
-    process makes (scores, out-of-fold predictions, calibration, probabilities on other
-    signals), and the pass reports its progress up to its total. (Chunks of 5 signals per
-    worker here, so that several chunks meet their order; the labels read by name, so that a
-    calibration is fitted: see the test above.)"""
+    the pooled calibration in two processes, chunk by chunk, then fits the models in two
+    processes: the bundle is the one a single process makes (scores, out-of-fold
+    predictions, calibration, extrapolation, probabilities on other signals), and each pass
+    reports its progress up to its total. (Chunks of 5 signals per worker here, so that
+    several chunks meet their order; the labels read by name, so that a calibration is
+    fitted: see the test above.)"""
     import cmtool.classifier as classifier_module
+    from cmtool.fits import FIT_STAGE
 
     monkeypatch.setattr(classifier_module, "PROGRESS_CHUNK", 5)
     part = small.drop(columns="defect_kind").groupby("label").head(12).reset_index(drop=True)
@@ -1278,16 +1280,50 @@ def test_train_on_two_workers_makes_the_same_model_and_reports_its_progress(
     two = classifier_module.train(
         part, n_splits=3, workers=2, progress=lambda *r: reports.append(r)
     )
-    assert one["pooled_calibration"] is not None
-    for key in ("scores", "cv_predictions", "pooled_calibration", "feature_names"):
+    assert one["pooled_calibration"] is not None and one["extrapolation"]
+    for key in ("scores", "cv_predictions", "pooled_calibration", "extrapolation"):
         assert one[key] == two[key], key
+    assert one["feature_names"] == two["feature_names"]
     other = small.groupby("label").tail(3)
     np.testing.assert_array_equal(
         one["pipeline"].predict_proba(other), two["pipeline"].predict_proba(other)
     )
     # one pass: each signal's features and the rule's evidence for the calibration (one
     # fault_evidence serves both); 48 signals in chunks of 5 x 2
-    assert reports == [("features and rule evidence", done, 48) for done in (10, 20, 30, 40, 48)]
+    features_stage = [r for r in reports if r[0] != FIT_STAGE]
+    assert features_stage == [
+        ("features and rule evidence", done, 48) for done in (10, 20, 30, 40, 48)
+    ]
+    # then every fit, one by one: each candidate on each fold, the kept one without each end
+    # of the speed and load ranges, and on everything
+    fits = 4 * 3 + len(one["extrapolation"]) + 1
+    expected = [(FIT_STAGE, done, fits) for done in range(1, fits + 1)]
+    assert reports[len(features_stage) :] == expected
+    # the kept model was fitted on one thread, and keeps its candidate's parameters (a
+    # forest's n_jobs among them: it predicts on as many threads as it was made for)
+    kept = two["pipeline"].steps[-1][1].get_params()
+    assert kept == classifier_module.candidate_classifiers()[two["best"]].get_params()
+    forest = classifier_module.fit_single_threaded(
+        classifier_module.candidate_classifiers()["extra_trees"], np.eye(4), np.arange(4)
+    )
+    assert forest.get_params()["n_jobs"] == -1 and len(forest.estimators_) == 30
+
+
+def test_model_fits_in_workers_raise_their_warnings_here_once():
+    """A warning a fit raises in a worker process reaches the caller, once per message, and
+    the results come back in the calls' order."""
+    from cmtool.fits import run_fits
+
+    def warn_and_square(value: int) -> int:  # a local function: sent to the workers whole
+        import warnings
+
+        warnings.warn(f"fit {value}", UserWarning, stacklevel=1)
+        return value * value
+
+    calls = [(warn_and_square, (v,)) for v in (3, 1, 2, 1)]
+    with pytest.warns(UserWarning) as caught:
+        assert run_fits(calls, workers=2) == [9, 1, 4, 1]
+    assert sorted(str(w.message) for w in caught) == ["fit 1", "fit 2", "fit 3"]
 
 
 def test_train_weighs_each_signals_evidence_once(small, light_forests, monkeypatch):
