@@ -132,11 +132,14 @@ def candidate_classifiers(
     """
     weight = class_weight
     return {
+        # forests on one thread: on the few hundred or thousand signals a model predicts at
+        # once, scikit-learn's threads cost more than they spread (docs/performance.md, stop
+        # 89); train spreads its fits over processes (cmtool.fits)
         "random_forest": RandomForestClassifier(
-            n_estimators=300, random_state=random_state, n_jobs=-1, class_weight=weight
+            n_estimators=300, random_state=random_state, class_weight=weight
         ),
         "extra_trees": ExtraTreesClassifier(
-            n_estimators=500, random_state=random_state, n_jobs=-1, class_weight=weight
+            n_estimators=500, random_state=random_state, class_weight=weight
         ),
         "gradient_boosting": HistGradientBoostingClassifier(
             random_state=random_state, class_weight=weight

@@ -6,7 +6,8 @@ a few hundred signals is mostly scikit-learn's per-tree overhead, which its own 
 (``n_jobs=-1``) do not spread: on two cores they cost 30-85 % more CPU for the same wall time
 (stop 89, docs/performance.md). So every fit here runs on one thread, and the fits, which are
 independent, run in ``workers`` processes. A fit's trees do not depend on ``n_jobs``, so the
-model is the same for any count of workers.
+model is the same for any count of workers. (The candidates of :mod:`cmtool.classifier` are
+made single-threaded anyway; a model given with threads gets them back after its fit.)
 """
 
 from __future__ import annotations

@@ -143,7 +143,8 @@ def realism(
     random_state : int
         Seed of the forest.
     n_jobs : int, optional
-        Workers of the feature extraction.
+        Worker processes (joblib's count: -1 all cores) of the feature extraction and of the
+        forests' fits; None: one, this one.
     progress : callable, optional
         ``progress(stage, done, total)`` after each chunk of signals whose features are done.
     n_estimators : int
@@ -169,6 +170,7 @@ def realism(
         values tell that class's measured segments from its simulated signals best (each
         feature's own ROC AUC farthest from 0.5; :func:`feature_difference`).
     """
+    from joblib import effective_n_jobs
     from sklearn.ensemble import RandomForestClassifier
     from sklearn.metrics import roc_auc_score, roc_curve
     from sklearn.model_selection import GroupKFold
@@ -176,6 +178,7 @@ def realism(
     from features import FeatureExtractor, feature_units
 
     from .classifier import transform_in_chunks
+    from .fits import fit_single_threaded, fold_fit, run_fits
 
     if isinstance(n_estimators, bool) or not isinstance(n_estimators, int) or n_estimators < 1:
         raise ValueError(f"n_estimators = {n_estimators!r} is outside the allowed range [1, inf)")
@@ -202,16 +205,20 @@ def realism(
     y = np.r_[np.zeros(len(simulated)), np.ones(len(measured))]
     groups = np.r_[[f"sim-{i}" for i in range(len(simulated))], groups_measured]
     folds = min(5, recordings)
+    forest = RandomForestClassifier(
+        n_estimators=n_estimators, class_weight="balanced", random_state=random_state
+    )
+    # each fold's forest and the one on everything (the features' importances), in n_jobs
+    # processes on one thread each (cmtool.fits: the same forests, faster on a few hundred
+    # signals than a forest's own threads)
+    splits = list(GroupKFold(n_splits=folds).split(X, y, groups))
+    calls = [(fold_fit, (forest, X, y, train, test, True, None)) for train, test in splits]
+    calls.append((fit_single_threaded, (forest, X, y)))
+    workers = 1 if n_jobs is None else effective_n_jobs(n_jobs)
+    *fitted_folds, forest = run_fits(calls, workers)
     scores = np.zeros(len(y))
-    for train, test in GroupKFold(n_splits=folds).split(X, y, groups):
-        forest = RandomForestClassifier(
-            n_estimators=n_estimators,
-            class_weight="balanced",
-            random_state=random_state,
-            n_jobs=-1,
-        )
-        forest.fit(X[train], y[train])
-        scores[test] = forest.predict_proba(X[test])[:, 1]
+    for (_, test), (_, proba, _, _) in zip(splits, fitted_folds, strict=True):
+        scores[test] = proba[:, 1]
     auc = float(roc_auc_score(y, scores))
     fpr, tpr, _ = roc_curve(y, scores)
     auc_by: dict[str, dict[str, dict[str, Any]]] = {}
@@ -255,12 +262,6 @@ def realism(
                 ]
                 telling.sort(key=lambda d: -abs(d["auc"] - 0.5))
                 auc_by[column][value]["differences"] = telling[:CLASS_DIFFERENCES]
-    forest = RandomForestClassifier(
-        n_estimators=n_estimators,
-        class_weight="balanced",
-        random_state=random_state,
-        n_jobs=-1,
-    ).fit(X, y)
     ranked = sorted(zip(names, forest.feature_importances_, strict=True), key=lambda item: -item[1])
     column = {name: j for j, name in enumerate(names)}
     differences = [

@@ -1270,6 +1270,8 @@ def test_train_on_two_workers_makes_the_same_model_and_reports_its_progress(
     reports its progress up to its total. (Chunks of 5 signals per worker here, so that
     several chunks meet their order; the labels read by name, so that a calibration is
     fitted: see the test above.)"""
+    from sklearn.ensemble import ExtraTreesClassifier
+
     import cmtool.classifier as classifier_module
     from cmtool.fits import FIT_STAGE
 
@@ -1299,14 +1301,14 @@ def test_train_on_two_workers_makes_the_same_model_and_reports_its_progress(
     fits = 4 * 3 + len(one["extrapolation"]) + 1
     expected = [(FIT_STAGE, done, fits) for done in range(1, fits + 1)]
     assert reports[len(features_stage) :] == expected
-    # the kept model was fitted on one thread, and keeps its candidate's parameters (a
-    # forest's n_jobs among them: it predicts on as many threads as it was made for)
+    # the kept model keeps its candidate's parameters; a model made for threads is fitted on
+    # one and given its threads back (for predicting)
     kept = two["pipeline"].steps[-1][1].get_params()
     assert kept == classifier_module.candidate_classifiers()[two["best"]].get_params()
-    forest = classifier_module.fit_single_threaded(
-        classifier_module.candidate_classifiers()["extra_trees"], np.eye(4), np.arange(4)
-    )
+    threads = ExtraTreesClassifier(n_estimators=30, n_jobs=-1)
+    forest = classifier_module.fit_single_threaded(threads, np.eye(4), np.arange(4))
     assert forest.get_params()["n_jobs"] == -1 and len(forest.estimators_) == 30
+    assert not hasattr(threads, "estimators_")  # the one given is left as it came
 
 
 def test_model_fits_in_workers_raise_their_warnings_here_once():
