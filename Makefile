@@ -21,10 +21,13 @@ lint: $(STAMP)
 
 # the numba kernels compiled first in two processes (from an empty cache: 1.5 minutes, then
 # loaded), then two pytest-xdist workers (the CI machine has two cores), tests handed out as
-# workers free up (worksteal)
+# workers free up (worksteal). Python's bytecode caches are written even where the machine
+# sets PYTHONDONTWRITEBYTECODE (an empty value unsets it): without them every process (each
+# worker, each model-fit process, each `cmtool` subprocess of the tests) compiles the sources
+# and pytest rewrites every test module again, 7 s of each worker's collection (stop 89).
 test: lint
-	PYTHONPATH=. $(BIN)/python tests/kernel_warmer.py --processes 2
-	$(BIN)/python -m pytest -n 2 --dist worksteal
+	PYTHONDONTWRITEBYTECODE= PYTHONPATH=. $(BIN)/python tests/kernel_warmer.py --processes 2
+	PYTHONDONTWRITEBYTECODE= $(BIN)/python -m pytest -n 2 --dist worksteal
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_model.py
