@@ -45,7 +45,13 @@ from .diagnosis import (  # kept importable from here
     overall_band,
     overall_velocity,
 )
-from .inputs import checked_geometry, checked_model, checked_rate, checked_record
+from .inputs import (
+    checked_context_extra,
+    checked_geometry,
+    checked_model,
+    checked_rate,
+    checked_record,
+)
 from .pooling import (  # the pooled verdict, kept importable from here
     CANONICAL,
     calibrated_confidence,
@@ -206,7 +212,10 @@ def diagnose_signal(
     model : fitted pipeline, optional
         A model from ``cmtool train``: its verdict is added.
     context_extra : dict, optional
-        Extra metadata columns for the model.
+        Further columns for a model of one's own that reads them (column -> value); refused
+        without a model, for a column computed here (``fs_hz`` and the rates) and for a
+        cmtool model, whose features read no other column
+        (:func:`cmtool.inputs.checked_context_extra`).
     baseline : ndarray, optional
         A healthy recording of the same machine (same sensor and unit); the ISO 15242
         velocity bands and the waviness line are then reported against it [dB].
@@ -250,6 +259,7 @@ def diagnose_signal(
     """
     x, fs, geometry = checked_record(x), checked_rate(fs), checked_geometry(geometry)
     model = checked_model(model)
+    context_extra = checked_context_extra(context_extra, model)
     scale = None if unit is None else VIBRATION_UNITS.get(unit)
     if unit is not None and scale is None:
         raise ValueError(f"unit = {unit!r} is not one of {', '.join(VIBRATION_UNITS)}")
@@ -468,7 +478,7 @@ def diagnose_signal(
         _against_baseline(diagnosis, baseline, baseline_fs or fs, rpm, geometry)
     diagnosis.rule_verdict = {"label": verdict, "confidence": confidence}
     if model is not None:
-        diagnosis.model_verdict = model_verdict(model, x, fs, freqs, context_extra or {})
+        diagnosis.model_verdict = model_verdict(model, x, fs, freqs, context_extra)
         diagnosis.warnings += outside_training(model, rpm, fs, geometry.name)
         combine_verdicts(diagnosis)
         if scan is not None and scan["found"]:

@@ -154,6 +154,63 @@ def checked_model(model: Any) -> Any:
     return model
 
 
+def checked_context_extra(extra: Any, model: Any) -> dict:
+    """Further context columns for a model (``diagnose_signal``'s ``context_extra``), checked.
+
+    The columns the rule and a cmtool model share (the sample rate and the bearing's rates)
+    come from ``fs``, the speed and the bearing, and are never replaced; a cmtool model's
+    features read no other column, so for one any key would be silently ignored and is
+    refused. A pipeline of one's own may read further columns: they are passed to it.
+
+    Parameters
+    ----------
+    extra : mapping or None
+        Column name -> value.
+    model : dict, fitted pipeline or None
+        The model (:func:`checked_model`).
+
+    Returns
+    -------
+    dict
+        ``extra`` as a dict (empty for None).
+
+    Raises
+    ------
+    ValueError
+        Not a mapping; given without a model; a key that would replace a computed column; a
+        key a cmtool model does not read.
+    """
+    from features import CONTEXT_COLUMNS, FeatureExtractor
+
+    if extra is None:
+        return {}
+    if not hasattr(extra, "keys"):
+        raise ValueError(f"context_extra = {extra!r} is not a mapping of column name to value")
+    extra = dict(extra)
+    if not extra:
+        return extra
+    if model is None:
+        raise ValueError(
+            f"context_extra = {extra!r} gives a model further columns, and no model is given"
+        )
+    computed = {"signal", "bsf_hz", *CONTEXT_COLUMNS.values()}
+    for key in sorted(map(str, extra)):
+        if key in computed:
+            raise ValueError(
+                f"context_extra[{key!r}] would replace a column computed from fs, rpm and the "
+                "bearing (the rule's rates and the model's must be the same): give those instead"
+            )
+    pipeline = model["pipeline"] if isinstance(model, dict) else model
+    steps = getattr(pipeline, "steps", None)
+    if steps and isinstance(steps[0][1], FeatureExtractor):
+        raise ValueError(
+            f"context_extra[{sorted(map(str, extra))[0]!r}]: a cmtool model's features read no "
+            f"column but the signal and {', '.join(sorted(computed - {'signal'}))}, all "
+            "computed here; context_extra is for a pipeline of one's own that reads more"
+        )
+    return extra
+
+
 def checked_workers(workers: Any, name: str = "workers") -> int:
     """A count of worker processes or threads: an integer of at least 1.
 

@@ -1479,3 +1479,45 @@ def test_order_tracking_keeps_a_drifting_machines_fault_lines(tmp_path, capsys):
         (tmp_path / "MANIFEST.csv").write_text(rows.splitlines()[0] + "\n" + cells + "\n")
         assert main(["diagnose", str(tmp_path), "--report", str(tmp_path / "out2")]) == 2
         assert said in capsys.readouterr().err
+
+
+class _ReadsGain:
+    """A model of one's own that reads a further column, ``gain``: outer race above 1."""
+
+    classes_ = np.array(["healthy", "outer race"])
+    seen: list = []
+
+    def predict(self, frame):
+        return np.where(frame["gain"] > 1, "outer race", "healthy")
+
+    def predict_proba(self, frame):
+        _ReadsGain.seen.append(frame["gain"].tolist())
+        outer = (frame["gain"].to_numpy() > 1).astype(float)
+        return np.column_stack([1.0 - outer, outer])
+
+
+def test_context_extra_reaches_a_model_that_reads_it_and_is_refused_where_it_would_be_lost(
+    small_bundle,
+):
+    """``diagnose_signal(context_extra=...)``: its columns reach a pipeline of one's own; a
+    column that would replace one computed from fs, rpm and the bearing is refused (the rule's
+    rates and the model's would differ), and so is any for a cmtool model, whose features read
+    no other column (stop 88 found them silently ignored), or with no model at all."""
+    from cmtool import diagnose_signal
+
+    x = np.random.default_rng(8).standard_normal(24000)
+    custom = _ReadsGain()
+    report = diagnose_signal(x, 12000.0, 1797, "6205", model=custom, context_extra={"gain": 2})
+    assert report.model_verdict["label"] == "outer race" and _ReadsGain.seen[-1] == [2]
+    cases = [
+        (small_bundle, {"gain": 2}, "context_extra\\['gain'\\]: a cmtool model's features read"),
+        (custom, {"bpfo_hz": 100.0}, "context_extra\\['bpfo_hz'\\] would replace a column"),
+        (small_bundle, {"fs_hz": 1.0}, "context_extra\\['fs_hz'\\] would replace a column"),
+        (None, {"gain": 2}, "gives a model further columns, and no model is given"),
+        (custom, [("gain", 2)], "is not a mapping of column name to value"),
+    ]
+    for model, extra, message in cases:
+        with pytest.raises(ValueError, match=message):
+            diagnose_signal(x, 12000.0, 1797, "6205", model=model, context_extra=extra)
+    # nothing or an empty mapping: as before
+    assert diagnose_signal(x, 12000.0, 1797, "6205", model=small_bundle, context_extra={})
