@@ -1,7 +1,9 @@
 """Wall time of ``cmtool train``'s work on one and on two workers, and the same model.
 
 ``cmtool.classifier.train`` computes each signal's features and the rule detector's evidence
-for the pooled calibration in one pass (one ``fault_evidence`` serves both), in ``workers``
+for the pooled calibration in one pass (one ``fault_evidence`` serves both), then fits the
+models (each candidate on each grouped fold, the kept one without each end of the speed and
+load ranges and on everything; ``cmtool.fits``, since stop 89), each in ``workers``
 processes. This trains on a dataset with each worker count, prints the wall time, and
 checks that the bundles agree (scores, out-of-fold predictions, calibration, probabilities
 on the dataset's first signals). Default dataset: ``datasets/small``; docs/performance.md
@@ -21,7 +23,7 @@ from cmtool.classifier import train
 from cmtool.datasets import read_dataset
 
 REPO = Path(__file__).resolve().parents[1]
-COMPARED = ("scores", "cv_predictions", "pooled_calibration", "feature_names")
+COMPARED = ("scores", "cv_predictions", "pooled_calibration", "extrapolation", "feature_names")
 
 
 def main(dataset: Path, workers: list[int]) -> None:
