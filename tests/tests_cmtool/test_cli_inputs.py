@@ -1521,3 +1521,35 @@ def test_context_extra_reaches_a_model_that_reads_it_and_is_refused_where_it_wou
             diagnose_signal(x, 12000.0, 1797, "6205", model=model, context_extra=extra)
     # nothing or an empty mapping: as before
     assert diagnose_signal(x, 12000.0, 1797, "6205", model=small_bundle, context_extra={})
+
+
+def test_a_commands_stage_bars_count_what_each_stage_counts(monkeypatch):
+    """``StageBars``: one bar per stage, the one before closed when the next reports, each
+    counting its own unit (``cmtool train``: signals, then model fits)."""
+    import cmtool.commands.common as common
+    from cmtool.fits import FIT_STAGE
+
+    made = []
+
+    class Bar:
+        def __init__(self, total, desc, unit):
+            self.total, self.desc, self.unit, self.n, self.closed = total, desc, unit, 0, False
+            made.append(self)
+
+        def update(self, step):
+            self.n += step
+
+        def close(self):
+            self.closed = True
+
+    monkeypatch.setattr(common, "progress_bar", Bar)
+    with common.StageBars("train", units={FIT_STAGE: "fit"}) as progress:
+        progress("features and rule evidence", 10, 20)
+        progress("features and rule evidence", 20, 20)
+        progress(FIT_STAGE, 3, 25)
+        assert made[0].closed and not made[1].closed
+    assert [(b.desc, b.unit, b.n, b.total) for b in made] == [
+        ("train: features and rule evidence", "signal", 20, 20),
+        (f"train: {FIT_STAGE}", "fit", 3, 25),
+    ]
+    assert made[1].closed
