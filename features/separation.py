@@ -26,7 +26,6 @@ from collections.abc import Sequence
 
 import numpy as np
 from scipy import ndimage, sparse
-from scipy import signal as sp_signal
 from scipy.sparse import linalg as sparse_linalg
 
 from ._validate import FeatureError, check_fs, check_positive, check_record
@@ -38,6 +37,7 @@ from .band_selection import (  # noqa: F401 (moved in stop 78, still exported he
     fault_band,
     select_band,
 )
+from .chirp_z import ChirpZ, unit_phasor
 from .false_alarm import (  # noqa: F401 (moved in stop 56, still exported here)
     CALIBRATION_DB,
     FALSE_ALARM,
@@ -280,22 +280,16 @@ class _HarmonicTransforms:
     :meth:`synthesise` a series' sum in time: the analysis evaluates the weighted signal's
     transform at k f0 (k = 1 .. count), the synthesis the harmonic series at every sample, each in
     O((n + count) log(n + count)). Setting a transform up (its chirp and the filter's FFT)
-    costs as much as applying it, so the passes of :func:`remove_harmonics` share them, and so
-    do records of the same length, rate and fundamental (:func:`_harmonic_transforms`).
+    costs more than applying it, so the passes of :func:`remove_harmonics` share them,
+    and so do records of the same length, rate and fundamental (:func:`_harmonic_transforms`).
     """
 
     def __init__(self, n: int, f0: float, offset: float, first: int, count: int, fs: float) -> None:
-        step = np.exp(2j * np.pi * f0 / fs)
-        # the series' first line: step itself for a harmonic series (the same bits as before
-        # offsets existed), offset + first f0 for a lattice slice
-        start = (
-            step
-            if offset == 0.0 and first == 1
-            else np.exp(2j * np.pi * (offset + first * f0) / fs)
-        )
-        self.analysis = sp_signal.CZT(n, m=count, w=1 / step, a=start)
-        self.synthesis = sp_signal.CZT(count, m=n, w=step, a=1.0)
-        self.ramp = start ** np.arange(n)
+        step = f0 / fs  # turns per sample between neighbouring lines
+        start = (offset + first * f0) / fs  # the series' first line
+        self.analysis = ChirpZ(n, count, -step, start)
+        self.synthesis = ChirpZ(count, n, step, 0.0)
+        self.ramp = unit_phasor(start * np.arange(n, dtype=float))
 
     @property
     def nbytes(self) -> int:

@@ -13,7 +13,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.fft
-from scipy.signal import czt
 
 from ._validate import (
     FeatureError,
@@ -22,6 +21,7 @@ from ._validate import (
     check_positive,
     check_record,
 )
+from .chirp_z import ChirpZ
 from .instrument_floor import instrument_floor_median
 from .spectra import peak_offset_bins
 
@@ -116,10 +116,9 @@ def _padded_spectrum(xw: np.ndarray, points: int, first_bin: int, last_bin: int)
     if scipy.fft.next_fast_len(points, real=True) == points:
         return np.abs(np.fft.rfft(xw, points))
     spectrum = np.zeros(points // 2 + 1)
-    step = np.exp(-2j * np.pi / points)
-    start = np.exp(2j * np.pi * first_bin / points)
     count = last_bin - first_bin + 1
-    spectrum[first_bin : last_bin + 1] = np.abs(czt(xw, m=count, w=step, a=start))
+    transform = ChirpZ(xw.size, count, -1.0 / points, first_bin / points)
+    spectrum[first_bin : last_bin + 1] = np.abs(transform(xw))
     return spectrum
 
 
