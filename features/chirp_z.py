@@ -15,7 +15,18 @@ __all__ = ["ChirpZ", "unit_phasor"]
 
 
 def unit_phasor(turns: np.ndarray) -> np.ndarray:
-    """exp(2 pi i turns), from the fraction of a turn (the whole turns dropped exactly)."""
+    """exp(2 pi i turns), from the fraction of a turn (the whole turns dropped exactly).
+
+    Parameters
+    ----------
+    turns : ndarray
+        Phases [turns].
+
+    Returns
+    -------
+    ndarray of complex
+        The unit phasors.
+    """
     return np.exp(2j * np.pi * (turns - np.round(turns)))
 
 
