@@ -290,15 +290,12 @@ class _HarmonicTransforms:
         self.analysis = ChirpZ(n, count, -step, start)
         self.synthesis = ChirpZ(count, n, step, 0.0)
         self.ramp = unit_phasor(start * np.arange(n, dtype=float))
-
-    @property
-    def nbytes(self) -> int:
-        """Memory held by the two transforms and the ramp [bytes]."""
         arrays = [self.ramp]
         for transform in (self.analysis, self.synthesis):
-            held = getattr(transform, "__dict__", {}).values()
-            arrays += [v for v in held if isinstance(v, np.ndarray)]
-        return sum(a.nbytes for a in arrays)
+            arrays += [v for v in vars(transform).values() if isinstance(v, np.ndarray)]
+        #: Memory held by the two transforms and the ramp [bytes] (counted once: the cache
+        #: sums it over every kept family at each insert).
+        self.nbytes = sum(a.nbytes for a in arrays)
 
     def analyse(self, y: np.ndarray, weights: np.ndarray) -> np.ndarray:
         """Hann-weighted projections of ``y`` on harmonics 1 .. count (``weights``: unit sum)."""
