@@ -73,19 +73,40 @@ def _median_density(floor_bins: int) -> tuple[np.ndarray, np.ndarray]:
     return x, density
 
 
+#: Beyond this k x (the line over the floor's median, in Rayleigh scales) exp(-(k x)^2 / 2)
+#: is exactly 0.0 in float64 (it underflows below exp(-745.2)), and so is the exceedance
+#: term of :func:`_exceedance`.
+_UNDERFLOW_KX = math.sqrt(1500.0)
+#: Values of k taken together in :func:`_exceedance` (rows of one array).
+_K_BLOCK = 20
+
+
 def _exceedance(k, searched_bins: int, floor_bins: int):
     """P(max of ``searched_bins`` Rayleigh bins > k x the median of ``floor_bins`` others).
 
-    ``k`` a float or an array of them (the result has its shape).
+    ``k`` a float or an array of them (the result has its shape). The integral over the
+    median's density is a sum over its grid. A term whose exp(-(k x)^2 / 2) underflows is
+    exactly +0.0, so it is left at zero instead of computed: each row is still summed whole
+    (the same length and the same pairwise summation), so the result is the same to the bit
+    as evaluating every term, in a third to a half of the time for the ratios the evidence
+    reads (docs/performance.md, stop 91).
     """
     x, density = _median_density(floor_bins)
     k = np.asarray(k, dtype=float)
     flat = np.atleast_1d(k).ravel()
     out = np.empty(flat.size)
-    for start in range(0, flat.size, 200):
-        kk = flat[start : start + 200, None]
-        above = -np.expm1(searched_bins * np.log1p(-np.exp(-0.5 * (kk * x) ** 2)))
-        out[start : start + 200] = np.sum(above * density, axis=1) * (x[1] - x[0])
+    order = np.argsort(flat, kind="stable")  # blocks of similar k share their reach in x
+    for start in range(0, flat.size, _K_BLOCK):
+        rows = order[start : start + _K_BLOCK]
+        kk = flat[rows, None]
+        smallest = float(kk.min())
+        # grid points whose k x can stay under the cut-off for the block's smallest k
+        reach = x.size if smallest <= 0.0 else int(np.searchsorted(x, _UNDERFLOW_KX / smallest))
+        reach = min(x.size, reach + 1)
+        above = np.zeros((kk.shape[0], x.size))
+        xs = x[:reach]
+        above[:, :reach] = -np.expm1(searched_bins * np.log1p(-np.exp(-0.5 * (kk * xs) ** 2)))
+        out[rows] = np.sum(above * density, axis=1) * (x[1] - x[0])
     return float(out[0]) if k.ndim == 0 else out.reshape(k.shape)
 
 

@@ -311,6 +311,48 @@ def test_line_probabilities_share_the_threshold_scale():
         assert np.all(np.diff(probabilities) <= 0.0)
 
 
+def test_the_exceedance_leaves_out_only_terms_that_are_exactly_zero():
+    # _exceedance skips the grid points where exp(-(k x)^2 / 2) underflows; summed over the
+    # whole row, it must give the bits of evaluating every term, for curve grids, odd k
+    # (the cut-off's neighbours, 0, huge values), arrays in any order and scalars
+    from features.false_alarm import (
+        _CURVE_DB,
+        _UNDERFLOW_KX,
+        CALIBRATION_DB,
+        _exceedance,
+        _median_density,
+    )
+
+    def every_term(k, searched, floor):
+        x, density = _median_density(floor)
+        kk = np.atleast_1d(np.asarray(k, dtype=float))[:, None]
+        with np.errstate(divide="ignore"):
+            above = -np.expm1(searched * np.log1p(-np.exp(-0.5 * (kk * x) ** 2)))
+        return np.sum(above * density, axis=1) * (x[1] - x[0])
+
+    rng = np.random.default_rng(91)
+    x, _ = _median_density(3)
+    cut = _UNDERFLOW_KX / x[1::97]
+    ks = np.concatenate(
+        [
+            10.0 ** ((_CURVE_DB - CALIBRATION_DB) / 20.0) * 1.1774,
+            np.nextafter(cut, 0.0),
+            cut,
+            np.nextafter(cut, np.inf),
+            [0.0, 1e-9, 1e6],
+            10.0 ** rng.uniform(-3.0, 4.0, 500),
+        ]
+    )
+    ks = ks[rng.permutation(ks.size)]
+    with np.errstate(divide="ignore"):
+        for searched, floor in ((1, 3), (5, 25), (13, 50), (125, 400)):
+            got = _exceedance(ks, searched, floor)
+            want = every_term(ks, searched, floor)
+            assert np.array_equal(got.view(np.int64), want.view(np.int64)), (searched, floor)
+            for k in ks[:20]:
+                assert _exceedance(float(k), searched, floor) == every_term(k, searched, floor)[0]
+
+
 def _family(ratios, bins=5, floor=100):
     names = ("1x", "2x", "3x", "1x-", "1x+")[: len(ratios)]
     return [(n, (r, 100.0, bins, floor)) for n, r in zip(names, ratios, strict=True)]
