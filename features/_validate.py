@@ -3,8 +3,15 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 
 import numpy as np
+
+#: Largest sample magnitude a record may hold: the features take samples to the fourth power
+#: (kurtosis, spectral kurtosis) and sum them, which overflows float64 (1.8e308) beyond about
+#: 1e75 for a record of a billion samples; 1e60 leaves room. Any vibration record in any unit
+#: lies far under it: a larger value is a wrong unit or a corrupt file.
+MAX_ABS_SAMPLE = 1e60
 
 
 class FeatureError(ValueError):
@@ -12,7 +19,16 @@ class FeatureError(ValueError):
 
 
 def check_signal(x: object, *, name: str = "x", min_length: int = 2, axis: int = -1) -> np.ndarray:
-    """Return ``x`` as float64 with at least ``min_length`` finite samples on its last axis."""
+    """Return ``x`` as float64 with at least ``min_length`` finite samples on its last axis.
+
+    A complex ``x`` is refused (its imaginary part would be dropped without a word), and so is
+    one with a sample larger than ``MAX_ABS_SAMPLE`` in magnitude.
+    """
+    if np.iscomplexobj(x):
+        raise FeatureError(
+            f"{name} is complex (dtype {np.asarray(x).dtype}); a vibration record is real: "
+            "give its real part (an analytic signal's envelope is its absolute value)"
+        )
     arr = np.asarray(x, dtype=np.float64)
     if arr.ndim == 0:
         raise FeatureError(
@@ -28,6 +44,13 @@ def check_signal(x: object, *, name: str = "x", min_length: int = 2, axis: int =
     if not np.all(np.isfinite(arr)):
         bad = int(np.count_nonzero(~np.isfinite(arr)))
         raise FeatureError(f"{name} contains {bad} non-finite values (NaN or inf)")
+    largest = float(np.max(np.abs(arr))) if arr.size else 0.0
+    if largest > MAX_ABS_SAMPLE:
+        raise FeatureError(
+            f"{name} holds a sample of magnitude {largest:.3g}, outside the allowed range "
+            f"|{name}| <= {MAX_ABS_SAMPLE:g} (fourth powers of it overflow float64): a wrong "
+            "unit or a corrupt file"
+        )
     return arr
 
 
@@ -88,3 +111,44 @@ def check_band(band: object, fs: float) -> tuple[float, float]:
             f"fs/2 = {fs / 2:g} Hz"
         )
     return low, high
+
+
+def check_rates(
+    name: str, rates: object, *, fs: float | None = None, allow_empty: bool = True
+) -> dict[str, float]:
+    """Return a mapping of names to rates [Hz] as floats, each positive and finite.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name in messages (``fault_frequencies``, ``rates``).
+    rates : mapping of str to float
+        The rates [Hz].
+    fs : float, optional
+        Sample rate [Hz]: when given, each rate must lie under fs/2 (a spectrum of the record
+        holds nothing above it).
+    allow_empty : bool
+        Whether an empty mapping is allowed.
+
+    Returns
+    -------
+    dict of str to float
+        The rates [Hz], in the mapping's order.
+    """
+    if not isinstance(rates, Mapping):
+        raise FeatureError(
+            f"{name} = {rates!r:.80} is not a mapping of names to rates in Hz "
+            "(e.g. {'bpfo': 107.4, 'bpfi': 162.2})"
+        )
+    if not rates and not allow_empty:
+        raise FeatureError(f"{name} is empty: give at least one rate in Hz")
+    out = {}
+    for key, value in rates.items():
+        rate = check_positive(f"{name}[{key!r}]", value, unit="Hz")
+        if fs is not None and rate >= fs / 2:
+            raise FeatureError(
+                f"{name}[{key!r}] = {rate:g} Hz is outside the allowed range (0, fs/2 = "
+                f"{fs / 2:g}) Hz"
+            )
+        out[key] = rate
+    return out

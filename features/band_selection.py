@@ -22,6 +22,7 @@ from ._validate import (
     check_count,
     check_fs,
     check_positive,
+    check_rates,
     check_record,
 )
 from .false_alarm import FLOOR_BINS, SEARCHED_BINS, detection_threshold_db
@@ -264,10 +265,9 @@ def select_band(
     """
     x = check_record(x, function="select_band", min_length=64)
     fs = check_fs(fs)
-    if not rates:
-        raise FeatureError("rates is empty: give at least one fault rate in Hz")
-    names = tuple(rates)
-    values = np.array([check_positive(f"rates[{k!r}]", rates[k], unit="Hz") for k in names])
+    checked = check_rates("rates", rates, fs=fs, allow_empty=False)
+    names = tuple(checked)
+    values = np.array([checked[k] for k in names])
     if min_bandwidth is None:
         min_bandwidth = min(3.0 * float(values.max()), fs / 4)
     bands = candidate_bands(

@@ -12,7 +12,7 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
-from ._validate import FeatureError, check_count, check_positive
+from ._validate import FeatureError, check_count, check_positive, check_rates
 
 __all__ = [
     "line_snr",
@@ -238,7 +238,7 @@ def fault_bands(
         raise FeatureError(f"n_harmonics = {n_harmonics} is outside the allowed range [1, inf)")
     sidebands = dict(sidebands or {})
     rows = []
-    for fault, f0 in fault_frequencies.items():
+    for fault, f0 in check_rates("fault_frequencies", fault_frequencies).items():
         f0 = check_positive(f"fault_frequencies[{fault!r}]", f0, unit="Hz")
         bw = width if width is not None else relative_width * f0
         bw = check_positive("width", bw, unit="Hz")

@@ -22,7 +22,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ._validate import FeatureError, check_count, check_fs, check_record
+from ._validate import FeatureError, check_count, check_fs, check_rates, check_record
 from .envelope import envelope_spectrum, kurtogram
 from .evidence import slip_line
 
@@ -109,6 +109,7 @@ def envelope_scores(
     """
     x = check_record(x, function="envelope_scores", min_length=64)
     fs = check_fs(fs)
+    fault_frequencies = check_rates("fault_frequencies", fault_frequencies, fs=fs)
     if band is None:
         band = (FIXED_BAND[0] * fs, FIXED_BAND[1] * fs)
     freqs, amp = envelope_spectrum(x, fs, band=band, method="squared", prewhitening=prewhitening)

@@ -29,6 +29,7 @@ from ._validate import (
     check_count,
     check_fs,
     check_positive,
+    check_rates,
     check_record,
     check_signal,
 )
@@ -224,6 +225,8 @@ def envelope_spectrum(
     """
     x = check_record(x, function="envelope_spectrum", min_length=8)
     fs = check_fs(fs)
+    if fault_frequencies is not None:
+        fault_frequencies = check_rates("fault_frequencies", fault_frequencies, fs=fs)
     if prewhitening:
         x = prewhiten(x)
     if band is None and fault_frequencies:

@@ -28,7 +28,7 @@ import numpy as np
 from scipy import ndimage, sparse
 from scipy.sparse import linalg as sparse_linalg
 
-from ._validate import FeatureError, check_fs, check_positive, check_record
+from ._validate import check_band, check_fs, check_positive, check_record
 from .band_selection import (  # noqa: F401 (moved in stop 78, still exported here)
     ANALYSER_RATIO,
     BAND_FLOOR_FACTOR,
@@ -477,9 +477,9 @@ def discrete_over_random_db(
     >>> round(discrete_over_random_db(noise, 12000.0, (1000.0, 1400.0)), 1) < -10  # noise
     True
     """
-    low, high = (float(b) for b in band)
-    if not 0.0 <= low < high:
-        raise FeatureError(f"band = {band!r}: need 0 <= low < high [Hz]")
+    x = check_record(x, function="discrete_over_random_db", min_length=64)
+    fs = check_fs(fs)
+    low, high = check_band(band, fs)
     spec, lines, *_ = _line_editing(x, fs, fundamentals, line_db, window_hz)
     f = np.fft.rfftfreq(np.asarray(x).size, 1.0 / fs)
     inside = (f >= low) & (f <= high)

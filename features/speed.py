@@ -183,6 +183,13 @@ def shaft_rate_from_spectrum(
     df = fs / n
     pad = max(2, min(_PAD, 2**22 // n))
     fine = df / pad
+    if 2.0 * search * given_hz < 3.0 * fine:  # fewer than three bins: no peak to interpolate
+        raise FeatureError(
+            f"x lasts {n / fs:.3g} s ({n} samples at fs = {fs:g} Hz): its spectrum, zero-padded "
+            f"{pad} times, has bins {fine:.3g} Hz apart, too coarse for the 1x line's search of "
+            f"+/-{search:.0%} about given_hz = {given_hz:g} Hz; at least "
+            f"{3.0 / (2.0 * search * given_hz * pad):.3g} s are needed"
+        )
     # the bins read below: the floor's (within 20 %) and the search's, with the Hann main
     # lobe's two bins either side and the interpolation's neighbour
     first_bin = max(0, int(0.8 * given_hz / fine) - 2 * pad - 1)

@@ -41,6 +41,7 @@ from ._validate import (
     check_count,
     check_fs,
     check_positive,
+    check_rates,
     check_record,
 )
 from .bands import line_snr
@@ -243,6 +244,8 @@ def extract_features(
     """
     fs = check_fs(fs)
     n_harmonics = check_count("n_harmonics", n_harmonics)
+    if not isinstance(fault_frequencies, Mapping):
+        check_rates("fault_frequencies", fault_frequencies)  # refuses it by name
     context = dict(fault_frequencies)
     if shaft_frequency is not None:
         context["shaft"] = shaft_frequency
