@@ -12,7 +12,7 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
-from ._validate import FeatureError, check_count, check_positive, check_rates
+from ._validate import FeatureError, check_count, check_positive, check_rates, check_whole
 
 __all__ = [
     "line_snr",
@@ -234,9 +234,12 @@ def fault_bands(
         if shaft_frequency is None:
             raise FeatureError("shaft_frequency is required when domain = 'order'")
         shaft_frequency = check_positive("shaft_frequency", shaft_frequency, unit="Hz")
-    if int(n_harmonics) < 1:
-        raise FeatureError(f"n_harmonics = {n_harmonics} is outside the allowed range [1, inf)")
-    sidebands = dict(sidebands or {})
+    n_harmonics = check_whole("n_harmonics", n_harmonics)
+    n_sidebands = check_whole("n_sidebands", n_sidebands, low=0)
+    sidebands = {
+        fault: None if not spacing else check_positive(f"sidebands[{fault!r}]", spacing, unit="Hz")
+        for fault, spacing in dict(sidebands or {}).items()
+    }
     rows = []
     for fault, f0 in check_rates("fault_frequencies", fault_frequencies).items():
         f0 = check_positive(f"fault_frequencies[{fault!r}]", f0, unit="Hz")

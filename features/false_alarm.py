@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-from ._validate import FeatureError
+from ._validate import FeatureError, check_whole
 
 __all__ = [
     "CALIBRATION_DB",
@@ -142,17 +142,14 @@ def detection_threshold_db(
         20 log10 k plus ``CALIBRATION_DB`` [dB] (12.9 dB for one band of five bins at 1e-4
         with a known median).
     """
-    if n_bands < 1:
-        raise FeatureError(f"n_bands = {n_bands} is outside the allowed range [1, inf)")
+    n_bands = check_whole("n_bands", n_bands)
     if not 0.0 < false_alarm < 1.0:
         raise FeatureError(f"false_alarm = {false_alarm} is outside the allowed range (0, 1)")
-    if searched_bins < 1:
-        raise FeatureError(f"searched_bins = {searched_bins} is outside the allowed range [1, inf)")
+    searched_bins = check_whole("searched_bins", searched_bins)
     k = math.sqrt(2.0 * math.log(searched_bins * n_bands / false_alarm)) / _RAYLEIGH_MEDIAN
     if floor_bins is None:
         return 20.0 * math.log10(k) + CALIBRATION_DB
-    if floor_bins < 3:
-        raise FeatureError(f"floor_bins = {floor_bins} is outside the allowed range [3, inf)")
+    floor_bins = check_whole("floor_bins", floor_bins, low=3)
     floor_bins = _independent_floor_bins(floor_bins)
     target = false_alarm / n_bands
     low, high = 1.0, 4.0 * k

@@ -151,6 +151,7 @@ def held_offsets(
     residue = check_record(residue, function="held_offsets", name="residue", min_length=64)
     fs = check_fs(fs)
     spacing = check_positive("spacing", spacing, unit="Hz")
+    offsets = tuple(check_positive(f"offsets[{i}]", o, unit="Hz") for i, o in enumerate(offsets))
     n = residue.size
     duration = n / fs
     if spacing * duration < 4 or not offsets:

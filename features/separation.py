@@ -28,7 +28,7 @@ import numpy as np
 from scipy import ndimage, sparse
 from scipy.sparse import linalg as sparse_linalg
 
-from ._validate import check_band, check_fs, check_positive, check_record
+from ._validate import FeatureError, check_band, check_fs, check_positive, check_record
 from .band_selection import (  # noqa: F401 (moved in stop 78, still exported here)
     ANALYSER_RATIO,
     BAND_FLOOR_FACTOR,
@@ -406,6 +406,11 @@ def separate_discrete(
     return (random_part, *extra) if extra else random_part
 
 
+#: Highest ``line_db`` of :func:`separate_discrete`: a line 300 dB (a factor 1e15) over its
+#: floor is already beyond what float64 resolves beside it.
+MAX_LINE_DB = 300.0
+
+
 def _line_editing(
     x: np.ndarray,
     fs: float,
@@ -417,8 +422,14 @@ def _line_editing(
     """:func:`separate_discrete`'s spectrum after steps 1-2, edited bins, offsets held, floor."""
     x = check_record(x, function="separate_discrete", min_length=64)
     fs = check_fs(fs)
-    check_positive("line_db", line_db, unit="dB")
-    check_positive("window_hz", window_hz, unit="Hz")
+    if not 0.0 < check_positive("line_db", line_db, unit="dB") <= MAX_LINE_DB:
+        raise FeatureError(
+            f"line_db = {line_db!r} dB is outside the allowed range (0, {MAX_LINE_DB:g}] dB"
+        )
+    if not check_positive("window_hz", window_hz, unit="Hz") <= fs / 2:
+        raise FeatureError(
+            f"window_hz = {window_hz!r} Hz is outside the allowed range (0, fs/2 = {fs / 2:g}] Hz"
+        )
     n = x.size
     y, held = remove_periodic(x, fs, fundamentals, lattice, return_held=True)
     y, spec, floor_rms = add_instrument_floor(x, y)

@@ -20,6 +20,7 @@ from ._validate import (
     check_positive,
     check_record,
     check_signal,
+    check_whole,
 )
 
 __all__ = [
@@ -116,9 +117,7 @@ def amplitude_spectrum(
     n = x.shape[-1]
     if nperseg is None:
         nperseg = n
-    if not 4 <= int(nperseg) <= n:
-        raise FeatureError(f"nperseg = {nperseg} is outside the allowed range [4, {n}]")
-    nperseg = int(nperseg)
+    nperseg = check_whole("nperseg", nperseg, low=4, high=n)
     win = _windows.get_window(window, nperseg)
     step = max(nperseg // 2, 1)
     starts = range(0, n - nperseg + 1, step)
@@ -174,9 +173,7 @@ def power_spectral_density(
     x = check_signal(x, min_length=4, axis=axis)
     fs = check_fs(fs)
     n = x.shape[axis]
-    nperseg = min(n, 4096) if nperseg is None else int(nperseg)
-    if not 4 <= nperseg <= n:
-        raise FeatureError(f"nperseg = {nperseg} is outside the allowed range [4, {n}]")
+    nperseg = min(n, 4096) if nperseg is None else check_whole("nperseg", nperseg, low=4, high=n)
     return sp_signal.welch(x, fs=fs, window=window, nperseg=nperseg, detrend=detrend, axis=axis)
 
 

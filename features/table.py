@@ -43,6 +43,7 @@ from ._validate import (
     check_positive,
     check_rates,
     check_record,
+    check_whole,
 )
 from .bands import line_snr
 from .envelope import KurtogramResult, envelope, kurtogram
@@ -152,6 +153,7 @@ def feature_names(faults: Sequence[str] = DEFAULT_FAULTS, n_harmonics: int = 3) 
     list of str
         The names, in the order of :func:`extract_features`' values.
     """
+    n_harmonics = check_whole("n_harmonics", n_harmonics)
     names = list(TIME_STATISTICS)
     for kind in ("spectrum", "envelope"):
         for fault in faults:

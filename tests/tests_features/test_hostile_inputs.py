@@ -113,3 +113,59 @@ def test_the_discrete_share_needs_a_band_inside_the_record(record):
     with pytest.raises(F.FeatureError, match=r"fs/2 = 6000 Hz"):
         F.discrete_over_random_db(record, FS, (5000.0, 9000.0))
     assert F.discrete_over_random_db(record, FS, (1000.0, 3000.0)) < 0.0  # noise: random
+
+
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda x: F.detection_threshold_db(float("nan")), r"n_bands = nan is not a whole number"),
+        (
+            lambda x: F.detection_threshold_db(10, searched_bins=float("inf")),
+            r"searched_bins = inf",
+        ),
+        (lambda x: F.detection_threshold_db(10, floor_bins=float("nan")), r"floor_bins = nan"),
+        (lambda x: F.amplitude_spectrum(x, FS, nperseg=float("nan")), r"nperseg = nan is not a"),
+        (lambda x: F.power_spectral_density(x, FS, nperseg=float("inf")), r"nperseg = inf is not"),
+        (lambda x: F.fault_bands(RATES, n_harmonics=float("nan")), r"n_harmonics = nan"),
+        (
+            lambda x: F.fault_bands(RATES, n_sidebands=-1),
+            r"n_sidebands = -1 is outside the allowed",
+        ),
+        (
+            lambda x: F.fault_bands(RATES, sidebands={"bpfi": float("nan")}),
+            r"sidebands\['bpfi'\] = nan",
+        ),
+        (lambda x: F.feature_names(n_harmonics=0), r"n_harmonics = 0 is outside the allowed"),
+        (lambda x: F.separate_discrete(x, FS, line_db=1e9), r"line_db = 1000000000\.0 dB is out"),
+        (lambda x: F.separate_discrete(x, FS, window_hz=1e9), r"window_hz = 1000000000\.0 Hz"),
+        (lambda x: F.held_offsets(x, FS, 107.4, (float("nan"),)), r"offsets\[0\] = nan"),
+    ],
+    ids=[
+        "n_bands",
+        "searched_bins",
+        "floor_bins",
+        "nperseg",
+        "psd_nperseg",
+        "n_harmonics",
+        "n_sidebands",
+        "sideband_spacing",
+        "feature_names",
+        "line_db",
+        "window_hz",
+        "lattice_offset",
+    ],
+)
+def test_counts_and_settings_out_of_range_are_refused_by_name(call, message, record):
+    # before: NaN thresholds without a word, "cannot convert float NaN to integer", bands
+    # dropped for a negative sideband count, NaN band centres, an OverflowError and a
+    # MemoryError (a running median 1e9 Hz wide)
+    with pytest.raises(F.FeatureError, match=message):
+        call(record)
+
+
+def test_whole_numbers_given_as_floats_are_still_taken(record):
+    assert F.detection_threshold_db(10.0, searched_bins=5.0, floor_bins=100.0) == pytest.approx(
+        F.detection_threshold_db(10, searched_bins=5, floor_bins=100)
+    )
+    assert F.amplitude_spectrum(record, FS, nperseg=1024.0)[0].size == 513
+    assert len(F.fault_bands(RATES, n_harmonics=2.0)) == 2 * len(RATES)
