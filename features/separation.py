@@ -370,9 +370,9 @@ def separate_discrete(
     fundamentals : sequence of float
         Known periodic rates [Hz] (e.g. the shaft's and the ball pass's).
     line_db : float
-        Line threshold over the local median [dB].
+        Line threshold over the local median [dB], in (0, 300].
     window_hz : float
-        Width of the running median [Hz] (at least 21 bins).
+        Width of the running median [Hz] (at least 21 bins), in (0, fs/2].
     lattice : sequence of float
         Candidate offsets [Hz] in [0, f0) of further series of the last fundamental f0
         (``features.lattice.inner_race_lattice_offsets``), each fitted only where the record
