@@ -100,16 +100,13 @@ def check_count(name: str, value: object, *, low: int = 1, high: int | None = No
 
 
 def check_whole(name: str, value: object, *, low: int = 1, high: int | None = None) -> int:
-    """Return ``value`` as an int in ``[low, high]``; a float is taken if it is a whole number."""
-    allowed = f"[{low}, {'inf' if high is None else high}]"
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise FeatureError(f"{name} = {value!r} is not a whole number; allowed range {allowed}")
-    if not (math.isfinite(value) and float(value).is_integer()):
-        raise FeatureError(f"{name} = {value!r} is not a whole number; allowed range {allowed}")
-    v = int(value)
-    if v < low or (high is not None and v > high):
-        raise FeatureError(f"{name} = {value!r} is outside the allowed range {allowed}")
-    return v
+    """:func:`check_count`, a float taken too if it is a whole number (``5.0``)."""
+    if isinstance(value, (float, np.floating)):
+        if not (math.isfinite(value) and float(value).is_integer()):
+            allowed = f"[{low}, {'inf' if high is None else high}]"
+            raise FeatureError(f"{name} = {value!r} is not a whole number; allowed range {allowed}")
+        value = int(value)
+    return check_count(name, value, low=low, high=high)
 
 
 def check_band(band: object, fs: float) -> tuple[float, float]:

@@ -242,7 +242,6 @@ def fault_bands(
     }
     rows = []
     for fault, f0 in check_rates("fault_frequencies", fault_frequencies).items():
-        f0 = check_positive(f"fault_frequencies[{fault!r}]", f0, unit="Hz")
         bw = width if width is not None else relative_width * f0
         bw = check_positive("width", bw, unit="Hz")
         spacing = sidebands.get(fault)
